@@ -1,0 +1,114 @@
+"""Exception tree of offshore-crane.
+
+Every error raised on purpose by the library derives from :class:`OffshoreCraneError`,
+so a caller (and the command line) can catch one class. Each exception carries its data
+as attributes (the offending value, the sample index, ...) as well as a message that says
+what to do about it.
+"""
+
+from __future__ import annotations
+
+
+class OffshoreCraneError(Exception):
+    """Root of every error raised on purpose by offshore-crane."""
+
+
+class InputError(OffshoreCraneError, ValueError):
+    """An argument has a wrong shape, a non-finite value or a value out of its domain.
+
+    Attributes:
+        name: Name of the offending argument or column.
+        index: Index of the first offending time sample, or None.
+    """
+
+    def __init__(self, message: str, name: str | None = None, index: int | None = None):
+        super().__init__(message)
+        self.name = name
+        self.index = index
+
+
+class TrajectoryError(InputError):
+    """A trajectory cannot be built or read (unknown name, bad CSV, bad time axis)."""
+
+
+class ModelError(OffshoreCraneError, ValueError):
+    """The robot description is invalid or has a structure the library cannot handle.
+
+    Attributes:
+        element: Name of the URDF link, joint or xacro argument concerned, or None.
+    """
+
+    def __init__(self, message: str, element: str | None = None):
+        super().__init__(message)
+        self.element = element
+
+
+class WorkspaceError(OffshoreCraneError, ValueError):
+    """A pose lies outside the workspace (leg stroke, joint limit, unreachable pose).
+
+    Attributes:
+        joint: Name of the joint or leg concerned.
+        index: Index of the first offending time sample.
+        value: The offending value, in SI units of that joint.
+    """
+
+    def __init__(self, message: str, joint: str | None = None, index: int | None = None,
+                 value: float | None = None):
+        super().__init__(message)
+        self.joint = joint
+        self.index = index
+        self.value = value
+
+
+class SingularConfigurationError(OffshoreCraneError, ArithmeticError):
+    """The linear system of the inverse dynamics is (numerically) singular.
+
+    Attributes:
+        index: Index of the first offending time sample.
+        time: Time of that sample [s], or None when the caller gave no time axis.
+        condition: Condition number (2-norm) measured there.
+        kind: Which singularity: "leg-jacobian", "u-joint" or "attitude".
+    """
+
+    def __init__(self, message: str, index: int | None = None, time: float | None = None,
+                 condition: float | None = None, kind: str | None = None):
+        super().__init__(message)
+        self.index = index
+        self.time = time
+        self.condition = condition
+        self.kind = kind
+
+
+class BackendMissingError(OffshoreCraneError, ImportError):
+    """An optional dependency (pinocchio, matplotlib, xacro, yourdfpy) is not installed.
+
+    Attributes:
+        package: The pip package that provides it.
+    """
+
+    def __init__(self, message: str, package: str):
+        super().__init__(message)
+        self.package = package
+
+
+def require(module: str, package: str, purpose: str):
+    """Import an optional module lazily, or raise :class:`BackendMissingError`.
+
+    Args:
+        module: Importable module name, e.g. ``"pinocchio"``.
+        package: Pip package that provides it, e.g. ``"pin"``.
+        purpose: What it is needed for, used in the message.
+
+    Returns:
+        The imported module.
+    """
+    import importlib
+
+    try:
+        return importlib.import_module(module)
+    except ImportError as exc:  # pragma: no cover - exercised only without the package
+        raise BackendMissingError(
+            f"{purpose} needs the Python module '{module}', which is not installed: "
+            f"run `pip install {package}`.",
+            package=package,
+        ) from exc

@@ -1,0 +1,108 @@
+"""Locate the robot's xacro, list its arguments, expand it and cache the URDF.
+
+The expanded URDF is cached under a SHA-256 of (xacro text, arguments), in
+``$OFFSHORE_CRANE_CACHE`` or ``$XDG_CACHE_HOME/offshore-crane`` or
+``~/.cache/offshore-crane``. A cache hit costs a file read; xacro is imported only on a
+miss. An unwritable cache directory only costs speed.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import os
+import re
+from functools import lru_cache
+from pathlib import Path
+
+from ..errors import ModelError, require
+
+XACRO_FILE = "offshore_crane.urdf.xacro"
+_ARG_RE = re.compile(r'<xacro:arg\s+name="([^"]+)"\s+default="([^"]*)"\s*/>')
+
+
+def xacro_path() -> Path:
+    """Path of the robot's xacro: inside the installed package, else the source tree."""
+    here = Path(__file__).resolve()
+    for candidate in (here.parents[1] / "models" / XACRO_FILE,      # installed wheel
+                      here.parents[3] / "models" / XACRO_FILE):     # source checkout
+        if candidate.is_file():
+            return candidate
+    raise ModelError(f"cannot find {XACRO_FILE}: reinstall offshore-crane")
+
+
+@lru_cache(maxsize=None)
+def _xacro_text(path: Path) -> str:
+    return path.read_text(encoding="utf-8")
+
+
+def xacro_arguments(path: Path | None = None) -> dict[str, str]:
+    """The xacro's arguments and their default values (as text), in file order."""
+    return dict(_ARG_RE.findall(_xacro_text(path or xacro_path())))
+
+
+def cache_dir() -> Path:
+    """Directory of the expanded-URDF cache."""
+    if os.environ.get("OFFSHORE_CRANE_CACHE"):
+        return Path(os.environ["OFFSHORE_CRANE_CACHE"])
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "offshore-crane"
+
+
+def normalise_overrides(overrides: dict, path: Path | None = None) -> dict[str, str]:
+    """Check override names against the xacro's arguments and format values.
+
+    Args:
+        overrides: ``{argument: number}``; numbers given as text are accepted.
+
+    Returns:
+        ``{argument: text}`` with values written with full precision, sorted by name.
+
+    Raises:
+        ModelError: unknown argument (the message lists the known ones), non-numeric or
+            non-finite value.
+    """
+    known = xacro_arguments(path)
+    out = {}
+    for name, value in overrides.items():
+        if name not in known:
+            raise ModelError(f"unknown robot parameter '{name}'; known parameters: "
+                             f"{', '.join(known)}", element=name)
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise ModelError(f"robot parameter {name}={value!r} is not a number",
+                             element=name) from None
+        if not math.isfinite(number):
+            raise ModelError(f"robot parameter {name}={value!r} is not finite", element=name)
+        out[name] = repr(number)
+    return dict(sorted(out.items()))
+
+
+def expand(overrides: dict | None = None, path: Path | None = None) -> tuple[str, Path | None]:
+    """Expand the xacro with ``overrides`` and return ``(urdf_text, cache_file)``.
+
+    ``cache_file`` is None when the cache directory cannot be written.
+    """
+    path = path or xacro_path()
+    args = normalise_overrides(overrides or {}, path)
+    text = _xacro_text(path)
+    key = hashlib.sha256((text + "\0" + repr(sorted(args.items()))).encode()).hexdigest()[:20]
+    cached = cache_dir() / f"offshore_crane-{key}.urdf"
+    try:
+        return cached.read_text(encoding="utf-8"), cached
+    except OSError:
+        pass
+    xacro = require("xacro", "xacro", "Expanding the robot's xacro")
+    try:
+        urdf = xacro.process_file(str(path), mappings=args).toprettyxml(indent="  ")
+    except Exception as exc:  # xacro raises bare Exceptions with useful text
+        raise ModelError(f"expanding {path.name} failed: {exc}") from None
+    try:
+        cached.parent.mkdir(parents=True, exist_ok=True)
+        tmp = cached.with_suffix(f".tmp{os.getpid()}")
+        tmp.write_text(urdf, encoding="utf-8")
+        os.replace(tmp, cached)
+    except OSError:
+        return urdf, None
+    return urdf, cached
