@@ -1,0 +1,120 @@
+"""Command line: ``offshore-crane id``, ``offshore-crane serial-id``.
+
+``main(argv=None)`` returns the exit status, so tests call it directly. Errors of the
+library (:class:`OffshoreCraneError`) become one line on stderr and exit status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+from .errors import InputError, OffshoreCraneError
+
+RELATIVE_LIMIT = 1e-9
+
+
+def _parse_set(items) -> dict:
+    out = {}
+    for item in items or []:
+        name, sep, value = item.partition("=")
+        if not sep or not name:
+            raise InputError(f"--set expects name=value, got '{item}'", name="--set")
+        out[name.strip()] = value.strip()
+    return out
+
+
+def _id_parser(sub) -> None:
+    p = sub.add_parser("id", help="inverse dynamics along a trajectory",
+                       description="Actuator forces of the hybrid crane along a trajectory.")
+    p.add_argument("--trajectory", default="table1",
+                   help="'table1' (paper Table 1, analytic derivatives) or a CSV t_s,q1..q9")
+    p.add_argument("--method", choices=("kane", "rnea", "both"), default="kane")
+    p.add_argument("--duration", type=float, help="span of table1 [s] (default 10π)")
+    p.add_argument("--rate", type=float, help="sampling rate of table1 [Hz] (default 100)")
+    p.add_argument("--fd-order", type=int, choices=(2, 4, 6), default=4,
+                   help="order of the central differences for a CSV trajectory")
+    p.add_argument("--out", help="write the actuator forces to this CSV")
+    p.add_argument("--plot", help="write a figure like the paper's Fig. 3 (PNG, PDF, SVG)")
+    p.add_argument("--set", action="append", metavar="NAME=VALUE",
+                   help="override a robot parameter (xacro argument); repeatable")
+    p.add_argument("--gravity", type=float, nargs=3, default=(0.0, 0.0, -9.81),
+                   metavar=("GX", "GY", "GZ"), help="gravity in the base frame [m/s²]")
+
+
+def _run_id(args) -> int:
+    import numpy as np
+
+    from . import trajectories
+    from .dynamics import inverse_dynamics
+    from .model import load_robot
+    from .report import format_summary, plot, summary_rows, write_csv
+
+    robot = load_robot(**_parse_set(args.set))
+    traj = trajectories.load(args.trajectory, duration=args.duration, rate=args.rate,
+                             fd_order=args.fd_order)
+    methods = ("kane", "rnea") if args.method == "both" else (args.method,)
+    results, seconds = {}, {}
+    for m in methods:
+        t0 = time.perf_counter()
+        results[m] = inverse_dynamics(robot, traj.q, traj.qd, traj.qdd, method=m,
+                                      gravity=args.gravity)
+        seconds[m] = time.perf_counter() - t0
+    X = results[methods[0]]
+    t = traj.t
+    print(f"offshore-crane id: trajectory {traj.name}, {len(t)} samples, "
+          f"t = {t[0]:.2f}..{t[-1]:.2f} s, method {args.method} "
+          f"({', '.join(f'{m} {seconds[m] * 1e3:.1f} ms' for m in methods)})")
+    print(format_summary(summary_rows(t, X)))
+    status = 0
+    if args.method == "both":
+        diff = np.abs(results["kane"] - results["rnea"])
+        scale = np.abs(results["rnea"]).max()
+        rel = diff.max() / scale if scale > 0 else diff.max()
+        i, j = np.unravel_index(np.argmax(diff), diff.shape)
+        ok = rel <= RELATIVE_LIMIT
+        print(f"Kane vs RNEA: max |ΔX| = {diff.max():.3e} (sample {i}, t = {t[i]:.2f} s, "
+              f"column {j + 1}); relative to max |X| = {scale:.4g}: {rel:.3e} "
+              f"({'OK' if ok else 'FAIL'}, limit {RELATIVE_LIMIT:g})")
+        status = 0 if ok else 1
+    if args.out:
+        write_csv(args.out, t, X)
+        print(f"wrote {args.out}")
+    if args.plot:
+        plot(args.plot, t, X, title=f"offshore-crane: {traj.name}, {methods[0]}")
+        print(f"wrote {args.plot}")
+    return status
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="offshore-crane",
+        description="Inverse dynamics of a 9-DOF Stewart-platform + SCARA crane robot.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    _id_parser(sub)
+    try:
+        from .serial import cli as serial_cli
+    except ImportError:  # pragma: no cover - serial module absent
+        serial_cli = None
+    if serial_cli is not None:
+        serial_cli.add_parser(sub)
+    return parser
+
+
+def main(argv=None) -> int:
+    """Run the command line with ``argv`` (default ``sys.argv[1:]``); return exit status."""
+    args = build_parser().parse_args(argv)
+    try:
+        if args.command == "id":
+            return _run_id(args)
+        from .serial import cli as serial_cli
+
+        return serial_cli.run(args)
+    except OffshoreCraneError as exc:
+        print(f"offshore-crane: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

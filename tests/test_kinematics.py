@@ -1,0 +1,75 @@
+"""Leg kinematics checked independently: loop closure in Pinocchio, finite differences."""
+
+import numpy as np
+import pinocchio as pin
+
+from offshore_crane.dynamics.rnea import tree_state
+from offshore_crane.kinematics.legs import leg_kinematics
+from offshore_crane.kinematics.platform import platform_motion
+from problems import random_states
+
+
+def test_loops_close_in_pinocchio(robot):
+    """Tree states from our kinematics put leg{i}_tip on platform_anchor{i}: position,
+    velocity and classical acceleration (Pinocchio's own forward kinematics)."""
+    q, qd, qdd = random_states(robot, 60, seed=5)
+    qt, vt, at, _, _ = tree_state(robot, q, qd, qdd)
+    model = robot.pinocchio_model
+    data = model.createData()
+    tips = [model.getFrameId(f"leg{i}_tip") for i in range(1, 7)]
+    anchors = [model.getFrameId(f"platform_anchor{i}") for i in range(1, 7)]
+    frame = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+    worst = np.zeros(3)
+    for k in range(len(q)):
+        pin.forwardKinematics(model, data, qt[k], vt[k], at[k])
+        pin.updateFramePlacements(model, data)
+        for ft, fa in zip(tips, anchors):
+            dp = data.oMf[ft].translation - data.oMf[fa].translation
+            dv = (pin.getFrameVelocity(model, data, ft, frame).linear
+                  - pin.getFrameVelocity(model, data, fa, frame).linear)
+            da = (pin.getFrameClassicalAcceleration(model, data, ft, frame).linear
+                  - pin.getFrameClassicalAcceleration(model, data, fa, frame).linear)
+            worst = np.maximum(worst, [np.abs(dp).max(), np.abs(dv).max(), np.abs(da).max()])
+    # positions ~0.5 m, speeds ~1 m/s, accelerations ~10 m/s²: round-off is < 1e-13
+    assert worst[0] < 1e-13 and worst[1] < 1e-12 and worst[2] < 1e-11, worst
+
+
+def test_leg_rates_are_derivatives(robot):
+    """Central differences of l(t) and θ(t) along a smooth path reproduce l̇, l̈, θ̇, θ̈."""
+    from offshore_crane.trajectories import table1
+
+    h = 1e-4
+    t = np.linspace(0.0, 30.0, 61)
+    states = [table1(t + s * h) for s in (-1, 0, 1)]
+    legs = [leg_kinematics(robot.hybrid, platform_motion(*st)) for st in states]
+    lm, l0, lp = legs
+    d1 = (lp.length - lm.length) / (2 * h)
+    d2 = (lp.length - 2 * l0.length + lm.length) / h**2
+    th1 = (lp.theta - lm.theta) / (2 * h)
+    th2 = (lp.theta - 2 * l0.theta + lm.theta) / h**2
+    # truncation O(h²)·|x'''| ~ 1e-9; round-off of the 2nd difference ε·l/h² ~ 1e-8
+    assert np.abs(d1 - l0.rate).max() < 1e-8
+    assert np.abs(th1 - l0.theta_d).max() < 1e-8
+    assert np.abs(d2 - l0.accel).max() < 1e-6
+    assert np.abs(th2 - l0.theta_dd).max() < 1e-6
+    # angular velocity of the leg from the rotation matrices: skew(ω) = Ṙ Rᵀ
+    Rdot = (lp.R - lm.R) / (2 * h)
+    W = Rdot @ np.swapaxes(l0.R, -1, -2)
+    omega_fd = np.stack([W[..., 2, 1], W[..., 0, 2], W[..., 1, 0]], axis=-1)
+    assert np.abs(omega_fd - l0.omega).max() < 1e-8
+
+
+def test_partial_velocities_by_finite_differences(robot):
+    """v_S,r = ∂S/∂q_r and the leg Jacobian J = ∂l/∂q (u_r = q̇_r, paper Eq. 19)."""
+    q, _, _ = random_states(robot, 5, seed=9)
+    z = np.zeros_like(q)
+    base = leg_kinematics(robot.hybrid, platform_motion(q, z, z))
+    h = 1e-6
+    for r in range(6):
+        dq = np.zeros(9)
+        dq[r] = h
+        lp = leg_kinematics(robot.hybrid, platform_motion(q + dq, z, z))
+        lm = leg_kinematics(robot.hybrid, platform_motion(q - dq, z, z))
+        # central difference error O(h²) plus round-off ε/h ~ 1e-10
+        assert np.abs((lp.p_S - lm.p_S) / (2 * h) - base.V_S[:, :, r]).max() < 1e-8
+        assert np.abs((lp.length - lm.length) / (2 * h) - base.J[:, :, r]).max() < 1e-8

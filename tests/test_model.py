@@ -1,0 +1,96 @@
+"""The robot description: names of CONVENTIONS.md, loading in Pinocchio and yourdfpy,
+xacro overrides and the expansion cache."""
+
+import numpy as np
+import pytest
+
+import offshore_crane as oc
+from offshore_crane.model import xacro_arguments
+from offshore_crane.model.urdf import parse_urdf
+
+BODIES = (["platform"] + [f"leg{i}_{s}" for i in range(1, 7) for s in ("lower", "upper")]
+          + ["arm_column", "arm_link1", "arm_link2", "arm_slider"])
+
+
+def test_contract_names_and_17_bodies(robot):
+    urdf = parse_urdf(robot.urdf)
+    assert urdf.root == "base"
+    massive = {name for name, i in urdf.inertials.items() if i is not None and i.mass > 0}
+    assert massive == set(BODIES) and len(BODIES) == 17  # the paper's 17 moving bodies
+    for i in range(1, 7):
+        for j in ("u1", "u2", "slide"):
+            assert f"leg{i}_{j}" in urdf.joints
+        assert f"leg{i}_tip" in urdf.inertials and f"platform_anchor{i}" in urdf.inertials
+    for name in ("arm_joint1", "arm_joint2", "arm_slide"):
+        assert name in urdf.joints
+
+
+def test_masses_match_pinocchio(robot):
+    model = robot.pinocchio_model
+    data = model.createData()
+    import pinocchio as pin
+
+    pin.computeTotalMass(model, data)
+    assert data.mass[0] == pytest.approx(robot.hybrid.total_mass, rel=1e-14)
+    assert robot.hybrid.total_mass == pytest.approx(45 + 6 * 2.8 + 4 + 3 + 1, rel=1e-14)
+
+
+def test_loads_in_yourdfpy(robot, tmp_path):
+    import yourdfpy
+
+    path = tmp_path / "robot.urdf"
+    path.write_text(robot.urdf)
+    model = yourdfpy.URDF.load(str(path), load_meshes=False, build_scene_graph=True)
+    assert set(BODIES) <= set(model.link_map)
+    assert model.validate()
+    cfg = {name: 0.0 for name in model.actuated_joint_names}
+    cfg.update({f"leg{i}_slide": 0.6 for i in range(1, 7)}, platform_z=0.5)
+    model.update_cfg(cfg)
+    T = model.get_transform("arm_column", "base")
+    assert T[2, 3] == pytest.approx(0.5 + 0.02)  # on the plate's upper face
+
+
+def test_override_changes_model():
+    heavy = oc.load_robot(platform_mass=55)
+    assert heavy.hybrid.platform_mass == pytest.approx(55 + 5)
+    assert heavy.overrides == {"platform_mass": "55.0"}
+    assert oc.load_robot(platform_mass="55.0") is heavy  # memoised on normalised values
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"platfrom_mass": 1}, "unknown robot parameter 'platfrom_mass'"),
+    ({"platform_mass": "heavy"}, "platform_mass='heavy' is not a number"),
+    ({"platform_mass": float("nan")}, "is not finite"),
+])
+def test_bad_overrides(kwargs, match):
+    with pytest.raises(oc.ModelError, match=match):
+        oc.load_robot(**kwargs)
+
+
+def test_every_number_is_an_argument():
+    args = xacro_arguments()
+    assert len(args) >= 30
+    assert all(float(v) == float(v) for v in args.values())
+
+
+def test_cache_is_reused(tmp_path, monkeypatch):
+    from offshore_crane.model.xacro_cache import expand
+
+    monkeypatch.setenv("OFFSHORE_CRANE_CACHE", str(tmp_path))
+    text, path = expand({"column_mass": 6})
+    assert path.parent == tmp_path and path.read_text() == text
+    path.write_text(text.replace('name="offshore_crane"', 'name="from_cache"'))
+    assert 'name="from_cache"' in expand({"column_mass": 6.0})[0]
+    assert expand({"column_mass": 7})[1] != path
+
+
+def test_table1_within_strokes_and_far_from_singularities(robot, table1):
+    from offshore_crane.kinematics.legs import leg_kinematics
+    from offshore_crane.kinematics.platform import platform_motion
+
+    _, q, qd, qdd = table1
+    legs = leg_kinematics(robot.hybrid, platform_motion(q, qd, qdd))
+    lo, hi = robot.hybrid.stroke.T
+    assert np.all(legs.length > lo + 0.01) and np.all(legs.length < hi - 0.01)
+    assert np.abs(legs.u_dot_n).min() > 0.9          # U-joints ≥ 64° from gimbal lock
+    assert np.linalg.cond(legs.J).max() < 20         # Stewart Jacobian well conditioned
