@@ -86,8 +86,14 @@ def project(robot, tau: np.ndarray, legs) -> np.ndarray:
     return B
 
 
-def rnea_inverse_dynamics(robot, q, qd, qdd, gravity, threads: int = 1) -> np.ndarray:
-    """Actuator forces X ``(N, 9)`` by the RNEA path."""
+def rnea_B(robot, q, qd, qdd, gravity, threads: int = 1):
+    """``Gᵀ τ`` ``(N, 9)`` and the leg kinematics used to form it."""
     qt, vt, at, legs, _ = tree_state(robot, q, qd, qdd)
     tau = tree_torques(robot, qt, vt, at, gravity, threads)
-    return solve_actuators(project(robot, tau, legs), legs.J)
+    return project(robot, tau, legs), legs
+
+
+def rnea_inverse_dynamics(robot, q, qd, qdd, gravity, threads: int = 1) -> np.ndarray:
+    """Actuator forces X ``(N, 9)`` by the RNEA path."""
+    B, legs = rnea_B(robot, q, qd, qdd, gravity, threads)
+    return solve_actuators(B, legs.J)

@@ -41,6 +41,13 @@ class Robot:
         return {**xacro_arguments(), **self.overrides}
 
     @cached_property
+    def fused(self):
+        """Constants of the fused Kane kernel (:func:`..dynamics.fused.prepare`)."""
+        from ..dynamics.fused import prepare
+
+        return prepare(self.hybrid)
+
+    @cached_property
     def pinocchio_model(self):
         """The equivalent tree as a ``pinocchio.Model`` (imports pinocchio on first use)."""
         from ..errors import require
