@@ -14,17 +14,19 @@ from problems import random_states
 LIMIT = 1e-9
 
 
-def test_table1_default_span(robot, table1):
+@pytest.mark.parametrize("kane", ["kane", "kane-explicit"])
+def test_table1_default_span(robot, table1, kane):
     t, q, qd, qdd = table1
-    Xk = oc.inverse_dynamics(robot, q, qd, qdd, method="kane")
+    Xk = oc.inverse_dynamics(robot, q, qd, qdd, method=kane)
     Xr = oc.inverse_dynamics(robot, q, qd, qdd, method="rnea")
     assert Xk.shape == (3142, 9)
     assert relative_error(Xk, Xr) <= LIMIT
 
 
-def test_1000_random_states(robot):
+@pytest.mark.parametrize("kane", ["kane", "kane-explicit"])
+def test_1000_random_states(robot, kane):
     q, qd, qdd = random_states(robot, 1000, seed=20261122)
-    Xk = oc.inverse_dynamics(robot, q, qd, qdd, method="kane")
+    Xk = oc.inverse_dynamics(robot, q, qd, qdd, method=kane)
     Xr = oc.inverse_dynamics(robot, q, qd, qdd, method="rnea")
     assert relative_error(Xk, Xr) <= LIMIT
     # per-sample too: no sample hides behind a large one elsewhere

@@ -11,6 +11,7 @@ import sys
 import time
 
 from .errors import InputError, OffshoreCraneError
+from .model.hybrid import ACTUATOR_UNITS, ACTUATORS
 
 RELATIVE_LIMIT = 1e-9
 
@@ -30,7 +31,12 @@ def _id_parser(sub) -> None:
                        description="Actuator forces of the hybrid crane along a trajectory.")
     p.add_argument("--trajectory", default="table1",
                    help="'table1' (paper Table 1, analytic derivatives) or a CSV t_s,q1..q9")
-    p.add_argument("--method", choices=("kane", "rnea", "both"), default="kane")
+    p.add_argument("--method", choices=("kane", "kane-explicit", "rnea", "both"), default="kane",
+                   help="'both' runs kane and rnea and compares them")
+    p.add_argument("--leg-model", choices=("full", "thin-rod", "massless"), default="full",
+                   help="leg model; thin-rod and massless are approximations (kane only)")
+    p.add_argument("--outputs", help="comma-separated actuators to compute, e.g. T1,T2,Fs "
+                   "(without any Fl the legs are not evaluated)")
     p.add_argument("--duration", type=float, help="span of table1 [s] (default 10π)")
     p.add_argument("--rate", type=float, help="sampling rate of table1 [Hz] (default 100)")
     p.add_argument("--fd-order", type=int, choices=(2, 4, 6), default=4,
@@ -41,36 +47,59 @@ def _id_parser(sub) -> None:
                    help="override a robot parameter (xacro argument); repeatable")
     p.add_argument("--gravity", type=float, nargs=3, default=(0.0, 0.0, -9.81),
                    metavar=("GX", "GY", "GZ"), help="gravity in the base frame [m/s²]")
+    p.add_argument("--no-limits", action="store_true",
+                   help="do not stop at leg strokes, U-joint or arm joint limits")
+    p.add_argument("--warn-cond", type=float, default=1e5,
+                   help="warn above this condition number (default 1e5)")
+    p.add_argument("--error-cond", type=float, default=1e8,
+                   help="stop above this condition number (default 1e8)")
+
+
+def _thresholds(args):
+    from .checks import Thresholds
+
+    try:
+        return Thresholds(warn=args.warn_cond, error=args.error_cond)
+    except ValueError as exc:
+        raise InputError(str(exc), name="--warn-cond") from None
 
 
 def _run_id(args) -> int:
     import numpy as np
 
     from . import trajectories
-    from .dynamics import inverse_dynamics
+    from .dynamics import solve
     from .model import load_robot
     from .report import format_summary, plot, summary_rows, write_csv
 
     robot = load_robot(**_parse_set(args.set))
     traj = trajectories.load(args.trajectory, duration=args.duration, rate=args.rate,
                              fd_order=args.fd_order)
+    outputs = None if not args.outputs else [o.strip() for o in args.outputs.split(",")]
     methods = ("kane", "rnea") if args.method == "both" else (args.method,)
     results, seconds = {}, {}
     for m in methods:
         t0 = time.perf_counter()
-        results[m] = inverse_dynamics(robot, traj.q, traj.qd, traj.qdd, method=m,
-                                      gravity=args.gravity)
+        results[m] = solve(robot, traj.q, traj.qd, traj.qdd, method=m, gravity=args.gravity,
+                           leg_model=args.leg_model, outputs=outputs, t=traj.t,
+                           limits=not args.no_limits, thresholds=_thresholds(args))
         seconds[m] = time.perf_counter() - t0
-    X = results[methods[0]]
-    t = traj.t
+    res = results[methods[0]]
+    X, t = res.X, traj.t
     print(f"offshore-crane id: trajectory {traj.name}, {len(t)} samples, "
           f"t = {t[0]:.2f}..{t[-1]:.2f} s, method {args.method} "
           f"({', '.join(f'{m} {seconds[m] * 1e3:.1f} ms' for m in methods)})")
-    print(format_summary(summary_rows(t, X)))
+    print(f"model: {'exact' if not res.approximations else 'APPROXIMATE: ' + '; '.join(res.approximations)}"
+          + (f"; skipped: {'; '.join(res.pruned)}" if res.pruned else ""))
+    cols = [k for k, name in enumerate(ACTUATORS) if name in res.outputs]
+    print(format_summary(summary_rows(t, X[:, cols], [ACTUATORS[k] for k in cols],
+                                      [ACTUATOR_UNITS[k] for k in cols])))
+    for kind, kappa, k in res.worst():
+        print(f"worst {kind} condition number: {kappa:.4g} at t = {t[k]:.2f} s (sample {k})")
     status = 0
     if args.method == "both":
-        diff = np.abs(results["kane"] - results["rnea"])
-        scale = np.abs(results["rnea"]).max()
+        diff = np.abs(results["kane"].X - results["rnea"].X)
+        scale = np.abs(results["rnea"].X).max()
         rel = diff.max() / scale if scale > 0 else diff.max()
         i, j = np.unravel_index(np.argmax(diff), diff.shape)
         ok = rel <= RELATIVE_LIMIT
@@ -105,12 +134,22 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv=None) -> int:
     """Run the command line with ``argv`` (default ``sys.argv[1:]``); return exit status."""
     args = build_parser().parse_args(argv)
-    try:
-        if args.command == "id":
-            return _run_id(args)
-        from .serial import cli as serial_cli
+    import warnings
 
-        return serial_cli.run(args)
+    from .checks import OffshoreCraneWarning
+
+    def one_line(message, category, filename, lineno, file=None, line=None):
+        print(f"offshore-crane: warning: {message}", file=sys.stderr)
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("always", OffshoreCraneWarning)
+            warnings.showwarning = one_line
+            if args.command == "id":
+                return _run_id(args)
+            from .serial import cli as serial_cli
+
+            return serial_cli.run(args)
     except OffshoreCraneError as exc:
         print(f"offshore-crane: error: {exc}", file=sys.stderr)
         return 2

@@ -76,46 +76,43 @@ def check_limits(robot, q: np.ndarray, diag: dict | None, t=None) -> None:
     """
     h = robot.hybrid
     arm = h.arm
-    for k, name in enumerate(arm.joint_names):
-        unit = "m" if arm.prismatic[k] else "rad"
-        _range_check(q[:, 6 + k], arm.lower[k], arm.upper[k], name, unit, t)
+    n = arm.n
+    _range_check(q[:, 6:6 + n], arm.lower, arm.upper, arm.joint_names,
+                 ["m" if p else "rad" for p in arm.prismatic], t)
     if diag is None:
         return
-    for i in range(6):
-        _range_check(diag["length"][:, i], h.stroke[i, 0], h.stroke[i, 1],
-                     f"leg{i + 1}_slide", "m", t, what=f"leg {i + 1} length")
-        for a, key in enumerate(("theta1", "theta2")):
-            lo, hi = h.ujoint_limits[i, a]
-            _range_check(diag[key][:, i], lo, hi, f"leg{i + 1}_u{a + 1}", "rad", t)
+    legs = [f"leg{i + 1}" for i in range(6)]
+    _range_check(diag["length"], h.stroke[:, 0], h.stroke[:, 1],
+                 [f"{leg}_slide" for leg in legs], ["m"] * 6, t,
+                 what=[f"{leg} length" for leg in legs])
+    for a, key in enumerate(("theta1", "theta2")):
+        _range_check(diag[key], h.ujoint_limits[:, a, 0], h.ujoint_limits[:, a, 1],
+                     [f"{leg}_u{a + 1}" for leg in legs], ["rad"] * 6, t)
 
 
-def _range_check(x, lo, hi, joint, unit, t, what=None):
+def _range_check(x, lo, hi, joints, units, t, what=None):
+    """``x (N, m)`` against per-column limits ``lo, hi (m,)``."""
     bad = (x < lo) | (x > hi)
     if bad.any():
-        k = int(np.argmax(bad))
+        k, j = np.argwhere(bad)[0]
+        unit = units[j]
         raise WorkspaceError(
-            f"{what or joint} = {x[k]:.6g} {unit} at {_when(k, t)} is outside "
-            f"[{lo:.6g}, {hi:.6g}] {unit}; change the trajectory or the robot parameters, "
-            "or pass limits=False (CLI --no-limits) to study it anyway",
-            joint=joint, index=k, value=float(x[k]))
+            f"{(what or joints)[j]} = {x[k, j]:.6g} {unit} at {_when(k, t)} is outside "
+            f"[{lo[j]:.6g}, {hi[j]:.6g}] {unit}; change the trajectory or the robot "
+            "parameters, or pass limits=False (CLI --no-limits) to study it anyway",
+            joint=joints[j], index=int(k), value=float(x[k, j]))
 
 
-def check_below_base(robot, diag: dict, q: np.ndarray, t=None) -> None:
+def check_below_base(diag: dict, t=None) -> None:
     """A sphere centre at or below its U-joint centre: the platform is below the base."""
-    h = robot.hybrid
-    # S_z − P_z = l · u_z; u_z from θ's is indirect: recompute from the pose (cheap).
-    from .spatial import attitude_matrix
-
-    R = attitude_matrix(q[:, 3], q[:, 4], q[:, 5])
-    Sz = q[:, 2, None] + np.einsum("nj,lj->nl", R[:, 2, :], h.p_platform_S)
-    dz = Sz - h.p_base_P[:, 2]
+    dz = diag["height"]
     bad = dz <= 0.0
     if bad.any():
         k, i = np.argwhere(bad)[0]
         raise WorkspaceError(
-            f"sphere centre S{i + 1} is {-dz[k, i]:.4g} m below its U-joint at {_when(k, t)} "
-            "(platform below the base); raise q3", joint=f"leg{i + 1}_slide", index=int(k),
-            value=float(dz[k, i]))
+            f"sphere centre S{i + 1} is {-dz[k, i]:.4g} m below its U-joint at "
+            f"{_when(k, t)} (platform below the base); raise q3",
+            joint=f"leg{i + 1}_slide", index=int(k), value=float(dz[k, i]))
 
 
 def apply_policy(kind: str, kappa: np.ndarray, thresholds: Thresholds, t=None,
@@ -123,7 +120,9 @@ def apply_policy(kind: str, kappa: np.ndarray, thresholds: Thresholds, t=None,
     """Warn once / raise for condition numbers ``kappa`` ``(N,)`` of one kind."""
     if kappa is None:
         return
-    worst = np.nanmax(kappa) if kappa.size else 0.0
+    worst = kappa.max()
+    if worst <= thresholds.warn:      # also False for NaN: falls through to the checks
+        return
     if error and (worst > thresholds.error or not np.all(np.isfinite(kappa))):
         k = int(np.argmax(~(kappa <= thresholds.error)))
         raise SingularConfigurationError(

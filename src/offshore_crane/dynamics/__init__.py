@@ -147,7 +147,8 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
 
             B, legs = rnea_B(robot, q, qd, qdd, g)
         diag = {"length": legs.length, "theta1": legs.theta[..., 0],
-                "theta2": legs.theta[..., 1], "cos_theta2": np.abs(legs.u_dot_n)}
+                "theta2": legs.theta[..., 1], "cos_theta2": np.abs(legs.u_dot_n),
+                "height": legs.p_S[..., 2] - robot.hybrid.p_base_P[:, 2]}
         if checks:
             J = legs.J.copy()
             J[:, :, 3:] /= robot.fused.length_scale
@@ -157,7 +158,7 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
     if limits:
         check_limits(robot, q, diag, t)
         if want_legs:
-            check_below_base(robot, diag, q, t)
+            check_below_base(diag, t)
     gimbal = None if diag is None else 1.0 / diag["cos_theta2"].min(axis=1)
     attitude = 1.0 / np.abs(np.cos(q[:, 4]))
     if checks:

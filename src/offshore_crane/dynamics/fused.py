@@ -45,6 +45,9 @@ CHUNK = 4096
 #: Up to this many samples, the kernel runs on Python floats, one sample at a time: the
 #: same code, without NumPy's per-call overhead (~1 µs per call, ~900 calls per chunk).
 SCALAR_MAX = 8
+#: Leg diagnostics, each (N, 6): length l [m], U-joint angles θ1, θ2 [rad], cos θ2,
+#: and height S_z − P_z [m] of the sphere centre above the U-joint centre.
+DIAGNOSTICS = ("length", "theta1", "theta2", "cos_theta2", "height")
 
 # --------------------------------------------------------------------------- helpers
 # Vectors are 3-tuples of arrays or floats; matrices 3-tuples of row 3-tuples; None = 0.
@@ -91,6 +94,9 @@ def _sparse_cols(C) -> tuple:
 
 def _combine(v, cs):
     """Σ v[k] c_k over the sparse constant ``cs`` (no multiply for ones)."""
+    if len(cs) == 1:
+        k, ck = cs[0]
+        return v[k] if ck == 1.0 else v[k] * ck
     if not cs:
         return 0.0
     terms = [v[k] if ck == 1.0 else v[k] * ck for k, ck in cs]
@@ -109,7 +115,10 @@ def _lin(R, cs):
 
 def _lin_t(R, v):
     """``Rᵀ v``."""
-    return tuple(R[0][j] * v[0] + R[1][j] * v[1] + R[2][j] * v[2] for j in range(3))
+    r0, r1, r2 = R
+    return (r0[0] * v[0] + r1[0] * v[1] + r2[0] * v[2],
+            r0[1] * v[0] + r1[1] * v[1] + r2[1] * v[2],
+            r0[2] * v[0] + r1[2] * v[1] + r2[2] * v[2])
 
 
 def _const_lin(rows, v):
@@ -126,17 +135,21 @@ def _mat_const(R, cols):
 def _rotate_about_axis(Rj, axis: int, c, s):
     """``Rj @ Rot(e_axis, θ)`` with ``c = cos θ``, ``s = sin θ`` for a coordinate axis."""
     i, j = ((1, 2), (2, 0), (0, 1))[axis]      # the two columns that turn
-    out = [[None] * 3 for _ in range(3)]
-    for row in range(3):
-        ri, rj = Rj[row][i], Rj[row][j]
-        out[row][axis] = Rj[row][axis]
-        out[row][i] = ri * c + rj * s
-        out[row][j] = rj * c - ri * s
-    return tuple(tuple(r) for r in out)
+    out = []
+    for row in Rj:
+        new = list(row)
+        new[i] = row[i] * c + row[j] * s
+        new[j] = row[j] * c - row[i] * s
+        out.append(new)
+    return out
 
 
 def _mat_vec(R, v):
-    return tuple(R[i][0] * v[0] + R[i][1] * v[1] + R[i][2] * v[2] for i in range(3))
+    """``R v``."""
+    r0, r1, r2 = R
+    return (r0[0] * v[0] + r0[1] * v[1] + r0[2] * v[2],
+            r1[0] * v[0] + r1[1] * v[1] + r1[2] * v[2],
+            r2[0] * v[0] + r2[1] * v[1] + r2[2] * v[2])
 
 
 def _body_torque(R, I, omega, alpha):
@@ -466,6 +479,7 @@ def _chunk(fd: FusedData, q, qd, qdd, g, opts: Options, diag=None):
         diag["theta1"][:] = np.arctan2(dlx, dlz).T
         diag["theta2"][:] = np.arctan2(-dly, h).T
         diag["cos_theta2"][:] = (h / length).T
+        diag["height"][:] = d[2].T
     return X, cond
 
 
@@ -506,6 +520,7 @@ def _sample(fd: FusedData, q, qd, qdd, g, opts: Options, diag=None, k=0):
             diag["theta1"][k, i] = math.atan2(dlx, dlz)
             diag["theta2"][k, i] = math.atan2(-dly, h)
             diag["cos_theta2"][k, i] = h / length
+            diag["height"][k, i] = d[2]
     F, M = F or (0.0, 0.0, 0.0), M or (0.0, 0.0, 0.0)
     A[3:] *= iL
     X[3:], cond = _solve_legs(A, np.array([F[0], F[1], F[2], M[0] * iL, M[1] * iL,
@@ -537,7 +552,7 @@ def fused_inverse_dynamics(fd: FusedData, q, qd, qdd, g, opts: Options = Options
     X = np.empty((N, 9))
     with_legs = opts.legs
     cond = np.empty(N) if opts.conditioning and with_legs else None
-    diag = ({k: np.empty((N, 6)) for k in ("length", "theta1", "theta2", "cos_theta2")}
+    diag = ({k: np.empty((N, 6)) for k in DIAGNOSTICS}
             if opts.diagnostics and with_legs else None)
     g = tuple(float(x) for x in g)
     if N <= SCALAR_MAX:
