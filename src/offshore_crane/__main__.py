@@ -53,6 +53,7 @@ def _id_parser(sub) -> None:
                    help="warn above this condition number (default 1e5)")
     p.add_argument("--error-cond", type=float, default=1e8,
                    help="stop above this condition number (default 1e8)")
+    p.set_defaults(run=_run_id)
 
 
 def _thresholds(args):
@@ -116,18 +117,28 @@ def _run_id(args) -> int:
     return status
 
 
+#: Modules adding sub-commands: each has ``add_parser(subparsers)``, which registers its
+#: parser with ``set_defaults(run=...)``; ``run(args) -> int`` is its exit status. They
+#: must import nothing heavy at module level (the CLI imports them all to build --help).
+SUBCOMMANDS = ("offshore_crane.serial.cli", "offshore_crane.bench")
+
+
 def build_parser() -> argparse.ArgumentParser:
+    import importlib
+
     parser = argparse.ArgumentParser(
         prog="offshore-crane",
         description="Inverse dynamics of a 9-DOF Stewart-platform + SCARA crane robot.")
     sub = parser.add_subparsers(dest="command", required=True)
     _id_parser(sub)
-    try:
-        from .serial import cli as serial_cli
-    except ImportError:  # pragma: no cover - serial module absent
-        serial_cli = None
-    if serial_cli is not None:
-        serial_cli.add_parser(sub)
+    for name in SUBCOMMANDS:
+        try:
+            module = importlib.import_module(name)
+        except ModuleNotFoundError as exc:
+            if exc.name and name.startswith(exc.name):
+                continue            # sub-command not part of this build
+            raise
+        module.add_parser(sub)
     return parser
 
 
@@ -145,11 +156,7 @@ def main(argv=None) -> int:
         with warnings.catch_warnings():
             warnings.simplefilter("always", OffshoreCraneWarning)
             warnings.showwarning = one_line
-            if args.command == "id":
-                return _run_id(args)
-            from .serial import cli as serial_cli
-
-            return serial_cli.run(args)
+            return args.run(args)
     except OffshoreCraneError as exc:
         print(f"offshore-crane: error: {exc}", file=sys.stderr)
         return 2

@@ -227,8 +227,13 @@ def _coordinate_axis(axis) -> int | None:
     return None
 
 
-def prepare(model: HybridModel) -> FusedData:
+def prepare(model: HybridModel, dtype=np.float64) -> FusedData:
     """Read the kernel's constants from the model.
+
+    Args:
+        model: The robot's arrays.
+        dtype: Floating type of the per-leg constant arrays; with ``np.float32`` (and
+            float32 inputs) the vectorised kernel runs in single precision.
 
     Raises:
         ModelError: leg links not symmetric about the leg axis (the fused leg formulas
@@ -238,7 +243,7 @@ def prepare(model: HybridModel) -> FusedData:
     It_up, Ia_up = _axisymmetric(model.upper_com, model.upper_inertia, "upper leg")
 
     def col(a):
-        return np.ascontiguousarray(np.asarray(a, dtype=float)[:, None])
+        return np.ascontiguousarray(np.asarray(a, dtype=dtype)[:, None])
 
     def vec(a):
         return tuple(col(a[:, k]) for k in range(3))
@@ -449,7 +454,7 @@ def _chunk(fd: FusedData, q, qd, qdd, g, opts: Options, diag=None):
     v = None if static else (qd[0], qd[1], qd[2])
     arm_rows, F, M = _arm(fd, R, omega, alpha, a, q, qd, qdd, g)
     n = q.shape[1]
-    X = np.zeros((n, 9))
+    X = np.zeros((n, 9), dtype=q.dtype)
     for k, row in enumerate(arm_rows):
         X[:, k] = row
     if not opts.legs:
@@ -462,11 +467,11 @@ def _chunk(fd: FusedData, q, qd, qdd, g, opts: Options, diag=None):
     F = _add(_add(F, Fp), F_legs) or (0.0, 0.0, 0.0)
     M = _add(_add(M, Mp), M_legs) or (0.0, 0.0, 0.0)
     iL = 1.0 / fd.length_scale
-    A = np.empty((n, 6, 6))
+    A = np.empty((n, 6, 6), dtype=q.dtype)
     for k in range(3):
         A[:, k, :] = np.broadcast_to(u[k], (6, n)).T
         A[:, 3 + k, :] = (rxu[k] * iL).T
-    rhs = np.empty((n, 6))
+    rhs = np.empty((n, 6), dtype=q.dtype)
     for k in range(3):
         rhs[:, k] = F[k]
         rhs[:, 3 + k] = M[k] * iL
@@ -549,7 +554,7 @@ def fused_inverse_dynamics(fd: FusedData, q, qd, qdd, g, opts: Options = Options
     if opts.leg_model not in LEG_MODELS:
         raise ValueError(f"unknown leg model '{opts.leg_model}'; use one of {LEG_MODELS}")
     N = q.shape[0]
-    X = np.empty((N, 9))
+    X = np.empty((N, 9), dtype=q.dtype)
     with_legs = opts.legs
     cond = np.empty(N) if opts.conditioning and with_legs else None
     diag = ({k: np.empty((N, 6)) for k in DIAGNOSTICS}
