@@ -1,0 +1,134 @@
+"""Benchmark: Kane inverse dynamics of a serial robot against Pinocchio's RNEA.
+
+Times, in µs per sample, for N seeded random states (q within the joint limits, q̇, q̈
+uniform in [-2, 2]):
+
+* ``kane``: :func:`offshore_crane.serial.inverse_dynamics`, one call on the whole batch
+  (NumPy, vectorised over samples);
+* ``rnea loop``: ``pin.rnea`` called once per sample from Python;
+* ``rneaInParallel(1)``: ``pin.rneaInParallel`` with one thread on ``(nq, N)`` /
+  ``(nv, N)`` Fortran-ordered arrays (C++ loop over samples).
+
+Every time is the best of several repeats (fewer for large N). The three results are
+compared: the table's last column is the largest ``|τ_kane − τ_rnea|``.
+
+Usage::
+
+    python scripts/bench_serial.py [CSV] [--sizes 1 100 10000 100000]
+
+writes the table to ``CSV`` (default ``bench_serial.csv`` in the current directory).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import importlib.metadata
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+try:
+    from offshore_crane import serial
+except ImportError:  # run from a checkout without installing
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
+    from offshore_crane import serial
+from offshore_crane.serial import reference
+
+import pinocchio as pin
+
+ROBOTS_DIR = Path(importlib.metadata.distribution("example-robot-data").locate_file(
+    "cmeel.prefix/share/example-robot-data/robots"))
+ROBOTS = [("UR5", "ur_description/urdf/ur5_robot.urdf", None),
+          ("Panda", "panda_description/urdf/panda.urdf", "panda_hand")]
+COLUMNS = ["robot", "joints", "N", "kane_us", "rnea_loop_us", "rnea_parallel1_us",
+           "kane_over_rnea_loop", "max_abs_diff"]
+
+
+def best_time(fn, n_samples: int) -> float:
+    """Best wall time of ``fn()`` [s] after a warm-up call; fewer repeats for larger N
+    (200 for N = 1 down to 2 for N > 10⁴) keep the whole run around ten seconds."""
+    repeats = (200 if n_samples == 1 else 20 if n_samples <= 100
+               else 5 if n_samples <= 10_000 else 2)
+    fn()  # warm-up (imports, caches, allocator)
+    best = np.inf
+    for _ in range(repeats):
+        t = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t)
+    return best
+
+
+def bench_robot(label: str, path: Path, tip, sizes) -> list[dict]:
+    chain = serial.load_chain(path, tip=tip)
+    model = reference.pinocchio_model(path, chain)
+    data = model.createData()
+    pool = pin.ModelPool(model, 1)
+    rows = []
+    for N in sizes:
+        q, qd, qdd = serial.random_states(chain, N, seed=0)
+        Q = reference.pinocchio_q(model, q)  # (N, nq): rows for the loop
+        QF, VF, AF = (np.asfortranarray(x.T) for x in (Q, qd, qdd))  # (nq|nv, N)
+        TAU = np.zeros((model.nv, N), order="F")
+        out = {}
+
+        def kane():
+            out["kane"] = serial.inverse_dynamics(chain, q, qd, qdd)
+
+        def rnea_loop():
+            out["loop"] = [pin.rnea(model, data, Q[i], qd[i], qdd[i]).copy() for i in range(N)]
+
+        def rnea_parallel():
+            pin.rneaInParallel(1, pool, QF, VF, AF, TAU)
+
+        t_kane = best_time(kane, N)
+        t_loop = best_time(rnea_loop, N)
+        t_par = best_time(rnea_parallel, N)
+        loop = np.array(out["loop"])
+        diff = max(np.abs(out["kane"] - loop).max(), np.abs(TAU.T - loop).max())
+        rows.append({"robot": label, "joints": chain.n, "N": N,
+                     "kane_us": 1e6 * t_kane / N, "rnea_loop_us": 1e6 * t_loop / N,
+                     "rnea_parallel1_us": 1e6 * t_par / N,
+                     "kane_over_rnea_loop": t_kane / t_loop, "max_abs_diff": diff})
+        print_row(rows[-1])
+    return rows
+
+
+def print_header() -> None:
+    print(f"{'robot':<6} {'n':>2} {'N':>7}  {'Kane [µs]':>10}  {'pin.rnea loop [µs]':>18}  "
+          f"{'rneaInParallel(1) [µs]':>22}  {'Kane/loop':>9}  {'max|Δτ|':>9}")
+
+
+def print_row(r: dict) -> None:
+    print(f"{r['robot']:<6} {r['joints']:>2} {r['N']:>7}  {r['kane_us']:>10.3f}  "
+          f"{r['rnea_loop_us']:>18.3f}  {r['rnea_parallel1_us']:>22.3f}  "
+          f"{r['kane_over_rnea_loop']:>9.2f}  {r['max_abs_diff']:>9.1e}", flush=True)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("csv", nargs="?", default="bench_serial.csv",
+                        help="output CSV (default bench_serial.csv)")
+    parser.add_argument("--sizes", type=int, nargs="+", default=[1, 100, 10_000, 100_000],
+                        help="batch sizes N")
+    args = parser.parse_args(argv)
+    print(f"µs per sample (best of repeats); numpy {np.__version__}, pinocchio "
+          f"{pin.__version__}")
+    print_header()
+    rows = []
+    for label, rel, tip in ROBOTS:
+        rows += bench_robot(label, ROBOTS_DIR / rel, tip, args.sizes)
+    with open(args.csv, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=COLUMNS)
+        writer.writeheader()
+        for r in rows:
+            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
+                             for k, v in r.items()})
+    print(f"wrote {args.csv}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,258 @@
+"""Loading a serial chain from a URDF and its Kane inverse dynamics (paper Eqs. 27-31).
+
+Frames and units: the chain's *base* is a URDF link held still (the URDF root by
+default). Unless a ``base_pose`` is given, the world frame is the base frame, so
+``gravity`` and an external wrench are given in base axes. Joint coordinates are angles
+[rad] for revolute and continuous joints (one number each, also for continuous joints,
+which Pinocchio stores as ``(cos, sin)``) and displacements [m] for prismatic joints.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError, ModelError
+from ..kane import body_load, inertia_to_world, inertia_wrench
+from ..kinematics.chain import BaseMotion, SerialChain, chain_from_urdf, chain_kinematics
+from ..model.urdf import URDF, parse_urdf
+from ..spatial import cross, matvec
+from ..validation import as_gravity, as_samples, same_length
+
+GRAVITY = (0.0, 0.0, -9.81)
+"""Default gravity [m/s²], world (= base) axes: z up."""
+
+# A rotation given as base pose must be orthonormal to this (absolute, per entry). Any
+# matrix built from angles in float64 is so to ~1e-15; 1e-9 rejects hand-typed rounded
+# matrices, which would silently scale the gravity and the wrench.
+_ORTHONORMAL_TOL = 1e-9
+
+
+def read_urdf(urdf) -> tuple[URDF, str | None]:
+    """Parse a URDF given as a path, as XML text, or already parsed.
+
+    Args:
+        urdf: ``str`` or ``os.PathLike`` path to a ``.urdf`` file; or a ``str`` holding
+            the XML itself (recognised by its first non-blank character ``<``); or a
+            :class:`~offshore_crane.model.urdf.URDF`.
+
+    Returns:
+        ``(parsed, text)``; ``text`` is None when ``urdf`` was already parsed.
+
+    Raises:
+        InputError: the file cannot be read.
+        ModelError: the file is not a valid URDF.
+    """
+    if isinstance(urdf, URDF):
+        return urdf, None
+    if isinstance(urdf, str) and urdf.lstrip().startswith("<"):
+        text = urdf
+    elif isinstance(urdf, (str, os.PathLike)):
+        try:
+            text = Path(urdf).read_text(encoding="utf-8")
+        except OSError as exc:
+            raise InputError(f"cannot read the URDF file '{os.fspath(urdf)}': "
+                             f"{exc.strerror or exc}", name="urdf") from None
+    else:
+        raise InputError(f"urdf must be a path, URDF text or a parsed URDF, got "
+                         f"{type(urdf).__name__}", name="urdf")
+    return parse_urdf(text), text
+
+
+def load_chain(urdf, tip: str | None = None, base: str | None = None) -> SerialChain:
+    """Read a serial chain from a URDF for :func:`inverse_dynamics`.
+
+    The movable joints below ``base`` must form one serial chain of revolute, continuous
+    and prismatic joints; links welded by fixed joints are merged into one body (masses,
+    centres of mass and inertias added exactly). The joint order is the chain order from
+    the base, which is Pinocchio's order for the same URDF.
+
+    Args:
+        urdf: Path to a URDF file, URDF XML text, or a parsed URDF (see :func:`read_urdf`).
+        tip: Optional link or frame to end the chain at. Only the movable joints on the
+            path from ``base`` to ``tip`` are kept; every other movable joint below
+            ``base`` (grippers, fingers, other branches, mimic joints) is locked at zero
+            position and its links welded to their parent. ``tip`` is also the default
+            point of application of the external wrench. Without ``tip``, the chain is
+            every movable joint below ``base`` and must not branch.
+        base: Link the chain is mounted on (held still); default the URDF's root link.
+
+    Returns:
+        :class:`~offshore_crane.kinematics.chain.SerialChain`: ``joint_names`` ``(n,)``,
+        per joint its placement in the parent body ``p_parent_joint`` ``(n, 3)`` [m],
+        ``R_parent_joint`` ``(n, 3, 3)``, unit ``axis`` ``(n, 3)`` (joint frame),
+        ``prismatic`` ``(n,)``, limits ``lower``/``upper`` ``(n,)`` [rad or m, ±inf when
+        absent]; per body ``mass`` ``(n,)`` [kg], ``com`` ``(n, 3)`` [m] and central
+        ``inertia`` ``(n, 3, 3)`` [kg·m²] in the body frame; ``frames`` (every welded
+        link: body index, position, orientation), ``tip`` and ``locked`` joint names.
+
+    Raises:
+        ModelError: naming the joint or link concerned: the chain branches (no tip), a
+            joint on it is floating, planar or mimics another, ``tip`` or ``base`` is not
+            a link of the URDF or ``tip`` is not below ``base``, no movable joint.
+        InputError: the file cannot be read.
+    """
+    desc, _ = read_urdf(urdf)
+    base_link = desc.root if base is None else base
+    if base_link not in desc.inertials:
+        raise ModelError(f"the URDF has no link '{base_link}' (the base asked for)",
+                         element=base_link)
+    chain = chain_from_urdf(desc, base_link, tip=tip)
+    if chain.n == 0:
+        where = f"between '{base_link}' and the tip '{tip}'" if tip else f"below '{base_link}'"
+        raise ModelError(f"the URDF has no movable joint {where}: nothing to solve",
+                         element=tip or base_link)
+    return chain
+
+
+def random_states(chain: SerialChain, n_samples: int, seed=0):
+    """Seeded random joint states for tests and cross-checks.
+
+    Positions are uniform within the joint limits when both are finite, else in
+    ``[-π, π]`` rad (revolute, continuous) or ``[-1, 1]`` m (prismatic); rates and
+    accelerations are uniform in ``[-2, 2]`` (rad/s or m/s, rad/s² or m/s²).
+
+    Args:
+        chain: From :func:`load_chain`.
+        n_samples: ``N`` ≥ 1.
+        seed: Seed or :class:`numpy.random.Generator`.
+
+    Returns:
+        ``(q, qd, qdd)``, each ``(N, n)``.
+    """
+    if int(n_samples) < 1:
+        raise InputError(f"the number of random states must be at least 1, got {n_samples}",
+                         name="n_samples")
+    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+    N, n = int(n_samples), chain.n
+    finite = np.isfinite(chain.lower) & np.isfinite(chain.upper)
+    default = np.where(chain.prismatic, 1.0, np.pi)
+    lo = np.where(finite, chain.lower, -default)
+    hi = np.where(finite, chain.upper, default)
+    q = lo + (hi - lo) * rng.random((N, n))
+    qd = rng.uniform(-2.0, 2.0, (N, n))
+    qdd = rng.uniform(-2.0, 2.0, (N, n))
+    return q, qd, qdd
+
+
+def _vectors(name: str, x, N: int) -> np.ndarray:
+    """``(3,)`` or ``(N, 3)`` finite -> ``(N, 3)`` (a read-only broadcast view for (3,))."""
+    try:
+        a = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be an array of numbers", name=name) from None
+    if a.shape not in ((3,), (N, 3)):
+        raise InputError(f"{name} has shape {a.shape}; expected (3,) or ({N}, 3)", name=name)
+    if not np.all(np.isfinite(a)):
+        raise InputError(f"{name} has non-finite values", name=name)
+    return np.broadcast_to(a, (N, 3))
+
+
+def _rotations(name: str, x, N: int) -> np.ndarray:
+    """``(3, 3)`` or ``(N, 3, 3)`` proper rotations -> ``(N, 3, 3)``."""
+    try:
+        R = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be an array of numbers", name=name) from None
+    if R.shape not in ((3, 3), (N, 3, 3)):
+        raise InputError(f"{name} has shape {R.shape}; expected (3, 3) or ({N}, 3, 3)",
+                         name=name)
+    if not np.all(np.isfinite(R)):
+        raise InputError(f"{name} has non-finite values", name=name)
+    err = np.abs(R @ np.swapaxes(R, -1, -2) - np.eye(3)).max()
+    if err > _ORTHONORMAL_TOL or np.any(np.linalg.det(R) < 0.0):
+        raise InputError(f"{name} is not a rotation matrix (|R Rᵀ − I| = {err:.1e}, or "
+                         "det < 0)", name=name)
+    return np.broadcast_to(R, (N, 3, 3))
+
+
+def inverse_dynamics(chain: SerialChain, q, qd, qdd, gravity=GRAVITY, wrench=None,
+                     frame: str | None = None, base_pose=None) -> np.ndarray:
+    """Joint torques and forces of a fixed-base serial chain by Kane's method.
+
+    For every body ``k`` (paper Eqs. 27-30, recursively) the chain kinematics gives its
+    centre-of-mass acceleration ``a``, angular velocity ``ω`` and acceleration ``α``, the
+    partial velocities ``v_r`` of its centre of mass and partial angular velocities
+    ``w_r``. The generalized inertia force plus gravity (Eq. 31, ``F_r + F*_r = 0``) gives
+
+        τ_r = Σ_k v_r · m_k (a_k − g) + w_r · (I_k α_k + ω_k × I_k ω_k)
+              − (v_r^P · F + w_r^P · M),
+
+    the last term for an external wrench acting on the robot at point ``P``.
+
+    Args:
+        chain: From :func:`load_chain`.
+        q: ``(N, n)`` or ``(n,)`` joint positions [rad, m] in ``chain.joint_names``
+            order (a continuous joint is one angle).
+        qd: Same shape, rates [rad/s, m/s].
+        qdd: Same shape, accelerations [rad/s², m/s²].
+        gravity: ``(3,)`` gravity acceleration in world axes [m/s²].
+        wrench: Optional ``(force, torque)`` exerted *on* the robot by its environment,
+            each ``(3,)`` or ``(N, 3)`` in world axes: ``force`` [N] applied at the
+            origin ``P`` of ``frame``, ``torque`` [N·m] its moment about ``P``.
+        frame: Link or welded frame where the wrench acts; default ``chain.tip``, else
+            the last body's link. A frame welded to the base takes no torque off the joints.
+        base_pose: Optional ``(R_world_base, p_world_base)``, ``(3, 3)`` or ``(N, 3, 3)``
+            and ``(3,)`` or ``(N, 3)`` [m]: where the base is held still. Default: the
+            base frame is the world frame. (Only ``R`` changes the result: it turns the
+            world-axes gravity and wrench into the base's.)
+
+    Returns:
+        ``(N, n)`` (``(n,)`` for a 1-D ``q``) generalized forces along each joint axis:
+        [N·m] for revolute and continuous joints, [N] for prismatic joints.
+
+    Raises:
+        InputError: wrong shapes, non-finite values, a base rotation that is not one.
+        ModelError: ``frame`` is not a link of the chain.
+    """
+    n = chain.n
+    q, single = as_samples("q", q, n)
+    qd, _ = as_samples("qd", qd, n)
+    qdd, _ = as_samples("qdd", qdd, n)
+    N = same_length(q=q, qd=qd, qdd=qdd)
+    g = as_gravity(gravity)
+    if base_pose is None:
+        base = BaseMotion.fixed(N)
+    else:
+        try:
+            R_b, p_b = base_pose
+        except (TypeError, ValueError):
+            raise InputError("base_pose must be a pair (R_world_base, p_world_base)",
+                             name="base_pose") from None
+        base = BaseMotion.fixed(N, _rotations("base_pose R", R_b, N),
+                                _vectors("base_pose p", p_b, N))
+    load = None
+    if wrench is not None:
+        try:
+            F, M = wrench
+        except (TypeError, ValueError):
+            raise InputError("wrench must be a pair (force, torque)", name="wrench") from None
+        F, M = _vectors("wrench force", F, N), _vectors("wrench torque", M, N)
+        name = frame or chain.tip or chain.body_names[-1]
+        if name not in chain.frames:
+            raise ModelError(f"the wrench frame '{name}' is not a link of the chain "
+                             f"(links: {', '.join(chain.frames)})", element=name)
+        load = (name, F, M)
+
+    # Body k moves with joints 0..k only: trim=True gives its partials for those
+    # columns only, (N, k + 1, 3); the others are zero.
+    bodies = chain_kinematics(chain, q, qd, qdd, base, trim=True)
+    tau = np.zeros((N, n))
+    for k, body in enumerate(bodies):
+        if chain.mass[k] == 0.0 and not chain.inertia[k].any():
+            continue  # massless body: no inertia or gravity force
+        force, torque = inertia_wrench(chain.mass[k], inertia_to_world(body.R, chain.inertia[k]),
+                                       body.a_com, body.omega, body.alpha, g)
+        tau[:, :k + 1] += body_load(body.V, body.W, force, torque)
+    if load is not None:
+        name, F, M = load
+        k, p_frame, _ = chain.frames[name]
+        if k >= 0:
+            body = bodies[k]
+            P = body.p + matvec(body.R, p_frame)
+            # v_r^P = v_r^C + w_r × (P − C), C the centre of mass
+            V_P = body.V + cross(body.W, (P - body.p_com)[:, None, :])
+            tau[:, :k + 1] -= body_load(V_P, body.W, F, M)
+    return tau[0] if single else tau
