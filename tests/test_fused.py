@@ -21,10 +21,10 @@ EXACT = 1e-12
 def test_scalar_path_equals_vector_path(robot, leg_model):
     q, qd, qdd = random_states(robot, 30, seed=21)
     opts = Options(leg_model=leg_model, conditioning=True, diagnostics=True)
-    Xv, cv, dv = fused_inverse_dynamics(robot.fused, q, qd, qdd, G, opts)
+    Xv, cv, dv = fused_inverse_dynamics(robot.fused, q, qd, qdd, G, opts, backend="numpy")
     for k in range(0, 30, 7):
         Xs, cs, ds = fused_inverse_dynamics(robot.fused, q[k:k + 1], qd[k:k + 1],
-                                            qdd[k:k + 1], G, opts)
+                                            qdd[k:k + 1], G, opts, backend="numpy")
         assert relative_error(Xs[0], Xv[k]) < EXACT
         assert cs[0] == pytest.approx(cv[k], rel=1e-10)
         for key in dv:
@@ -35,9 +35,31 @@ def test_scalar_path_equals_vector_path(robot, leg_model):
 @pytest.mark.parametrize("chunk", [1, 9, 64, 5000])
 def test_chunking_does_not_change_results(robot, chunk):
     q, qd, qdd = random_states(robot, 300, seed=4)
-    ref, _, _ = fused_inverse_dynamics(robot.fused, q, qd, qdd, G)
-    X, _, _ = fused_inverse_dynamics(robot.fused, q, qd, qdd, G, chunk=chunk)
+    ref, _, _ = fused_inverse_dynamics(robot.fused, q, qd, qdd, G, backend="numpy")
+    X, _, _ = fused_inverse_dynamics(robot.fused, q, qd, qdd, G, chunk=chunk, backend="numpy")
     assert relative_error(X, ref) < EXACT
+
+
+@pytest.mark.parametrize("opts", [
+    Options(conditioning=True, diagnostics=True), Options(leg_model="thin-rod"),
+    Options(leg_model="massless", diagnostics=True), Options(legs=False),
+    Options(platform_static=True, conditioning=True)], ids=str)
+def test_numba_kernel_equals_numpy_kernel(robot, opts):
+    pytest.importorskip("numba")
+    q, qd, qdd = random_states(robot, 500, seed=31)
+    if opts.platform_static:
+        q[:, :6] = q[0, :6]
+        qd[:, :6] = qdd[:, :6] = 0.0
+    Xp, cp, dp = fused_inverse_dynamics(robot.fused, q, qd, qdd, G, opts, backend="numpy")
+    Xn, cn, dn = fused_inverse_dynamics(robot.fused, q, qd, qdd, G, opts, backend="numba")
+    np.testing.assert_array_equal(np.isnan(Xn), np.isnan(Xp))
+    finite = np.isfinite(Xp)
+    assert relative_error(Xn[finite], Xp[finite]) < EXACT
+    if cp is not None:
+        np.testing.assert_allclose(cn, cp, rtol=1e-12)
+    if dp is not None:
+        for key in dp:
+            np.testing.assert_allclose(dn[key], dp[key], rtol=1e-12, atol=1e-15)
 
 
 def test_arm_only_pruning_is_exact(robot, table1):

@@ -207,6 +207,7 @@ class FusedData:
     leg_list: tuple
     length_scale: float
     arm: list
+    arrays: dict
 
 
 def _axisymmetric(com, inertia, name):
@@ -268,7 +269,22 @@ def prepare(model: HybridModel, dtype=np.float64) -> FusedData:
         LegConsts(**{k: tuple(float(x) for x in v[i]) if k in vectors else float(v[i])
                      for k, v in per_leg.items()})
         for i in range(len(model.lower_mass)))
-    return FusedData(model=model, platform_mass=float(model.platform_mass),
+    ch = model.arm
+    arrays = dict(
+        plat_m=float(model.platform_mass), plat_c=model.platform_com.copy(),
+        plat_I=model.platform_inertia.copy(),
+        arm_t=ch.p_parent_joint.copy(), arm_Ro=ch.R_parent_joint.copy(),
+        arm_axis=ch.axis.copy(), arm_prism=ch.prismatic.copy(), arm_m=ch.mass.copy(),
+        arm_c=ch.com.copy(), arm_I=ch.inertia.copy(),
+        leg_s=model.p_platform_S.copy(), leg_P=model.p_base_P.copy(),
+        leg_X=np.ascontiguousarray(model.R_base_U[:, :, 0]),
+        leg_Y=np.ascontiguousarray(model.R_base_U[:, :, 1]),
+        leg_Z=np.ascontiguousarray(model.R_base_U[:, :, 2]),
+        m_lo=model.lower_mass.copy(), m_up=model.upper_mass.copy(),
+        c_lo=model.lower_com[:, 2].copy(), c_up=model.upper_com[:, 2].copy(),
+        It=It_lo + It_up, Ia=Ia_lo + Ia_up,
+        L=float(np.linalg.norm(model.p_platform_S, axis=1).mean()))
+    return FusedData(model=model, arrays=arrays, platform_mass=float(model.platform_mass),
                      platform_com=_sparse(model.platform_com),
                      platform_inertia=_sparse_rows(model.platform_inertia),
                      legs=legs, leg_list=leg_list,
@@ -454,7 +470,7 @@ def _chunk(fd: FusedData, q, qd, qdd, g, opts: Options, diag=None):
     v = None if static else (qd[0], qd[1], qd[2])
     arm_rows, F, M = _arm(fd, R, omega, alpha, a, q, qd, qdd, g)
     n = q.shape[1]
-    X = np.zeros((n, 9), dtype=q.dtype)
+    X = np.full((n, 9), np.nan, dtype=q.dtype)   # NaN: not computed (no arm, no legs)
     for k, row in enumerate(arm_rows):
         X[:, k] = row
     if not opts.legs:
@@ -504,7 +520,7 @@ def _sample(fd: FusedData, q, qd, qdd, g, opts: Options, diag=None, k=0):
     R, p, omega, alpha, a = _platform(q, qd, qdd, static, math)
     v = None if static else (qd[0], qd[1], qd[2])
     arm_rows, F, M = _arm(fd, R, omega, alpha, a, q, qd, qdd, g, math)
-    X = np.zeros(9)
+    X = np.full(9, np.nan)                         # NaN: not computed (no arm, no legs)
     X[:len(arm_rows)] = arm_rows
     if not opts.legs:
         return X, None
@@ -533,8 +549,53 @@ def _sample(fd: FusedData, q, qd, qdd, g, opts: Options, diag=None, k=0):
     return X, cond
 
 
+BACKENDS = ("auto", "numpy", "numba")
+
+
+_NUMBA: list = []          # [bool]: is Numba installed? (looked up once)
+_EMPTY_COND = np.empty(1)
+_EMPTY_DIAG = np.empty((len(DIAGNOSTICS), 1, 6))
+
+
+def numba_available() -> bool:
+    """True when Numba is installed (looked up once, without importing it)."""
+    if not _NUMBA:
+        import importlib.util
+
+        _NUMBA.append(importlib.util.find_spec("numba") is not None)
+    return _NUMBA[0]
+
+
+def _numba(fd: FusedData, q, qd, qdd, g, opts: Options):
+    """The compiled kernel (:mod:`.fused_numba`) on float64 ``(N, 9)`` inputs."""
+    if not numba_available():
+        from ..errors import BackendMissingError
+
+        raise BackendMissingError("backend='numba' needs Numba: pip install "
+                                  "'offshore-crane[fast]' (or pip install numba)",
+                                  package="numba")
+    from .fused_numba import LEG_MODEL_CODES, kernel
+
+    N = q.shape[0]
+    X = np.empty((N, 9))
+    cond = np.empty(N) if opts.conditioning and opts.legs else None
+    diag = np.empty((len(DIAGNOSTICS), N, 6)) if opts.diagnostics and opts.legs else None
+    a = fd.arrays
+    kernel(np.ascontiguousarray(q, dtype=np.float64), np.ascontiguousarray(qd, dtype=np.float64),
+           np.ascontiguousarray(qdd, dtype=np.float64), np.asarray(g, dtype=np.float64),
+           a["plat_m"], a["plat_c"], a["plat_I"], a["arm_t"], a["arm_Ro"], a["arm_axis"],
+           a["arm_prism"], a["arm_m"], a["arm_c"], a["arm_I"], a["leg_s"], a["leg_P"],
+           a["leg_X"], a["leg_Y"], a["leg_Z"], a["m_lo"], a["m_up"], a["c_lo"], a["c_up"],
+           a["It"], a["Ia"], a["L"], LEG_MODEL_CODES[opts.leg_model], opts.legs,
+           opts.platform_static, cond is not None, diag is not None, X,
+           _EMPTY_COND if cond is None else cond, _EMPTY_DIAG if diag is None else diag)
+    if diag is not None:
+        diag = dict(zip(DIAGNOSTICS, diag))
+    return X, cond, diag
+
+
 def fused_inverse_dynamics(fd: FusedData, q, qd, qdd, g, opts: Options = Options(),
-                           chunk: int = CHUNK):
+                           chunk: int = CHUNK, backend: str = "auto"):
     """Actuator forces X ``(N, 9)`` by the fused kernel, chunk by chunk.
 
     Args:
@@ -543,6 +604,9 @@ def fused_inverse_dynamics(fd: FusedData, q, qd, qdd, g, opts: Options = Options
         g: ``(3,)`` gravity [m/s²].
         opts: What to compute (:class:`Options`).
         chunk: Samples per chunk (memory stays O(chunk) besides the output).
+        backend: ``"numpy"`` (vectorised kernel below), ``"numba"`` (the same formulas
+            compiled, :mod:`.fused_numba`), or ``"auto"``: Numba when installed and the
+            inputs are float64, else NumPy.
 
     Returns:
         ``(X, cond, diag)``: X ``(N, 9)`` (leg columns zero when ``opts.legs`` is
@@ -553,6 +617,11 @@ def fused_inverse_dynamics(fd: FusedData, q, qd, qdd, g, opts: Options = Options
     """
     if opts.leg_model not in LEG_MODELS:
         raise ValueError(f"unknown leg model '{opts.leg_model}'; use one of {LEG_MODELS}")
+    if backend not in BACKENDS:
+        raise ValueError(f"unknown backend '{backend}'; use one of {BACKENDS}")
+    if backend == "numba" or (backend == "auto" and q.dtype == np.float64
+                              and numba_available()):
+        return _numba(fd, q, qd, qdd, g, opts)
     N = q.shape[0]
     X = np.empty((N, 9), dtype=q.dtype)
     with_legs = opts.legs
