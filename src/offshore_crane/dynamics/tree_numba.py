@@ -1,0 +1,228 @@
+"""Compiled helpers of the RNEA path: tree states that close the loops, and ``Gᵀ τ``.
+
+Same kinematics as :mod:`offshore_crane.kinematics.legs` (closed-form U-P-S legs), per
+sample, written straight into the Fortran-ordered ``(nv, N)`` arrays that
+``pin.rneaInParallel`` reads; and the projection ``B = Gᵀ τ`` on the independent speeds
+followed by the leg-force solve. Used by :mod:`.rnea` when Numba is installed; the NumPy
+path there is the fallback (both tested against each other).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from .fused_numba import _cross, _dot, _matvec, _solve6
+
+
+@njit(cache=True)
+def tree_kernel(q, qd, qdd, leg_s, leg_P, leg_X, leg_Y, leg_Z, idx_plat, idx_arm, idx_legs,
+                Q, V, A, G):
+    """Fill ``Q, V, A`` ``(nv, N)`` and the leg rows of ``G`` ``(N, 6, 3, 6)``.
+
+    ``G[k, i, j, r]`` is ∂(rate of joint j of leg i)/∂u_r (j: u1, u2, slide; r ≤ 6);
+    ``idx_plat`` maps q1..q6 to tree velocity indices, ``idx_arm`` q7..q9, ``idx_legs``
+    ``(6, 3)`` the legs' joints.
+    """
+    N = q.shape[0]
+    R = np.empty((3, 3))
+    W = np.zeros((3, 3))     # rows: w4, w5, w6 (partial angular velocities)
+    w = np.empty(3)
+    al = np.empty(3)
+    rS = np.empty(3)
+    d = np.empty(3)
+    u = np.empty(3)
+    n_ = np.empty(3)
+    a2 = np.empty(3)
+    vS = np.empty(3)
+    aS = np.empty(3)
+    wl = np.empty(3)
+    wxu = np.empty(3)
+    e = np.empty(3)
+    alp = np.empty(3)
+    t1 = np.empty(3)
+    t2 = np.empty(3)
+    t3 = np.empty(3)
+    vr = np.empty(3)
+    na = idx_arm.shape[0]
+    for k in range(N):
+        for j in range(6):
+            Q[idx_plat[j], k] = q[k, j]
+            V[idx_plat[j], k] = qd[k, j]
+            A[idx_plat[j], k] = qdd[k, j]
+        for j in range(na):
+            Q[idx_arm[j], k] = q[k, 6 + j]
+            V[idx_arm[j], k] = qd[k, 6 + j]
+            A[idx_arm[j], k] = qdd[k, 6 + j]
+        c4, s4 = np.cos(q[k, 3]), np.sin(q[k, 3])
+        c5, s5 = np.cos(q[k, 4]), np.sin(q[k, 4])
+        c6, s6 = np.cos(q[k, 5]), np.sin(q[k, 5])
+        R[0, 0] = c6 * c5
+        R[0, 1] = c6 * s5 * s4 - s6 * c4
+        R[0, 2] = c6 * s5 * c4 + s6 * s4
+        R[1, 0] = s6 * c5
+        R[1, 1] = s6 * s5 * s4 + c6 * c4
+        R[1, 2] = s6 * s5 * c4 - c6 * s4
+        R[2, 0] = -s5
+        R[2, 1] = c5 * s4
+        R[2, 2] = c5 * c4
+        W[0, 0], W[0, 1], W[0, 2] = c6 * c5, s6 * c5, -s5
+        W[1, 0], W[1, 1], W[1, 2] = -s6, c6, 0.0
+        W[2, 2] = 1.0
+        for i in range(3):
+            w[i] = W[0, i] * qd[k, 3] + W[1, i] * qd[k, 4] + W[2, i] * qd[k, 5]
+        sx, sy, sz = W[1, 0] * qd[k, 4], W[1, 1] * qd[k, 4], qd[k, 5]
+        cx = (sy * W[0, 2] - sz * W[0, 1]) * qd[k, 3]
+        cy = (sz * W[0, 0] - sx * W[0, 2]) * qd[k, 3]
+        cz = (sx * W[0, 1] - sy * W[0, 0]) * qd[k, 3]
+        q56 = qd[k, 4] * qd[k, 5]
+        al[0] = W[0, 0] * qdd[k, 3] + W[1, 0] * qdd[k, 4] + cx - c6 * q56
+        al[1] = W[0, 1] * qdd[k, 3] + W[1, 1] * qdd[k, 4] + cy - s6 * q56
+        al[2] = W[0, 2] * qdd[k, 3] + qdd[k, 5] + cz
+        for l in range(6):
+            _matvec(R, leg_s[l], rS)
+            for i in range(3):
+                d[i] = q[k, i] + rS[i] - leg_P[l, i]
+            length = np.sqrt(_dot(d, d))
+            il = 1.0 / length
+            for i in range(3):
+                u[i] = d[i] * il
+            dlx, dly, dlz = _dot(leg_X[l], d), _dot(leg_Y[l], d), _dot(leg_Z[l], d)
+            h = np.sqrt(dlx * dlx + dlz * dlz)
+            ih = 1.0 / h
+            l_h = length * ih
+            for i in range(3):
+                n_[i] = -(leg_X[l, i] * dlx + leg_Z[l, i] * dlz) * ih
+                a2[i] = (leg_X[l, i] * dlz - leg_Z[l, i] * dlx) * ih
+            _cross(w, rS, t1)
+            _cross(al, rS, t2)
+            _cross(w, t1, t3)
+            for i in range(3):
+                vS[i] = qd[k, i] + t1[i]
+                aS[i] = qdd[k, i] + t2[i] + t3[i]
+            rate = _dot(u, vS)
+            _cross(u, vS, wl)
+            for i in range(3):
+                wl[i] *= il
+            sp = _dot(wl, n_) * l_h
+            for i in range(3):
+                wl[i] += sp * u[i]
+            th1d = _dot(wl, leg_Y[l])
+            th2d = _dot(wl, a2)
+            _cross(wl, u, wxu)
+            accel = _dot(aS, u) + length * _dot(wxu, wxu)
+            for i in range(3):
+                e[i] = (aS[i] - accel * u[i] - 2.0 * rate * wxu[i]) * il
+            _cross(wl, wxu, t1)
+            for i in range(3):
+                t2[i] = e[i] - t1[i]
+            _cross(u, t2, alp)
+            mu = (_dot(alp, n_) - th1d * th2d) * l_h
+            for i in range(3):
+                alp[i] += mu * u[i]
+            j1, j2, j3 = idx_legs[l, 0], idx_legs[l, 1], idx_legs[l, 2]
+            Q[j1, k] = np.arctan2(dlx, dlz)
+            Q[j2, k] = np.arctan2(-dly, h)
+            Q[j3, k] = length
+            V[j1, k] = th1d
+            V[j2, k] = th2d
+            V[j3, k] = rate
+            A[j1, k] = _dot(alp, leg_Y[l])
+            A[j2, k] = _dot(alp, a2)
+            A[j3, k] = accel
+            # G rows: v_S,r = e_r (r < 3), w_r × rS (r = 4..6); ω_r from v_S,r
+            for r in range(6):
+                if r < 3:
+                    for i in range(3):
+                        vr[i] = 1.0 if i == r else 0.0
+                else:
+                    _cross(W[r - 3], rS, vr)
+                _cross(u, vr, t1)
+                for i in range(3):
+                    t1[i] *= il
+                sp = _dot(t1, n_) * l_h
+                for i in range(3):
+                    t1[i] += sp * u[i]
+                G[k, l, 0, r] = _dot(t1, leg_Y[l])
+                G[k, l, 1, r] = _dot(t1, a2)
+                G[k, l, 2, r] = _dot(u, vr)
+
+
+@njit(cache=True)
+def project_solve(tau, G, idx_plat, idx_arm, idx_legs, X):
+    """``B = Gᵀ τ`` and the solve of ``A X = B`` (``A = [[0, Jᵀ], [I, 0]]``) per sample.
+
+    ``tau`` is ``(nv, N)``; ``X`` ``(N, 9)`` is filled (NaN arm columns when the robot has
+    fewer than 3 arm joints).
+    """
+    N = tau.shape[1]
+    na = idx_arm.shape[0]
+    B = np.empty(6)
+    J = np.empty((6, 6))
+    x = np.empty(6)
+    Ainv = np.empty((6, 6))
+    for k in range(N):
+        for j in range(3):
+            X[k, j] = tau[idx_arm[j], k] if j < na else np.nan
+        for r in range(6):
+            B[r] = tau[idx_plat[r], k]
+        for l in range(6):
+            t1, t2, t3 = tau[idx_legs[l, 0], k], tau[idx_legs[l, 1], k], tau[idx_legs[l, 2], k]
+            for r in range(6):
+                B[r] += t1 * G[k, l, 0, r] + t2 * G[k, l, 1, r] + t3 * G[k, l, 2, r]
+                J[r, l] = G[k, l, 2, r]          # Jᵀ: column l is leg l's row of J
+        _solve6(J, B, x, Ainv, False)
+        for l in range(6):
+            X[k, 3 + l] = x[l]
+
+
+def rnea_numba(robot, q, qd, qdd, gravity, threads: int = 1) -> np.ndarray:
+    """Actuator forces X ``(N, 9)`` by the RNEA path, tree states and projection compiled.
+
+    Args:
+        robot: The robot (its ``pinocchio_model`` is built on first use).
+        q, qd, qdd: ``(N, 9)`` float64 [m, rad], rates, accelerations.
+        gravity: ``(3,)`` [m/s²].
+        threads: Threads of ``pin.rneaInParallel``.
+    """
+    import pinocchio as pin
+
+    model = robot.pinocchio_model
+    idx = _indices(robot)
+    N = q.shape[0]
+    Q = np.empty((model.nv, N), order="F")
+    V = np.empty((model.nv, N), order="F")
+    A = np.empty((model.nv, N), order="F")
+    G = np.empty((N, 6, 3, 6))
+    a = robot.fused.arrays
+    tree_kernel(np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd),
+                a["leg_s"], a["leg_P"], a["leg_X"], a["leg_Y"], a["leg_Z"],
+                idx["platform"], idx["arm"], idx["legs"], Q, V, A, G)
+    tau = np.empty((model.nv, N), order="F")
+    pin.rneaInParallel(threads, _pool(robot, gravity, threads), Q, V, A, tau)
+    X = np.empty((N, 9))
+    project_solve(tau, G, idx["platform"], idx["arm"], idx["legs"], X)
+    return X
+
+
+def _indices(robot) -> dict:
+    cache = robot.__dict__.setdefault("_tree_indices", {})
+    if not cache:
+        from .rnea import tree_indices
+
+        cache.update({k: np.ascontiguousarray(v, dtype=np.int64)
+                      for k, v in tree_indices(robot.pinocchio_model).items()})
+    return cache
+
+
+def _pool(robot, gravity, threads):
+    """A ``pin.ModelPool`` with this gravity, reused across calls."""
+    import pinocchio as pin
+
+    pools = robot.__dict__.setdefault("_pin_pools", {})
+    key = (tuple(float(x) for x in gravity), threads)
+    if key not in pools:
+        model = robot.pinocchio_model.copy()
+        model.gravity.linear = np.asarray(gravity, dtype=float)
+        pools[key] = pin.ModelPool(model, threads)
+    return pools[key]
