@@ -14,13 +14,13 @@ from __future__ import annotations
 
 from .dynamics import inverse_dynamics
 from .errors import (BackendMissingError, InputError, ModelError, OffshoreCraneError,
-                     SingularConfigurationError, TrajectoryError, WorkspaceError)
+                     SceneError, SingularConfigurationError, TrajectoryError, WorkspaceError)
 from .model import ACTUATORS, ACTUATOR_UNITS, Robot, load_robot
 
 __version__ = "0.1.0"
 
 __all__ = ["load_robot", "inverse_dynamics", "trajectories", "Robot", "ACTUATORS",
-           "ACTUATOR_UNITS", "OffshoreCraneError", "InputError", "TrajectoryError",
+           "ACTUATOR_UNITS", "OffshoreCraneError", "InputError", "TrajectoryError", "SceneError",
            "ModelError", "WorkspaceError", "SingularConfigurationError", "BackendMissingError"]
 
 

@@ -31,6 +31,23 @@ class TrajectoryError(InputError):
     """A trajectory cannot be built or read (unknown name, bad CSV, bad time axis)."""
 
 
+class SceneError(InputError):
+    """A scene file (TOML) cannot be read, or has an unknown key or a bad value.
+
+    The message starts with the file and names the key, e.g.
+    ``scenes/x.toml: [payload] mass = -1: must be ≥ 0 kg``.
+
+    Attributes:
+        path: The scene file as given (or ``"command line"``), or None.
+        name: The key as ``section.key`` (``"payload.mass"``), a top-level key
+            (``"gravity"``) or a section (``"payload"``), or None for the whole file.
+    """
+
+    def __init__(self, message: str, path: str | None = None, name: str | None = None):
+        super().__init__(message, name=name)
+        self.path = path
+
+
 class ModelError(OffshoreCraneError, ValueError):
     """The robot description is invalid or has a structure the library cannot handle.
 

@@ -32,8 +32,9 @@ class Result:
 
     Attributes:
         X: ``(N, 9)`` actuator forces ``[T1, T2 [N·m], Fs, Fl1..Fl6 [N]]``. The arm
-            columns are always computed; the leg columns are NaN when no leg force was
-            asked for (``outputs``), since the legs were then not evaluated.
+            columns are computed whenever the robot has an arm (NaN without one); the
+            leg columns are NaN when no leg force was asked for (``outputs``), since the
+            legs were then not evaluated.
         method: ``"kane"``, ``"kane-explicit"`` or ``"rnea"``.
         leg_model: ``"full"``, ``"thin-rod"`` or ``"massless"``.
         outputs: Names of the actuators asked for.
@@ -65,21 +66,33 @@ class Result:
         return out
 
 
-def _outputs(outputs) -> tuple:
+def _outputs(outputs, available: tuple = ACTUATORS) -> tuple:
+    """Actuators asked for, in the order of X; all those of the robot by default."""
     if outputs is None:
-        return ACTUATORS
+        return available
     names = tuple(outputs)
     unknown = [n for n in names if n not in ACTUATORS]
     if unknown or not names:
         raise InputError(f"unknown outputs {unknown}: choose among {', '.join(ACTUATORS)}"
                          if unknown else "outputs is empty: name at least one actuator",
                          name="outputs")
+    absent = [n for n in names if n not in available]
+    if absent:
+        raise InputError(f"outputs {', '.join(absent)} do not exist: the robot has no arm "
+                         f"(xacro argument with_arm = 0); choose among {', '.join(available)}",
+                         name="outputs")
     return tuple(n for n in ACTUATORS if n in names)
+
+
+def _massless_legs(model) -> bool:
+    """True when no leg link has mass or inertia (their inertia terms are exact zeros)."""
+    return not (model.lower_mass.any() or model.upper_mass.any()
+                or model.lower_inertia.any() or model.upper_inertia.any())
 
 
 def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model: str = "full",
           outputs=None, t=None, limits: bool = True, checks: bool = True,
-          thresholds: Thresholds = Thresholds()) -> Result:
+          thresholds: Thresholds = Thresholds(), backend: str = "auto") -> Result:
     """Inverse dynamics with validation, workspace limits and the singularity policy.
 
     Args:
@@ -89,12 +102,17 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
         gravity: ``(3,)`` in the base frame [m/s²].
         leg_model: ``"full"`` (exact) or the approximations ``"thin-rod"``,
             ``"massless"`` (method ``"kane"`` only).
-        outputs: Actuator names wanted (default all). Without any leg force, method
-            ``"kane"`` skips the legs entirely (exact for T1, T2, Fs).
+        outputs: Actuator names wanted (default all those the robot has: no T1, T2,
+            Fs without arm). Without any leg force, method ``"kane"`` skips the legs
+            entirely (exact for T1, T2, Fs), and no method checks the legs' limits or
+            conditioning.
         t: ``(N,)`` times [s], only used in messages.
         limits: Check leg strokes, U-joint and arm joint limits (:mod:`..checks`).
         checks: Measure the condition numbers and apply ``thresholds``.
         thresholds: Warning and error thresholds of the singularity policy.
+        backend: ``"auto"`` (Numba when installed, else NumPy), ``"numpy"`` or ``"numba"``:
+            the compiled or vectorised kernels of methods ``"kane"`` and ``"rnea"``
+            (same formulas; ``"kane-explicit"`` is NumPy only).
 
     Returns:
         :class:`Result`.
@@ -120,7 +138,7 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
         if t.shape != (N,):
             raise InputError(f"t has shape {t.shape}; expected ({N},)", name="t")
     g = as_gravity(gravity)
-    names = _outputs(outputs)
+    names = _outputs(outputs, robot.hybrid.actuators)
     want_legs = any(n.startswith("Fl") for n in names)
     pruned = []
     cond = diag = None
@@ -133,10 +151,23 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
             pruned.append("platform velocity and acceleration terms (static platform)")
         if not want_legs:
             pruned.append("leg kinematics and dynamics (no leg force wanted)")
-        opts = Options(leg_model=leg_model, legs=want_legs, platform_static=static,
+        kernel_legs = leg_model
+        if want_legs and leg_model != "massless" and _massless_legs(robot.hybrid):
+            kernel_legs = "massless"          # exact: every leg inertia term is zero
+            pruned.append("leg inertia and weight terms (the legs have no mass)")
+        opts = Options(leg_model=kernel_legs, legs=want_legs, platform_static=static,
                        conditioning=checks and want_legs,
                        diagnostics=(checks or limits) and want_legs)
-        X, cond, diag = fused_inverse_dynamics(robot.fused, q, qd, qdd, g, opts)
+        X, cond, diag = fused_inverse_dynamics(robot.fused, q, qd, qdd, g, opts,
+                                               backend=_backend(backend))
+    elif method == "rnea" and _backend(backend) == "numba":
+        from .tree_numba import rnea_numba
+
+        X, cond, diag = rnea_numba(robot, q, qd, qdd, g)
+        if not want_legs:
+            cond = diag = None
+        elif not checks:
+            cond = None
     else:
         from .kane_hybrid import kane_B, solve_actuators
 
@@ -146,10 +177,11 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
             from .rnea import rnea_B
 
             B, legs = rnea_B(robot, q, qd, qdd, g)
-        diag = {"length": legs.length, "theta1": legs.theta[..., 0],
-                "theta2": legs.theta[..., 1], "cos_theta2": np.abs(legs.u_dot_n),
-                "height": legs.p_S[..., 2] - robot.hybrid.p_base_P[:, 2]}
-        if checks:
+        if want_legs:
+            diag = {"length": legs.length, "theta1": legs.theta[..., 0],
+                    "theta2": legs.theta[..., 1], "cos_theta2": np.abs(legs.u_dot_n),
+                    "height": legs.p_S[..., 2] - robot.hybrid.p_base_P[:, 2]}
+        if checks and want_legs:
             J = legs.J.copy()
             J[:, :, 3:] /= robot.fused.length_scale
             cond = condition_1(np.swapaxes(J, 1, 2))
@@ -167,10 +199,23 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
         apply_policy("attitude", attitude, thresholds, t, error=False)
     if not want_legs:
         X[:, 3:] = np.nan          # not computed
+    X[:, robot.hybrid.arm.n:3] = np.nan   # no arm: these actuators do not exist
     approx = (APPROXIMATIONS[leg_model],) if leg_model != "full" else ()
     return Result(X=X, method=method, leg_model=leg_model, outputs=names, condition=cond,
                   gimbal=gimbal, attitude=attitude, approximations=approx,
                   pruned=tuple(pruned))
+
+
+def _backend(backend: str) -> str:
+    """Resolve ``"auto"`` to ``"numba"`` or ``"numpy"``."""
+    from .fused import BACKENDS, numba_available
+
+    if backend not in BACKENDS:
+        raise InputError(f"unknown backend '{backend}': use one of {', '.join(BACKENDS)}",
+                         name="backend")
+    if backend == "auto":
+        return "numba" if numba_available() else "numpy"
+    return backend
 
 
 def inverse_dynamics(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY,

@@ -40,13 +40,15 @@ def platform_load(model: HybridModel, plat: BaseMotion, gravity: np.ndarray) -> 
 
 
 def arm_load(model: HybridModel, q, qd, qdd, plat: BaseMotion, gravity) -> np.ndarray:
-    """``B`` share of the three moving arm bodies: ``(N, 9)``."""
+    """``B`` share of the moving arm bodies: ``(N, 9)`` (zeros for a robot without arm)."""
     arm = model.arm
-    B = 0.0
-    for k, body in enumerate(chain_kinematics(arm, q[:, 6:9], qd[:, 6:9], qdd[:, 6:9], plat)):
+    arm_q = slice(6, 6 + arm.n)
+    B = np.zeros((q.shape[0], 9))
+    for k, body in enumerate(chain_kinematics(arm, q[:, arm_q], qd[:, arm_q], qdd[:, arm_q],
+                                              plat)):
         force, torque = inertia_wrench(arm.mass[k], inertia_to_world(body.R, arm.inertia[k]),
                                        body.a_com, body.omega, body.alpha, gravity)
-        B = B + body_load(body.V, body.W, force, torque)
+        B[:, :6 + arm.n] += body_load(body.V, body.W, force, torque)
     return B
 
 

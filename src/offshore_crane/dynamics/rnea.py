@@ -16,7 +16,7 @@ import numpy as np
 
 from ..kinematics.legs import leg_kinematics
 from ..kinematics.platform import platform_motion
-from ..model.hybrid import N_LEGS, PLATFORM_JOINTS
+from ..model.hybrid import ARM_JOINTS, N_LEGS, PLATFORM_JOINTS
 from ..spatial import dot
 from .kane_hybrid import solve_actuators
 
@@ -26,10 +26,14 @@ def _index(model, name: str) -> int:
 
 
 def tree_indices(pmodel) -> dict:
-    """Velocity indices of the tree joints: ``platform (6,)``, ``arm (3,)``, ``legs (6, 3)``."""
+    """Velocity indices of the tree joints: ``platform (6,)``, ``arm (na,)``, ``legs (6, 3)``.
+
+    ``na`` is 3, or 0 for a Stewart platform without arm (xacro ``with_arm = 0``).
+    """
     return {
         "platform": np.array([_index(pmodel, n) for n in PLATFORM_JOINTS]),
-        "arm": np.array([_index(pmodel, n) for n in ("arm_joint1", "arm_joint2", "arm_slide")]),
+        "arm": np.array([_index(pmodel, n) for n in ARM_JOINTS if pmodel.existJointName(n)],
+                        dtype=int),
         "legs": np.array([[_index(pmodel, f"leg{i}_{s}") for s in ("u1", "u2", "slide")]
                           for i in range(1, N_LEGS + 1)]),
     }
@@ -52,7 +56,7 @@ def tree_state(robot, q, qd, qdd):
                       (qdd, (legs.theta_dd, legs.accel))):
         x = np.empty((N, pmodel.nv))
         x[:, idx["platform"]] = base[:, :6]
-        x[:, idx["arm"]] = base[:, 6:9]
+        x[:, idx["arm"]] = base[:, 6:6 + len(idx["arm"])]
         x[:, idx["legs"][:, :2]] = leg[0]
         x[:, idx["legs"][:, 2]] = leg[1]
         out.append(x)
@@ -75,9 +79,9 @@ def tree_torques(robot, q_tree, v_tree, a_tree, gravity, threads: int = 1) -> np
 def project(robot, tau: np.ndarray, legs) -> np.ndarray:
     """``Gᵀ τ``: the tree forces as generalized forces ``(N, 9)`` on u1..u9."""
     idx = tree_indices(robot.pinocchio_model)
-    B = np.empty((tau.shape[0], 9))
+    B = np.zeros((tau.shape[0], 9))             # arm rows stay zero without arm
     B[:, :6] = tau[:, idx["platform"]]
-    B[:, 6:] = tau[:, idx["arm"]]
+    B[:, 6:6 + len(idx["arm"])] = tau[:, idx["arm"]]
     tl = tau[:, idx["legs"]]                                    # (N, 6, 3)
     # rows of G for leg joints: θ̇1 = a1·ω, θ̇2 = a2·ω, l̇ = J u (for r = 1..6)
     B[:, :6] += np.einsum("nl,nlr->nr", tl[..., 0], dot(legs.a1[:, :, None, :], legs.W))

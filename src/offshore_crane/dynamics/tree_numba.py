@@ -17,8 +17,9 @@ from .fused_numba import _cross, _dot, _matvec, _solve6
 
 @njit(cache=True)
 def tree_kernel(q, qd, qdd, leg_s, leg_P, leg_X, leg_Y, leg_Z, idx_plat, idx_arm, idx_legs,
-                Q, V, A, G):
-    """Fill ``Q, V, A`` ``(nv, N)`` and the leg rows of ``G`` ``(N, 6, 3, 6)``.
+                Q, V, A, G, diag):
+    """Fill ``Q, V, A`` ``(nv, N)``, the leg rows of ``G`` ``(N, 6, 3, 6)`` and the leg
+    diagnostics ``diag`` ``(5, N, 6)`` (as :data:`.fused.DIAGNOSTICS`).
 
     ``G[k, i, j, r]`` is ∂(rate of joint j of leg i)/∂u_r (j: u1, u2, slide; r ≤ 6);
     ``idx_plat`` maps q1..q6 to tree velocity indices, ``idx_arm`` q7..q9, ``idx_legs``
@@ -124,6 +125,11 @@ def tree_kernel(q, qd, qdd, leg_s, leg_P, leg_X, leg_Y, leg_Z, idx_plat, idx_arm
             Q[j1, k] = np.arctan2(dlx, dlz)
             Q[j2, k] = np.arctan2(-dly, h)
             Q[j3, k] = length
+            diag[0, k, l] = length
+            diag[1, k, l] = Q[j1, k]
+            diag[2, k, l] = Q[j2, k]
+            diag[3, k, l] = h * il
+            diag[4, k, l] = d[2]
             V[j1, k] = th1d
             V[j2, k] = th2d
             V[j3, k] = rate
@@ -149,11 +155,12 @@ def tree_kernel(q, qd, qdd, leg_s, leg_P, leg_X, leg_Y, leg_Z, idx_plat, idx_arm
 
 
 @njit(cache=True)
-def project_solve(tau, G, idx_plat, idx_arm, idx_legs, X):
+def project_solve(tau, G, idx_plat, idx_arm, idx_legs, L, X, cond):
     """``B = Gᵀ τ`` and the solve of ``A X = B`` (``A = [[0, Jᵀ], [I, 0]]``) per sample.
 
     ``tau`` is ``(nv, N)``; ``X`` ``(N, 9)`` is filled (NaN arm columns when the robot has
-    fewer than 3 arm joints).
+    fewer than 3 arm joints) and ``cond`` ``(N,)`` with the 1-norm condition number of
+    ``Jᵀ``, its angular rows divided by the length ``L`` [m] to make it dimensionless.
     """
     N = tau.shape[1]
     na = idx_arm.shape[0]
@@ -171,13 +178,21 @@ def project_solve(tau, G, idx_plat, idx_arm, idx_legs, X):
             for r in range(6):
                 B[r] += t1 * G[k, l, 0, r] + t2 * G[k, l, 1, r] + t3 * G[k, l, 2, r]
                 J[r, l] = G[k, l, 2, r]          # Jᵀ: column l is leg l's row of J
-        _solve6(J, B, x, Ainv, False)
+        for r in range(3, 6):
+            B[r] /= L
+            for l in range(6):
+                J[r, l] /= L
+        cond[k] = _solve6(J, B, x, Ainv, True)
         for l in range(6):
             X[k, 3 + l] = x[l]
 
 
-def rnea_numba(robot, q, qd, qdd, gravity, threads: int = 1) -> np.ndarray:
-    """Actuator forces X ``(N, 9)`` by the RNEA path, tree states and projection compiled.
+def rnea_numba(robot, q, qd, qdd, gravity, threads: int = 1):
+    """Actuator forces by the RNEA path, tree states and projection compiled.
+
+    Returns:
+        ``(X (N, 9), cond (N,), diag)``: forces, condition number of the solved ``Jᵀ``
+        (see :func:`project_solve`) and the leg diagnostics (dict of ``(N, 6)``).
 
     Args:
         robot: The robot (its ``pinocchio_model`` is built on first use).
@@ -194,15 +209,19 @@ def rnea_numba(robot, q, qd, qdd, gravity, threads: int = 1) -> np.ndarray:
     V = np.empty((model.nv, N), order="F")
     A = np.empty((model.nv, N), order="F")
     G = np.empty((N, 6, 3, 6))
+    diag = np.empty((5, N, 6))
     a = robot.fused.arrays
     tree_kernel(np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd),
                 a["leg_s"], a["leg_P"], a["leg_X"], a["leg_Y"], a["leg_Z"],
-                idx["platform"], idx["arm"], idx["legs"], Q, V, A, G)
+                idx["platform"], idx["arm"], idx["legs"], Q, V, A, G, diag)
     tau = np.empty((model.nv, N), order="F")
     pin.rneaInParallel(threads, _pool(robot, gravity, threads), Q, V, A, tau)
     X = np.empty((N, 9))
-    project_solve(tau, G, idx["platform"], idx["arm"], idx["legs"], X)
-    return X
+    cond = np.empty(N)
+    project_solve(tau, G, idx["platform"], idx["arm"], idx["legs"], a["L"], X, cond)
+    from .fused import DIAGNOSTICS
+
+    return X, cond, dict(zip(DIAGNOSTICS, diag))
 
 
 def _indices(robot) -> dict:

@@ -50,7 +50,8 @@ class HybridModel:
         lower_inertia, upper_inertia: ``(6, 3, 3)`` central inertias [kg·m²].
         stroke: ``(6, 2)`` shortest and longest leg length [m].
         ujoint_limits: ``(6, 2, 2)`` [leg, axis, (lower, upper)] [rad].
-        arm: The arm as a :class:`SerialChain` mounted on the platform.
+        arm: The arm as a :class:`SerialChain` mounted on the platform; it has no
+            joints for a Stewart platform without arm (xacro argument ``with_arm = 0``).
     """
 
     platform_mass: float
@@ -70,8 +71,18 @@ class HybridModel:
     arm: SerialChain
 
     @property
+    def has_arm(self) -> bool:
+        """True when the crane arm is present (``with_arm = 1``)."""
+        return self.arm.n > 0
+
+    @property
+    def actuators(self) -> tuple:
+        """Names of the actuators that exist (of :data:`ACTUATORS`)."""
+        return ACTUATORS[:self.arm.n] + ACTUATORS[3:]
+
+    @property
     def total_mass(self) -> float:
-        """Mass of all 17 bodies [kg]."""
+        """Mass of all bodies [kg] (the contract's 17, fewer without arm, plus a payload)."""
         return float(self.platform_mass + self.lower_mass.sum() + self.upper_mass.sum()
                      + self.arm.mass.sum())
 
@@ -139,8 +150,9 @@ def hybrid_from_urdf(urdf: URDF) -> HybridModel:
         lower.append(merged_inertial(urdf, u2.child)[:3])
         upper.append(merged_inertial(urdf, sl.child)[:3])
     arm = chain_from_urdf(urdf, "platform")
-    _check(arm.joint_names == ARM_JOINTS,
-           f"the arm's joints are {arm.joint_names}, expected {ARM_JOINTS}", "arm")
+    _check(arm.joint_names in (ARM_JOINTS, ()),
+           f"the arm's joints are {arm.joint_names}, expected {ARM_JOINTS} (or none: a "
+           "Stewart platform without arm)", "arm")
     return HybridModel(
         platform_mass=pm, platform_com=pc, platform_inertia=pI,
         p_platform_S=np.array(S), p_base_P=np.array(P), R_base_U=np.array(RU),

@@ -36,9 +36,17 @@ def _xacro_text(path: Path) -> str:
     return path.read_text(encoding="utf-8")
 
 
+@lru_cache(maxsize=None)
+def _arguments(path: Path) -> tuple:
+    return tuple(_ARG_RE.findall(_xacro_text(path)))
+
+
 def xacro_arguments(path: Path | None = None) -> dict[str, str]:
-    """The xacro's arguments and their default values (as text), in file order."""
-    return dict(_ARG_RE.findall(_xacro_text(path or xacro_path())))
+    """The xacro's arguments and their default values (as text), in file order.
+
+    The file is read and scanned once per process.
+    """
+    return dict(_arguments(path or xacro_path()))
 
 
 def cache_dir() -> Path:

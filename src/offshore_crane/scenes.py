@@ -1,0 +1,725 @@
+"""Scenes: what a simulation contains, read from a small TOML file.
+
+A scene says which sub-systems exist, how the legs are modelled, what hangs at the arm
+tip, the gravity, the trajectory, which actuator forces are wanted and by which
+method(s). The solver then computes nothing the scene does not need (see
+:func:`offshore_crane.dynamics.solve`: arm-only outputs skip the legs, a static platform
+skips its velocity and acceleration terms, massless legs skip their inertia terms; all
+exact). ``offshore-crane id --scene FILE.toml`` runs one; ``scenes/`` holds examples.
+
+Schema (every key optional; SI units; unknown keys or sections are errors)::
+
+    name = "crane with payload"        # label (default: the file's stem)
+    description = "..."                # free text
+    gravity = [0.0, 0.0, -9.81]        # base frame [m/s²]
+    outputs = ["T1", "T2", "Fs"]       # any of T1 T2 Fs Fl1..Fl6 (default: all that exist)
+    methods = ["kane"]                 # kane | kane-explicit | rnea; two or more are
+                                       # compared (max |ΔX| ≤ 1e-9 max |X|)
+
+    [robot]                            # xacro arguments (numbers), e.g.
+    platform_mass = 55.0               # see models/offshore_crane.urdf.xacro
+
+    [subsystems]
+    platform = true                    # false: the arm on a fixed deck (no legs; only
+                                       # T1, T2, Fs exist)
+    arm = true                         # false: the Stewart platform alone (only Fl1..Fl6)
+    leg_model = "full"                 # "full" (exact), "thin-rod", "massless"
+                                       # (approximations, method kane only)
+    deck_pose = [0, 0, 0.5, 0, 0, 0]   # q1..q6 of the fixed deck [m, rad]; only with
+                                       # platform = false; default (0, 0, home_height, 0, 0, 0)
+
+    [payload]                          # a rigid body welded to the frame arm_tip
+    mass = 2.0                         # [kg], ≥ 0 (default 0: no payload)
+    offset = [0.0, 0.0, -0.05]         # its centre of mass in the arm_tip frame [m]
+    inertia = { ixx = 1e-3, iyy = 1e-3, izz = 1e-3, ixy = 0, ixz = 0, iyz = 0 }
+                                       # about its centre of mass, arm_tip axes [kg·m²];
+                                       # positive definite; default 0 (a point mass)
+
+    [trajectory]
+    source = "table1"                  # or a CSV file t_s,q1..q9 (relative to this file)
+    duration = 31.4159                 # table1 only: span from t = 0 [s] (default 10π)
+    rate = 100.0                       # table1 only: sampling rate [Hz] (default 100)
+    fd_order = 4                       # CSV only: finite-difference order 2, 4 or 6
+
+How a scene maps onto the robot and the solver:
+
+- ``arm = false`` sets the xacro argument ``with_arm = 0`` (no column, links, slider);
+  q7..q9 of the trajectory are then ignored.
+- ``platform = false``: the legs are not evaluated and q1..q6 of the trajectory are
+  replaced by ``deck_pose`` with zero rates, so the static-platform pruning applies.
+- ``[payload]`` sets the xacro arguments ``payload_mass``, ``payload_x/y/z``,
+  ``payload_ixx`` ... ``payload_iyz`` (a link ``payload`` welded to ``arm_tip``), which
+  the Kane and the Pinocchio paths both read.
+
+Errors are :class:`~offshore_crane.errors.SceneError` with a one-line message naming the
+file and the key, e.g. ``scenes/x.toml: [payload] mass = -1: must be ≥ 0 kg``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import statistics
+import time
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from .dynamics import GRAVITY, LEG_MODELS, METHODS
+from .errors import SceneError
+from .model.hybrid import ACTUATOR_UNITS, ACTUATORS
+
+ARM_ACTUATORS = ACTUATORS[:3]
+LEG_ACTUATORS = ACTUATORS[3:]
+SECTIONS = ("robot", "subsystems", "payload", "trajectory")
+TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
+SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
+PAYLOAD_KEYS = ("mass", "offset", "inertia")
+INERTIA_KEYS = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
+TRAJECTORY_KEYS = ("source", "duration", "rate", "fd_order")
+#: xacro arguments a scene sets through its own keys, not through [robot].
+SCENE_ARGUMENTS = {"with_arm": "[subsystems] arm",
+                   **{f"payload_{k}": "[payload]" for k in ("mass", "x", "y", "z")},
+                   **{f"payload_{k}": "[payload] inertia" for k in INERTIA_KEYS}}
+#: Margin of the triangle inequality, relative to the sum of the principal moments (a
+#: thin disc sits on the boundary; inertias are often printed with 6-7 digits).
+INERTIA_RTOL = 1e-6
+#: Run time of the fidelity report: median of this many runs per leg model.
+FIDELITY_REPEAT = 5
+
+
+def _finite(x) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+
+
+def _finite_vector(v, n: int) -> bool:
+    return isinstance(v, (tuple, list)) and len(v) == n and all(_finite(x) for x in v)
+
+
+def _inertia_problem(inertia) -> str | None:
+    """Why ``(ixx, iyy, izz, ixy, ixz, iyz)`` is no rigid body's inertia, or None."""
+    ixx, iyy, izz, ixy, ixz, iyz = inertia
+    moments = np.linalg.eigvalsh(np.array([[ixx, ixy, ixz], [ixy, iyy, iyz],
+                                           [ixz, iyz, izz]]))   # ascending
+    shown = ", ".join(f"{m:.6g}" for m in moments)
+    if moments[0] <= 0.0:
+        return f"not positive definite (principal moments {shown} kg·m²)"
+    if moments[0] + moments[1] < moments[2] - INERTIA_RTOL * moments.sum():
+        return (f"principal moments {shown} kg·m² break the triangle inequality "
+                "(no rigid body has them)")
+    return None
+
+
+@dataclass(frozen=True)
+class Payload:
+    """A rigid body welded to the frame ``arm_tip`` (the slider's outer end).
+
+    Attributes:
+        mass: [kg], ≥ 0; 0 means no payload.
+        offset: ``(3,)`` centre of mass in the ``arm_tip`` frame [m].
+        inertia: ``(ixx, iyy, izz, ixy, ixz, iyz)`` about the centre of mass, ``arm_tip``
+            axes [kg·m²] (URDF convention); all zero for a point mass.
+    """
+
+    mass: float = 0.0
+    offset: tuple = (0.0, 0.0, 0.0)
+    inertia: tuple = (0.0,) * 6
+
+    def __post_init__(self):
+        where = "payload"
+        if not (_finite(self.mass) and self.mass >= 0.0):
+            raise SceneError(f"{where}: mass = {self.mass!r}: must be ≥ 0 kg",
+                             name="payload.mass")
+        if not _finite_vector(self.offset, 3):
+            raise SceneError(f"{where}: offset = {self.offset!r}: must be 3 finite numbers "
+                             "[m]", name="payload.offset")
+        if not _finite_vector(self.inertia, 6):
+            raise SceneError(f"{where}: inertia = {self.inertia!r}: must be 6 finite numbers "
+                             "(ixx, iyy, izz, ixy, ixz, iyz) [kg·m²]", name="payload.inertia")
+        if any(self.inertia):
+            problem = _inertia_problem(self.inertia) or (
+                None if self.mass > 0 else "an inertia without mass: give mass > 0")
+            if problem:
+                raise SceneError(f"{where}: inertia = {self.inertia!r}: {problem}",
+                                 name="payload.inertia")
+
+    def xacro_overrides(self) -> dict:
+        """The xacro arguments ``payload_*`` that differ from their default 0."""
+        if self.mass == 0.0:
+            return {}
+        values = {"payload_mass": self.mass, **dict(zip(("payload_x", "payload_y", "payload_z"),
+                                                          self.offset)),
+                  **{f"payload_{k}": v for k, v in zip(INERTIA_KEYS, self.inertia)}}
+        return {k: v for k, v in values.items() if v != 0.0}
+
+
+@dataclass(frozen=True)
+class Scene:
+    """What a simulation contains (see the module docstring for the TOML schema).
+
+    Attributes:
+        name: Label.
+        description: Free text.
+        path: The file it was read from, or None.
+        robot: ``{xacro argument: number}`` overrides (not ``with_arm``, ``payload_*``).
+        platform: False: the arm on a fixed deck at ``deck_pose`` (legs not evaluated).
+        arm: False: the Stewart platform alone (xacro ``with_arm = 0``).
+        leg_model: ``"full"``, ``"thin-rod"`` or ``"massless"``.
+        deck_pose: ``(6,)`` q1..q6 of the fixed deck [m, rad], or None for the home
+            pose ``(0, 0, home_height, 0, 0, 0)``.
+        payload: :class:`Payload` at the arm tip.
+        gravity: ``(3,)`` base frame [m/s²].
+        trajectory: ``"table1"`` or the path of a CSV file.
+        duration, rate: Table 1 span [s] and sampling rate [Hz] (None: defaults).
+        fd_order: Finite-difference order for a CSV trajectory.
+        outputs: Actuators wanted, or None for all that exist.
+        methods: Methods to run; the first one's result is reported, the others are
+            compared with it.
+    """
+
+    name: str = "default"
+    description: str = ""
+    path: str | None = None
+    robot: dict = field(default_factory=dict)
+    platform: bool = True
+    arm: bool = True
+    leg_model: str = "full"
+    deck_pose: tuple | None = None
+    payload: Payload = Payload()
+    gravity: tuple = GRAVITY
+    trajectory: str = "table1"
+    duration: float | None = None
+    rate: float | None = None
+    fd_order: int = 4
+    outputs: tuple | None = None
+    methods: tuple = ("kane",)
+    #: Where the scene comes from, for messages (the file, or the file with the
+    #: command-line options applied).
+    origin: str | None = field(default=None, compare=False, repr=False)
+
+    def __post_init__(self):
+        _check_values(self)
+        check_scene(self)
+
+    def where(self) -> str:
+        """Where the scene comes from, for messages."""
+        return self.origin or self.path or f"scene '{self.name}'"
+
+    def actuators(self) -> tuple:
+        """Actuators that exist in this scene, in the order of X."""
+        return (ARM_ACTUATORS if self.arm else ()) + (LEG_ACTUATORS if self.platform else ())
+
+    def wanted(self) -> tuple:
+        """Actuators to compute: ``outputs``, or all that exist."""
+        return self.actuators() if self.outputs is None else self.outputs
+
+    def xacro_overrides(self) -> dict:
+        """xacro arguments of the robot: ``robot``, ``with_arm`` and the payload's."""
+        out = dict(self.robot)
+        if not self.arm:
+            out["with_arm"] = 0
+        out.update(self.payload.xacro_overrides())
+        return out
+
+    def describe(self) -> str:
+        """One line: sub-systems, leg model, payload."""
+        parts = ["Stewart platform" if self.platform else "fixed deck (no platform motion, "
+                 "no legs)", "arm" if self.arm else "no arm"]
+        if self.platform:
+            parts.append(f"{self.leg_model} legs")
+        if self.payload.mass > 0:
+            parts.append(f"payload {self.payload.mass:g} kg at "
+                         f"({', '.join(f'{x:g}' for x in self.payload.offset)}) m from arm_tip")
+        return ", ".join(parts)
+
+
+# --------------------------------------------------------------------------- reading
+def _show(value) -> str:
+    """``value`` as it would be written in TOML."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{k} = {_show(v)}" for k, v in value.items()) + " }"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_show(v) for v in value) + "]"
+    return str(value)
+
+
+class _Reader:
+    """Checks the values of one scene table; errors name ``where`` and the key."""
+
+    def __init__(self, where: str, section: str | None, table: dict, known: tuple):
+        self.where, self.section, self.table = where, section, table
+        prefix = f"[{section}] " if section else ""
+        for key in table:
+            if key not in known:
+                self.fail_key(key, f"{prefix}unknown key '{key}': known keys are "
+                              f"{', '.join(known)}")
+
+    def key_name(self, key: str) -> str:
+        return f"{self.section}.{key}" if self.section else key
+
+    def fail_key(self, key: str, message: str):
+        raise SceneError(f"{self.where}: {message}", path=self.where, name=self.key_name(key))
+
+    def fail(self, key: str, problem: str):
+        prefix = f"[{self.section}] " if self.section else ""
+        self.fail_key(key, f"{prefix}{key} = {_show(self.table[key])}: {problem}")
+
+    def get(self, key: str, default=None):
+        return self.table.get(key, default)
+
+    def number(self, key: str, default=None, unit: str = "", minimum: float | None = None,
+               positive: bool = False):
+        if key not in self.table:
+            return default
+        v = self.table[key]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            self.fail(key, f"must be a finite number{f' [{unit}]' if unit else ''}")
+        if positive and v <= 0:
+            self.fail(key, f"must be > 0{f' {unit}' if unit else ''}")
+        if minimum is not None and v < minimum:
+            self.fail(key, f"must be ≥ {minimum:g}{f' {unit}' if unit else ''}")
+        return float(v)
+
+    def vector(self, key: str, n: int, default=None, unit: str = ""):
+        if key not in self.table:
+            return default
+        v = self.table[key]
+        if (not isinstance(v, list) or len(v) != n
+                or any(isinstance(x, bool) or not isinstance(x, (int, float))
+                       or not math.isfinite(x) for x in v)):
+            self.fail(key, f"must be a list of {n} finite numbers [{unit}]")
+        return tuple(float(x) for x in v)
+
+    def boolean(self, key: str, default: bool) -> bool:
+        if key not in self.table:
+            return default
+        if not isinstance(self.table[key], bool):
+            self.fail(key, "must be true or false")
+        return self.table[key]
+
+    def string(self, key: str, default=None, choices: tuple | None = None):
+        if key not in self.table:
+            return default
+        v = self.table[key]
+        if not isinstance(v, str):
+            self.fail(key, "must be a string" + (f": one of {', '.join(choices)}"
+                                                  if choices else ""))
+        if choices and v not in choices:
+            self.fail(key, f"must be one of {', '.join(choices)}")
+        return v
+
+    def names(self, key: str, choices: tuple):
+        """A non-empty list of distinct names out of ``choices`` (in file order)."""
+        if key not in self.table:
+            return None
+        v = self.table[key]
+        if not isinstance(v, list) or not v or not all(isinstance(x, str) for x in v):
+            self.fail(key, f"must be a non-empty list of names out of {', '.join(choices)}")
+        unknown = [x for x in v if x not in choices]
+        if unknown:
+            self.fail(key, f"unknown {', '.join(map(repr, unknown))}: choose among "
+                      f"{', '.join(choices)}")
+        if len(set(v)) != len(v):
+            self.fail(key, "names a value twice")
+        return tuple(v)
+
+
+def _section(where: str, data: dict, name: str, known: tuple) -> _Reader:
+    table = data.get(name, {})
+    if not isinstance(table, dict):
+        raise SceneError(f"{where}: {name} = {_show(table)}: must be a table [{name}]",
+                         path=where, name=name)
+    return _Reader(where, name, table, known)
+
+
+def _robot_overrides(where: str, data: dict) -> dict:
+    from .model.xacro_cache import xacro_arguments
+
+    known = xacro_arguments()
+    r = _section(where, data, "robot", tuple(known))
+    for key, owner in SCENE_ARGUMENTS.items():
+        if key in r.table:
+            r.fail(key, f"set by the scene: use {owner}")
+    out = {}
+    for key in r.table:
+        out[key] = r.number(key, minimum=0.0 if key.endswith("_mass") else None,
+                            unit="kg" if key.endswith("_mass") else "")
+    return out
+
+
+def _payload(where: str, data: dict) -> Payload:
+    r = _section(where, data, "payload", PAYLOAD_KEYS)
+    mass = r.number("mass", 0.0, "kg", minimum=0.0)
+    offset = r.vector("offset", 3, (0.0, 0.0, 0.0), "m")
+    inertia = (0.0,) * 6
+    if "inertia" in r.table:
+        table = r.get("inertia")
+        if not isinstance(table, dict):
+            r.fail("inertia", f"must be a table of {', '.join(INERTIA_KEYS)} [kg·m²]")
+        ri = _Reader(where, "payload.inertia", table, INERTIA_KEYS)
+        inertia = tuple(ri.number(k, 0.0, "kg·m²") for k in INERTIA_KEYS)
+        problem = _inertia_problem(inertia)
+        if problem:
+            r.fail("inertia", problem)
+        if mass == 0.0:
+            r.fail("inertia", "an inertia without mass: give [payload] mass > 0")
+    return Payload(mass=mass, offset=offset, inertia=inertia)
+
+
+def _trajectory(where: str, data: dict, base: Path | None) -> dict:
+    r = _section(where, data, "trajectory", TRAJECTORY_KEYS)
+    source = r.string("source", "table1")
+    out = dict(trajectory=source)
+    if source != "table1":
+        path = Path(source)
+        if not path.is_absolute() and base is not None:
+            path = base / path
+        if not path.is_file():
+            r.fail("source", f"no such file {path} (give 'table1' or a CSV t_s,q1..q9; "
+                   "relative paths start at the scene file's folder)")
+        out["trajectory"] = str(path)
+        for key in ("duration", "rate"):
+            if key in r.table:
+                r.fail(key, "applies to table1 only (a CSV file's samples set the time axis)")
+        if "fd_order" in r.table:
+            v = r.get("fd_order")
+            if isinstance(v, bool) or v not in (2, 4, 6):
+                r.fail("fd_order", "must be 2, 4 or 6")
+            out["fd_order"] = int(v)
+    else:
+        if "fd_order" in r.table:
+            r.fail("fd_order", "applies to a CSV trajectory only (table1 has analytic "
+                   "derivatives)")
+        out["duration"] = r.number("duration", None, "s", positive=True)
+        out["rate"] = r.number("rate", None, "Hz", positive=True)
+    return out
+
+
+def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) -> Scene:
+    """Build and check a :class:`Scene` from parsed TOML.
+
+    Args:
+        data: The TOML document as a dict.
+        where: Name of the source used in messages (the file path).
+        base: Folder that relative CSV paths start from.
+
+    Raises:
+        SceneError: naming ``where`` and the key.
+    """
+    for key, value in data.items():
+        if isinstance(value, dict) and key not in SECTIONS:
+            raise SceneError(f"{where}: unknown section [{key}]: known sections are "
+                             f"{', '.join(f'[{s}]' for s in SECTIONS)}", path=where, name=key)
+    top = _Reader(where, None, {k: v for k, v in data.items() if k not in SECTIONS},
+                  TOP_KEYS)
+    sub = _section(where, data, "subsystems", SUBSYSTEM_KEYS)
+    return Scene(                       # Scene checks how the parts fit (check_scene)
+        name=top.string("name", Path(where).stem),
+        description=top.string("description", ""),
+        path=where, robot=_robot_overrides(where, data),
+        platform=sub.boolean("platform", True), arm=sub.boolean("arm", True),
+        leg_model=sub.string("leg_model", "full", LEG_MODELS),
+        deck_pose=sub.vector("deck_pose", 6, None, "m, rad"), payload=_payload(where, data),
+        gravity=top.vector("gravity", 3, GRAVITY, "m/s²"),
+        outputs=top.names("outputs", ACTUATORS),
+        methods=top.names("methods", METHODS) or ("kane",), **_trajectory(where, data, base))
+
+
+def _check_values(scene: Scene) -> None:
+    """Domain of each field of a scene built in Python (the TOML reader checks first)."""
+    where = scene.where()
+
+    def fail(key, value, problem):
+        raise SceneError(f"{where}: {key} = {value!r}: {problem}", path=scene.path, name=key)
+
+    if scene.leg_model not in LEG_MODELS:
+        fail("subsystems.leg_model", scene.leg_model, f"must be one of {', '.join(LEG_MODELS)}")
+    if not scene.methods or any(m not in METHODS for m in scene.methods):
+        fail("methods", scene.methods, f"must be names out of {', '.join(METHODS)}")
+    if scene.outputs is not None and (not scene.outputs
+                                      or any(o not in ACTUATORS for o in scene.outputs)):
+        fail("outputs", scene.outputs, f"must be names out of {', '.join(ACTUATORS)}")
+    if not _finite_vector(scene.gravity, 3):
+        fail("gravity", scene.gravity, "must be 3 finite numbers [m/s²]")
+    if scene.deck_pose is not None and not _finite_vector(scene.deck_pose, 6):
+        fail("subsystems.deck_pose", scene.deck_pose, "must be 6 finite numbers [m, rad]")
+    if not isinstance(scene.payload, Payload):
+        fail("payload", scene.payload, "must be a Payload")
+    reserved = [k for k in scene.robot if k in SCENE_ARGUMENTS]
+    if reserved:
+        fail(f"robot.{reserved[0]}", scene.robot[reserved[0]],
+             f"set by the scene: use {SCENE_ARGUMENTS[reserved[0]]}")
+
+
+def check_scene(scene: Scene) -> None:
+    """Check that the parts of ``scene`` fit together (run on creation and override).
+
+    Raises:
+        SceneError: no sub-system left, a deck pose with the platform, a payload without
+            arm, outputs that the sub-systems do not have, or an approximate leg model
+            with no legs or with a method other than kane.
+    """
+    where = scene.where()
+    if not (scene.platform or scene.arm):
+        raise SceneError(f"{where}: [subsystems] platform = false and arm = false: nothing "
+                         "is left to simulate", path=scene.path, name="subsystems.arm")
+    if scene.deck_pose is not None and scene.platform:
+        raise SceneError(f"{where}: [subsystems] deck_pose applies to platform = false (the "
+                         "arm on a fixed deck) only", path=scene.path,
+                         name="subsystems.deck_pose")
+    if scene.payload.mass > 0 and not scene.arm:
+        raise SceneError(f"{where}: [payload] mass = {scene.payload.mass:g}: the payload "
+                         "hangs from the arm tip, but [subsystems] arm = false",
+                         path=scene.path, name="payload.mass")
+    if scene.outputs is not None:
+        absent = [n for n in scene.outputs if n not in scene.actuators()]
+        if absent:
+            why = ("[subsystems] platform = false (no legs)" if not scene.platform
+                   else "[subsystems] arm = false")
+            raise SceneError(f"{where}: outputs = {_show(list(scene.outputs))}: "
+                             f"{', '.join(absent)} do not exist with {why}",
+                             path=scene.path, name="outputs")
+    if scene.leg_model != "full" and not scene.platform:
+        raise SceneError(f"{where}: [subsystems] leg_model = {_show(scene.leg_model)}: "
+                         "applies to the Stewart platform, but platform = false (no legs)",
+                         path=scene.path, name="subsystems.leg_model")
+    if scene.leg_model != "full" and scene.methods != ("kane",):
+        raise SceneError(f"{where}: [subsystems] leg_model = {_show(scene.leg_model)}: an "
+                         f"approximation offered by method kane only, but methods = "
+                         f"{_show(list(scene.methods))}", path=scene.path,
+                         name="subsystems.leg_model")
+
+
+def load_scene(path) -> Scene:
+    """Read and check a scene file.
+
+    Args:
+        path: The TOML file (str or path-like).
+
+    Raises:
+        SceneError: unreadable file, invalid TOML, unknown section or key, bad value; the
+            message names the file and the key.
+    """
+    import tomllib
+
+    where = os.fspath(path)
+    try:
+        with open(where, "rb") as fh:
+            data = tomllib.load(fh)
+    except OSError as exc:
+        raise SceneError(f"{where}: cannot read the scene file: {exc.strerror}",
+                         path=where) from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{where}: not valid TOML: {exc}", path=where) from None
+    return scene_from_dict(data, where, Path(where).parent)
+
+
+# --------------------------------------------------------------------------- running
+def deck_pose(scene: Scene, robot) -> np.ndarray:
+    """q1..q6 ``(6,)`` of the fixed deck [m, rad]: ``scene.deck_pose`` or home."""
+    if scene.deck_pose is not None:
+        return np.array(scene.deck_pose)
+    return np.array([0.0, 0.0, float(robot.parameters["home_height"]), 0.0, 0.0, 0.0])
+
+
+def load_robot(scene: Scene, **extra):
+    """The scene's robot; ``extra`` xacro arguments (e.g. ``--set``) override it."""
+    from .model import load_robot as _load
+
+    return _load(**{**scene.xacro_overrides(), **extra})
+
+
+def load_trajectory(scene: Scene, robot):
+    """The scene's trajectory; with ``platform = false``, q1..q6 held at the deck pose.
+
+    Returns:
+        :class:`offshore_crane.trajectories.Trajectory` (``(N, 9)`` arrays).
+    """
+    from . import trajectories
+
+    traj = trajectories.load(scene.trajectory, duration=scene.duration, rate=scene.rate,
+                             fd_order=scene.fd_order)
+    if scene.platform:
+        return traj
+    q, qd, qdd = traj.q.copy(), traj.qd.copy(), traj.qdd.copy()
+    q[:, :6] = deck_pose(scene, robot)
+    qd[:, :6] = 0.0
+    qdd[:, :6] = 0.0
+    return trajectories.Trajectory(f"{traj.name} on a fixed deck", traj.t, q, qd, qdd)
+
+
+@dataclass
+class SceneRun:
+    """A scene's results.
+
+    Attributes:
+        scene: The scene.
+        robot: Its robot.
+        trajectory: The trajectory as solved (deck pose applied).
+        results: ``{method: Result}`` in the order of ``scene.methods``.
+        seconds: ``{method: run time [s]}``.
+    """
+
+    scene: Scene
+    robot: object
+    trajectory: object
+    results: dict
+    seconds: dict
+
+    @property
+    def result(self):
+        """The first method's :class:`~offshore_crane.dynamics.Result`."""
+        return next(iter(self.results.values()))
+
+
+def _solve(scene: Scene, robot, traj, method: str, leg_model: str, **options):
+    from .dynamics import solve
+
+    return solve(robot, traj.q, traj.qd, traj.qdd, method=method, gravity=scene.gravity,
+                 leg_model=leg_model, outputs=scene.wanted(), t=traj.t, **options)
+
+
+def run(scene: Scene, robot=None, trajectory=None, **options) -> SceneRun:
+    """Solve the scene with each of its methods.
+
+    Args:
+        scene: The scene.
+        robot: Its robot (default :func:`load_robot`).
+        trajectory: Its trajectory (default :func:`load_trajectory`).
+        **options: ``limits``, ``checks``, ``thresholds`` of
+            :func:`offshore_crane.dynamics.solve`.
+
+    Raises:
+        The errors of :func:`offshore_crane.dynamics.solve` and of the loaders.
+    """
+    robot = robot or load_robot(scene)
+    traj = trajectory or load_trajectory(scene, robot)
+    results, seconds = {}, {}
+    for m in scene.methods:
+        t0 = time.perf_counter()
+        results[m] = _solve(scene, robot, traj, m, scene.leg_model, **options)
+        seconds[m] = time.perf_counter() - t0
+    return SceneRun(scene, robot, traj, results, seconds)
+
+
+def compare_methods(run_: SceneRun) -> list[tuple[str, float, float, int, int]]:
+    """Each method after the first against the first, over the wanted actuators.
+
+    Returns:
+        ``[(method, max |ΔX|, max |X_first|, relative, sample, column of X), ...]``.
+    """
+    cols = [k for k, n in enumerate(ACTUATORS) if n in run_.result.outputs]
+    ref = run_.result.X[:, cols]
+    scale = np.abs(ref).max()
+    out = []
+    for m, res in list(run_.results.items())[1:]:
+        diff = np.abs(res.X[:, cols] - ref)
+        i, j = np.unravel_index(np.argmax(diff), diff.shape)
+        rel = diff.max() / scale if scale > 0 else diff.max()
+        out.append((m, float(diff.max()), float(scale), float(rel), int(i), cols[j]))
+    return out
+
+
+# --------------------------------------------------------------------------- fidelity
+@dataclass(frozen=True)
+class Fidelity:
+    """One leg model against ``full`` (method kane).
+
+    Attributes:
+        leg_model: ``"full"``, ``"thin-rod"`` or ``"massless"``.
+        seconds: Median run time of :func:`~offshore_crane.dynamics.solve` [s].
+        deviation: ``(k,)`` max over time of |X − X_full| per wanted actuator [N·m, N].
+        relative: ``(k,)`` ``deviation / max |X_full|`` per actuator.
+        approximations: Labels of the approximations used (empty: exact).
+        pruned: What the solver skipped.
+    """
+
+    leg_model: str
+    seconds: float
+    deviation: np.ndarray
+    relative: np.ndarray
+    approximations: tuple
+    pruned: tuple
+
+
+def compare_fidelity(scene: Scene, robot=None, trajectory=None,
+                     repeat: int = FIDELITY_REPEAT, **options):
+    """Run time and deviation from ``full`` of each leg model (method kane).
+
+    Args:
+        scene, robot, trajectory: As :func:`run`.
+        repeat: Timed runs per leg model (after one untimed warm-up run); the median is
+            reported.
+        **options: Options of :func:`offshore_crane.dynamics.solve`.
+
+    Returns:
+        ``(names, scale, rows)``: the wanted actuators, ``(k,)`` max |X_full| per
+        actuator, and one :class:`Fidelity` per leg model (``full`` first).
+    """
+    robot = robot or load_robot(scene)
+    traj = trajectory or load_trajectory(scene, robot)
+    names = scene.wanted()
+    cols = [ACTUATORS.index(n) for n in names]
+    rows, ref = [], None
+    for model in LEG_MODELS:
+        res = _solve(scene, robot, traj, "kane", model, **options)      # warm-up
+        times = []
+        for _ in range(repeat):
+            t0 = time.perf_counter()
+            _solve(scene, robot, traj, "kane", model, **options)
+            times.append(time.perf_counter() - t0)
+        X = res.X[:, cols]
+        if ref is None:
+            ref = X
+            scale = np.abs(ref).max(axis=0)
+        dev = np.abs(X - ref).max(axis=0)
+        rel = np.divide(dev, scale, out=np.zeros_like(dev), where=scale > 0)
+        rows.append(Fidelity(model, statistics.median(times), dev, rel,
+                             res.approximations, res.pruned))
+    return names, scale, rows
+
+
+def format_fidelity(names, scale, rows, n_samples: int, repeat: int = FIDELITY_REPEAT) -> str:
+    """The fidelity report of :func:`compare_fidelity` as two fixed-width tables."""
+    full = rows[0].seconds
+    lines = [f"fidelity of the leg models against 'full' (method kane, {n_samples} samples, "
+             f"run time: median of {repeat} runs)",
+             f"{'leg model':<10}{'time [ms]':>11}{'speed-up':>10}{'worst rel. dev.':>17}"
+             "  approximation"]
+    for r in rows:
+        worst = float(r.relative.max()) if r.relative.size else 0.0
+        lines.append(f"{r.leg_model:<10}{r.seconds * 1e3:>11.3f}{full / r.seconds:>10.2f}"
+                     f"{worst:>17.3e}  {'; '.join(r.approximations) or 'exact'}")
+    legs_skipped = any("leg kinematics" in p for p in rows[0].pruned)
+    if legs_skipped:
+        lines.append("(no leg force wanted: the legs are not evaluated, so the leg model "
+                     "changes nothing)")
+    units = {n: u for n, u in zip(ACTUATORS, ACTUATOR_UNITS)}
+    head = f"{'actuator':<9}{'unit':<5}{'max |X_full|':>14}"
+    for r in rows[1:]:
+        head += f"{'max |ΔX| ' + r.leg_model:>22}{'relative':>11}"
+    lines += ["", head]
+    for k, n in enumerate(names):
+        line = f"{n:<9}{units[n]:<5}{scale[k]:>14.5g}"
+        for r in rows[1:]:
+            line += f"{r.deviation[k]:>22.4e}{r.relative[k]:>11.2e}"
+        lines.append(line)
+    return "\n".join(lines)
+
+
+def with_overrides(scene: Scene, where: str, **changes) -> Scene:
+    """``scene`` with some fields replaced (e.g. by command-line flags), re-checked.
+
+    Raises:
+        SceneError: the result does not fit together (:func:`check_scene`).
+    """
+    changes = {k: v for k, v in changes.items() if v is not None}
+    if not changes:
+        return scene
+    return replace(scene, origin=where, **changes)
