@@ -33,6 +33,8 @@ class Robot:
         self.urdf = urdf
         self.urdf_path = urdf_path
         self.description: URDF = parse_urdf(urdf)
+        from .validate import validate
+        validate(self.description, self.parameters)      # masses, inertias, lengths, home
         self.hybrid: HybridModel = hybrid_from_urdf(self.description)
 
     @property
