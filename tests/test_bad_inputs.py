@@ -394,24 +394,19 @@ CASES = [
          r"number inf\): move the anchors \(xacro arguments base_radius = 0\.35",
          lib=lambda tmp: oc.load_robot(base_radius=0.35, base_half_angle_deg=45),
          cli=_set("base_radius=0.35", "base_half_angle_deg=45")),
-    # ---- known gaps (strict xfail: see the report of issue 6)
+    # ---- former gaps (fixed: argparse errors, early output checks, exact singularity)
     Case("argparse-choice", "unknown --method (argparse)", oc.InputError,
          r"argument --method: invalid choice: 'foo'",
-         cli=lambda tmp: ["id", "--method", "foo"],
-         gap="argparse prints its usage (several lines) and exits from parse_args"),
+         cli=lambda tmp: ["id", "--method", "foo"]),
     Case("argparse-float", "non-numeric --rate (argparse)", oc.InputError,
          r"argument --rate: invalid float value: 'abc'",
-         cli=lambda tmp: ["id", "--rate", "abc"],
-         gap="argparse prints its usage (several lines) and exits from parse_args"),
+         cli=lambda tmp: ["id", "--rate", "abc"]),
     Case("plot-format", "--plot with an unsupported file type", oc.InputError,
-         r"xyz", cli=lambda tmp: ["id", "--duration", "1", "--plot", str(tmp / "out" / "x.xyz")],
-         gap="matplotlib's ValueError escapes (traceback), after --out was written"),
+         r"xyz", cli=lambda tmp: ["id", "--duration", "1", "--plot", str(tmp / "out" / "x.xyz")]),
     Case("exact-gimbal", "pose exactly at a U-joint gimbal lock", oc.SingularConfigurationError,
          r"U-joint gimbal singularity|leg-Jacobian singularity",
          lib=lambda tmp: solve(_robot(), EXACT_GIMBAL, np.eye(9)[0] * 0.1, np.zeros(9),
-                               limits=False),
-         gap="the Numba kernels (Python error model) and the NumPy kernel's per-sample path "
-             "for N <= 8 (Python floats) raise ZeroDivisionError at cos θ2 = 0"),
+                               limits=False)),
 ]
 
 

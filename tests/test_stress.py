@@ -250,15 +250,9 @@ def test_policy_attitude_explicit_paths_raise(robot, families, method):
               backend="numpy" if method.endswith("-numpy") else "auto")
 
 
-_TWICE = pytest.mark.xfail(strict=True, reason="solve() applies the leg-Jacobian policy "
-                           "twice on its NumPy explicit paths (before their solve and again "
-                           "at the end)")
-
-
 @pytest.mark.parametrize("method, backend", [
     ("kane", "numba"), ("kane", "numpy"), ("rnea", "numba"),
-    pytest.param("kane-explicit", "numpy", marks=_TWICE),
-    pytest.param("rnea", "numpy", marks=_TWICE)])
+    ("kane-explicit", "numpy"), ("rnea", "numpy")])
 def test_every_path_warns_once(robot, families, method, backend):
     (q, qd, qdd), runs = families["leg-Jacobian"]
     keep = (runs["kane"][0] > 1e5) & (runs["kane"][0] < 1e7)

@@ -105,8 +105,11 @@ def _scene(args):
 
 def _run_id(args) -> int:
     from . import scenes
-    from .report import format_summary, plot, summary_rows, write_csv
+    from .report import check_output, format_summary, plot, summary_rows, write_csv
 
+    for path, is_plot in ((args.out, False), (args.plot, True)):
+        if path:
+            check_output(path, plot=is_plot)
     scene = _scene(args)
     robot = scenes.load_robot(scene, **_parse_set(args.set))
     traj = scenes.load_trajectory(scene, robot)
@@ -156,13 +159,20 @@ def _run_id(args) -> int:
 SUBCOMMANDS = ("offshore_crane.serial.cli", "offshore_crane.bench")
 
 
+class _Parser(argparse.ArgumentParser):
+    """An ArgumentParser whose errors are :class:`InputError` (one line, exit status 2)."""
+
+    def error(self, message):
+        raise InputError(f"{self.prog}: {message} (see --help)", name="argv")
+
+
 def build_parser() -> argparse.ArgumentParser:
     import importlib
 
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="offshore-crane",
         description="Inverse dynamics of a 9-DOF Stewart-platform + SCARA crane robot.")
-    sub = parser.add_subparsers(dest="command", required=True)
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     _id_parser(sub)
     for name in SUBCOMMANDS:
         try:
@@ -177,7 +187,6 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     """Run the command line with ``argv`` (default ``sys.argv[1:]``); return exit status."""
-    args = build_parser().parse_args(argv)
     import warnings
 
     from .checks import OffshoreCraneWarning
@@ -186,6 +195,7 @@ def main(argv=None) -> int:
         print(f"offshore-crane: warning: {message}", file=sys.stderr)
 
     try:
+        args = build_parser().parse_args(argv)
         with warnings.catch_warnings():
             warnings.simplefilter("always", OffshoreCraneWarning)
             warnings.showwarning = one_line

@@ -83,7 +83,7 @@ class SingularConfigurationError(OffshoreCraneError, ArithmeticError):
     Attributes:
         index: Index of the first offending time sample.
         time: Time of that sample [s], or None when the caller gave no time axis.
-        condition: Condition number (2-norm) measured there.
+        condition: Condition number (1-norm) measured there.
         kind: Which singularity: "leg-jacobian", "u-joint" or "attitude".
     """
 

@@ -43,6 +43,27 @@ def format_summary(rows) -> str:
     return "\n".join(lines)
 
 
+#: Figure formats offered by --plot (all written by matplotlib's Agg-based backends).
+PLOT_FORMATS = ("png", "pdf", "svg", "svgz", "eps", "ps", "jpg", "jpeg", "tif", "tiff", "webp")
+
+
+def check_output(path, plot: bool = False) -> None:
+    """Fail early (before any computation) on an output path that cannot be written.
+
+    Raises:
+        InputError: the directory does not exist, or (``plot``) the suffix is not one of
+            :data:`PLOT_FORMATS`.
+    """
+    path = Path(path)
+    directory = path.parent if str(path.parent) else Path(".")
+    if not directory.is_dir():
+        raise InputError(f"cannot write {path}: directory {directory} does not exist",
+                         name=str(path))
+    if plot and path.suffix.lstrip(".").lower() not in PLOT_FORMATS:
+        raise InputError(f"cannot plot to {path}: the file type '{path.suffix}' is not one "
+                         f"of {', '.join('.' + f for f in PLOT_FORMATS)}", name=str(path))
+
+
 def _atomic_write(path: Path, write) -> None:
     path = Path(path)
     directory = path.parent if str(path.parent) else Path(".")

@@ -142,6 +142,7 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
     want_legs = any(n.startswith("Fl") for n in names)
     pruned = []
     cond = diag = None
+    policy_done = False
     if method == "kane":
         from .fused import Options, fused_inverse_dynamics
 
@@ -185,16 +186,19 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
             J = legs.J.copy()
             J[:, :, 3:] /= robot.fused.length_scale
             cond = condition_1(np.swapaxes(J, 1, 2))
-            apply_policy("leg-Jacobian", cond, thresholds, t)
+            apply_policy("leg-Jacobian", cond, thresholds, t)   # before the solve: it
+            policy_done = True                                    # would fail if singular
         X = solve_actuators(B, legs.J)
     if limits:
         check_limits(robot, q, diag, t)
         if want_legs:
             check_below_base(diag, t)
-    gimbal = None if diag is None else 1.0 / diag["cos_theta2"].min(axis=1)
-    attitude = 1.0 / np.abs(np.cos(q[:, 4]))
+    with np.errstate(divide="ignore"):      # exactly singular: κ = inf, reported below
+        gimbal = None if diag is None else 1.0 / diag["cos_theta2"].min(axis=1)
+        attitude = 1.0 / np.abs(np.cos(q[:, 4]))
     if checks:
-        apply_policy("leg-Jacobian", cond, thresholds, t)
+        if not policy_done:
+            apply_policy("leg-Jacobian", cond, thresholds, t)
         apply_policy("U-joint gimbal", gimbal, thresholds, t)
         apply_policy("attitude", attitude, thresholds, t, error=False)
     if not want_legs:

@@ -630,17 +630,23 @@ def fused_inverse_dynamics(fd: FusedData, q, qd, qdd, g, opts: Options = Options
             if opts.diagnostics and with_legs else None)
     g = tuple(float(x) for x in g)
     if N <= SCALAR_MAX:
-        for k, (qk, qdk, qddk) in enumerate(zip(q.tolist(), qd.tolist(), qdd.tolist())):
-            X[k], c = _sample(fd, qk, qdk, qddk, g, opts, diag, k)
+        try:
+            for k, (qk, qdk, qddk) in enumerate(zip(q.tolist(), qd.tolist(), qdd.tolist())):
+                X[k], c = _sample(fd, qk, qdk, qddk, g, opts, diag, k)
+                if cond is not None:
+                    cond[k] = c
+            return X, cond, diag
+        except ZeroDivisionError:
+            pass    # exactly singular (e.g. U-joint gimbal): arrays give inf/NaN instead
+    # An exactly singular sample (a U-joint at gimbal lock, coincident anchors) yields
+    # inf/NaN there, which the singularity policy of solve() reports; no FP warnings.
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for start in range(0, N, chunk):
+            sl = slice(start, min(start + chunk, N))
+            Xc, cc = _chunk(fd, np.ascontiguousarray(q[sl].T), np.ascontiguousarray(qd[sl].T),
+                            np.ascontiguousarray(qdd[sl].T), g, opts,
+                            None if diag is None else {k: v[sl] for k, v in diag.items()})
+            X[sl] = Xc
             if cond is not None:
-                cond[k] = c
-        return X, cond, diag
-    for start in range(0, N, chunk):
-        sl = slice(start, min(start + chunk, N))
-        Xc, cc = _chunk(fd, np.ascontiguousarray(q[sl].T), np.ascontiguousarray(qd[sl].T),
-                        np.ascontiguousarray(qdd[sl].T), g, opts,
-                        None if diag is None else {k: v[sl] for k, v in diag.items()})
-        X[sl] = Xc
-        if cond is not None:
-            cond[sl] = cc
+                cond[sl] = cc
     return X, cond, diag

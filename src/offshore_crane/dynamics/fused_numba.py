@@ -22,31 +22,31 @@ FULL, THIN_ROD, MASSLESS = 0, 1, 2
 LEG_MODEL_CODES = {"full": FULL, "thin-rod": THIN_ROD, "massless": MASSLESS}
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _cross(a, b, out):
     out[0] = a[1] * b[2] - a[2] * b[1]
     out[1] = a[2] * b[0] - a[0] * b[2]
     out[2] = a[0] * b[1] - a[1] * b[0]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _dot(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _matvec(R, v, out):
     for i in range(3):
         out[i] = R[i, 0] * v[0] + R[i, 1] * v[1] + R[i, 2] * v[2]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _matvec_t(R, v, out):
     for i in range(3):
         out[i] = R[0, i] * v[0] + R[1, i] * v[1] + R[2, i] * v[2]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _accel_point(a, w, al, r, out, tmp, tmp2):
     """out = a + al × r + w × (w × r)."""
     _cross(w, r, tmp)
@@ -56,7 +56,7 @@ def _accel_point(a, w, al, r, out, tmp, tmp2):
         out[i] = a[i] + tmp[i] + tmp2[i]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _body_torque(R, I, w, al, out, wb, ab, t1, t2):
     """out = I_w al + w × I_w w with I_w = R I Rᵀ (in body axes)."""
     _matvec_t(R, w, wb)
@@ -69,7 +69,7 @@ def _body_torque(R, I, w, al, out, wb, ab, t1, t2):
     _matvec(R, t1, out)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _solve6(A, rhs, x, Ainv, want_inverse):
     """Gauss–Jordan with partial pivoting on [A | I | rhs]; returns the 1-norm κ of A.
 
@@ -127,7 +127,7 @@ def _solve6(A, rhs, x, Ainv, want_inverse):
     return norm_a * norm_inv
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def kernel(q, qd, qdd, g, plat_m, plat_c, plat_I,
            arm_t, arm_Ro, arm_axis, arm_prism, arm_m, arm_c, arm_I,
            leg_s, leg_P, leg_X, leg_Y, leg_Z, m_lo, m_up, c_lo, c_up, It, Ia, L,

@@ -15,7 +15,7 @@ from numba import njit
 from .fused_numba import _cross, _dot, _matvec, _solve6
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def tree_kernel(q, qd, qdd, leg_s, leg_P, leg_X, leg_Y, leg_Z, idx_plat, idx_arm, idx_legs,
                 Q, V, A, G, diag):
     """Fill ``Q, V, A`` ``(nv, N)``, the leg rows of ``G`` ``(N, 6, 3, 6)`` and the leg
@@ -154,7 +154,7 @@ def tree_kernel(q, qd, qdd, leg_s, leg_P, leg_X, leg_Y, leg_Z, idx_plat, idx_arm
                 G[k, l, 2, r] = _dot(u, vr)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def project_solve(tau, G, idx_plat, idx_arm, idx_legs, L, X, cond):
     """``B = Gᵀ τ`` and the solve of ``A X = B`` (``A = [[0, Jᵀ], [I, 0]]``) per sample.
 
