@@ -69,6 +69,38 @@ def _body_torque(R, I, w, al, out, wb, ab, t1, t2):
     _matvec(R, t1, out)
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _platform_state(q, qd, qdd, k, R, W, w, al):
+    """Sample k's platform attitude ``R`` (3, 3), attitude partials ``W`` (rows w4, w5,
+    w6), angular velocity ``w`` and acceleration ``al`` (see :mod:`.platform`)."""
+    c4, s4 = np.cos(q[k, 3]), np.sin(q[k, 3])
+    c5, s5 = np.cos(q[k, 4]), np.sin(q[k, 4])
+    c6, s6 = np.cos(q[k, 5]), np.sin(q[k, 5])
+    R[0, 0] = c6 * c5
+    R[0, 1] = c6 * s5 * s4 - s6 * c4
+    R[0, 2] = c6 * s5 * c4 + s6 * s4
+    R[1, 0] = s6 * c5
+    R[1, 1] = s6 * s5 * s4 + c6 * c4
+    R[1, 2] = s6 * s5 * c4 - c6 * s4
+    R[2, 0] = -s5
+    R[2, 1] = c5 * s4
+    R[2, 2] = c5 * c4
+    W[0, 0], W[0, 1], W[0, 2] = c6 * c5, s6 * c5, -s5
+    W[1, 0], W[1, 1], W[1, 2] = -s6, c6, 0.0
+    W[2, 0], W[2, 1], W[2, 2] = 0.0, 0.0, 1.0
+    for i in range(3):
+        w[i] = W[0, i] * qd[k, 3] + W[1, i] * qd[k, 4] + W[2, i] * qd[k, 5]
+    # α = W q̈ + q̇4 (q̇6 z + q̇5 w5) × w4 + q̇5 q̇6 (z × w5)
+    sx, sy, sz = W[1, 0] * qd[k, 4], W[1, 1] * qd[k, 4], qd[k, 5]
+    cx = (sy * W[0, 2] - sz * W[0, 1]) * qd[k, 3]
+    cy = (sz * W[0, 0] - sx * W[0, 2]) * qd[k, 3]
+    cz = (sx * W[0, 1] - sy * W[0, 0]) * qd[k, 3]
+    q56 = qd[k, 4] * qd[k, 5]
+    al[0] = W[0, 0] * qdd[k, 3] + W[1, 0] * qdd[k, 4] + cx - c6 * q56
+    al[1] = W[0, 1] * qdd[k, 3] + W[1, 1] * qdd[k, 4] + cy - s6 * q56
+    al[2] = W[0, 2] * qdd[k, 3] + qdd[k, 5] + cz
+
+
 @njit(cache=True, error_model="numpy")
 def _solve6(A, rhs, x, Ainv, want_inverse):
     """Gauss–Jordan with partial pivoting on [A | I | rhs]; returns the 1-norm κ of A.
@@ -136,6 +168,7 @@ def kernel(q, qd, qdd, g, plat_m, plat_c, plat_I,
     N = q.shape[0]
     na = arm_t.shape[0]
     R = np.empty((3, 3))
+    Wp = np.empty((3, 3))
     Rc = np.empty((3, 3))
     Rj = np.empty((3, 3))
     Rcur = np.empty((3, 3))
@@ -192,18 +225,7 @@ def kernel(q, qd, qdd, g, plat_m, plat_c, plat_I,
     lever = np.empty(3)
     for k in range(N):
         # ---------------- platform
-        c4, s4 = np.cos(q[k, 3]), np.sin(q[k, 3])
-        c5, s5 = np.cos(q[k, 4]), np.sin(q[k, 4])
-        c6, s6 = np.cos(q[k, 5]), np.sin(q[k, 5])
-        R[0, 0] = c6 * c5
-        R[0, 1] = c6 * s5 * s4 - s6 * c4
-        R[0, 2] = c6 * s5 * c4 + s6 * s4
-        R[1, 0] = s6 * c5
-        R[1, 1] = s6 * s5 * s4 + c6 * c4
-        R[1, 2] = s6 * s5 * c4 - c6 * s4
-        R[2, 0] = -s5
-        R[2, 1] = c5 * s4
-        R[2, 2] = c5 * c4
+        _platform_state(q, qd, qdd, k, R, Wp, w, al)
         if static:
             for i in range(3):
                 w[i] = 0.0
@@ -211,20 +233,6 @@ def kernel(q, qd, qdd, g, plat_m, plat_c, plat_I,
                 a[i] = 0.0
                 v[i] = 0.0
         else:
-            w4x, w4y, w4z = c6 * c5, s6 * c5, -s5
-            w5x, w5y = -s6, c6
-            w[0] = w4x * qd[k, 3] + w5x * qd[k, 4]
-            w[1] = w4y * qd[k, 3] + w5y * qd[k, 4]
-            w[2] = w4z * qd[k, 3] + qd[k, 5]
-            # (q̇6 z + q̇5 w5) × w4, times q̇4
-            sx, sy, sz = w5x * qd[k, 4], w5y * qd[k, 4], qd[k, 5]
-            cx = (sy * w4z - sz * w4y) * qd[k, 3]
-            cy = (sz * w4x - sx * w4z) * qd[k, 3]
-            cz = (sx * w4y - sy * w4x) * qd[k, 3]
-            q56 = qd[k, 4] * qd[k, 5]
-            al[0] = w4x * qdd[k, 3] + w5x * qdd[k, 4] + cx - c6 * q56
-            al[1] = w4y * qdd[k, 3] + w5y * qdd[k, 4] + cy - s6 * q56
-            al[2] = w4z * qdd[k, 3] + qdd[k, 5] + cz
             for i in range(3):
                 a[i] = qdd[k, i]
                 v[i] = qd[k, i]

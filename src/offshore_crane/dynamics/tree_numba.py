@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .fused_numba import _cross, _dot, _matvec, _solve6
+from .fused_numba import _cross, _dot, _matvec, _platform_state, _solve6
 
 
 @njit(cache=True, error_model="numpy")
@@ -27,7 +27,7 @@ def tree_kernel(q, qd, qdd, leg_s, leg_P, leg_X, leg_Y, leg_Z, idx_plat, idx_arm
     """
     N = q.shape[0]
     R = np.empty((3, 3))
-    W = np.zeros((3, 3))     # rows: w4, w5, w6 (partial angular velocities)
+    W = np.empty((3, 3))     # rows: w4, w5, w6 (partial angular velocities)
     w = np.empty(3)
     al = np.empty(3)
     rS = np.empty(3)
@@ -55,31 +55,7 @@ def tree_kernel(q, qd, qdd, leg_s, leg_P, leg_X, leg_Y, leg_Z, idx_plat, idx_arm
             Q[idx_arm[j], k] = q[k, 6 + j]
             V[idx_arm[j], k] = qd[k, 6 + j]
             A[idx_arm[j], k] = qdd[k, 6 + j]
-        c4, s4 = np.cos(q[k, 3]), np.sin(q[k, 3])
-        c5, s5 = np.cos(q[k, 4]), np.sin(q[k, 4])
-        c6, s6 = np.cos(q[k, 5]), np.sin(q[k, 5])
-        R[0, 0] = c6 * c5
-        R[0, 1] = c6 * s5 * s4 - s6 * c4
-        R[0, 2] = c6 * s5 * c4 + s6 * s4
-        R[1, 0] = s6 * c5
-        R[1, 1] = s6 * s5 * s4 + c6 * c4
-        R[1, 2] = s6 * s5 * c4 - c6 * s4
-        R[2, 0] = -s5
-        R[2, 1] = c5 * s4
-        R[2, 2] = c5 * c4
-        W[0, 0], W[0, 1], W[0, 2] = c6 * c5, s6 * c5, -s5
-        W[1, 0], W[1, 1], W[1, 2] = -s6, c6, 0.0
-        W[2, 2] = 1.0
-        for i in range(3):
-            w[i] = W[0, i] * qd[k, 3] + W[1, i] * qd[k, 4] + W[2, i] * qd[k, 5]
-        sx, sy, sz = W[1, 0] * qd[k, 4], W[1, 1] * qd[k, 4], qd[k, 5]
-        cx = (sy * W[0, 2] - sz * W[0, 1]) * qd[k, 3]
-        cy = (sz * W[0, 0] - sx * W[0, 2]) * qd[k, 3]
-        cz = (sx * W[0, 1] - sy * W[0, 0]) * qd[k, 3]
-        q56 = qd[k, 4] * qd[k, 5]
-        al[0] = W[0, 0] * qdd[k, 3] + W[1, 0] * qdd[k, 4] + cx - c6 * q56
-        al[1] = W[0, 1] * qdd[k, 3] + W[1, 1] * qdd[k, 4] + cy - s6 * q56
-        al[2] = W[0, 2] * qdd[k, 3] + qdd[k, 5] + cz
+        _platform_state(q, qd, qdd, k, R, W, w, al)
         for l in range(6):
             _matvec(R, leg_s[l], rS)
             for i in range(3):
