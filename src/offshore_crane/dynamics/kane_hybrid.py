@@ -91,9 +91,3 @@ def kane_B(model: HybridModel, q, qd, qdd, gravity):
     B = arm_load(model, q, qd, qdd, plat, gravity)
     B[:, :6] += platform_load(model, plat, gravity) + legs_load(model, legs, gravity)
     return B, legs
-
-
-def kane_inverse_dynamics(model: HybridModel, q, qd, qdd, gravity) -> np.ndarray:
-    """Actuator forces X ``(N, 9)`` [N·m, N] for ``q, qd, qdd`` ``(N, 9)``."""
-    B, legs = kane_B(model, q, qd, qdd, gravity)
-    return solve_actuators(B, legs.J)

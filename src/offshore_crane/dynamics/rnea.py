@@ -95,9 +95,3 @@ def rnea_B(robot, q, qd, qdd, gravity, threads: int = 1):
     qt, vt, at, legs, _ = tree_state(robot, q, qd, qdd)
     tau = tree_torques(robot, qt, vt, at, gravity, threads)
     return project(robot, tau, legs), legs
-
-
-def rnea_inverse_dynamics(robot, q, qd, qdd, gravity, threads: int = 1) -> np.ndarray:
-    """Actuator forces X ``(N, 9)`` by the RNEA path."""
-    B, legs = rnea_B(robot, q, qd, qdd, gravity, threads)
-    return solve_actuators(B, legs.J)
