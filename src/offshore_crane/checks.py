@@ -85,6 +85,8 @@ def check_limits(robot, q: np.ndarray, diag: dict | None, t=None) -> None:
     h = robot.hybrid
     arm = h.arm
     n = arm.n
+    if _all_inside(robot, q, diag):      # one vectorised test; details only on failure
+        return
     _range_check(q[:, 6:6 + n], arm.lower, arm.upper, arm.joint_names,
                  ["m" if p else "rad" for p in arm.prismatic], t)
     if diag is None:
@@ -98,6 +100,34 @@ def check_limits(robot, q: np.ndarray, diag: dict | None, t=None) -> None:
     for a, key in enumerate(("theta1", "theta2")):
         _range_check(diag[key], h.ujoint_limits[:, a, 0], h.ujoint_limits[:, a, 1],
                      [f"{leg}_u{a + 1}" for leg in legs], ["rad"] * 6, t)
+
+
+def _all_inside(robot, q, diag) -> bool:
+    """True when every arm joint, leg length and U-joint angle is inside its limits and
+    every sphere centre is above its U-joint (a handful of NumPy calls for all checks)."""
+    h = robot.hybrid
+    n = h.arm.n
+    if diag is None:
+        x, lo, hi = q[:, 6:6 + n], h.arm.lower, h.arm.upper
+    else:
+        table = robot.__dict__.get("_limit_table")
+        if table is None:
+            table = robot.__dict__["_limit_table"] = (
+                # the sphere centres' heights must be > 0: smallest positive float
+                np.concatenate([h.arm.lower, h.stroke[:, 0], h.ujoint_limits[:, 0, 0],
+                                h.ujoint_limits[:, 1, 0], np.full(6, np.nextafter(0.0, 1.0))]),
+                np.concatenate([h.arm.upper, h.stroke[:, 1], h.ujoint_limits[:, 0, 1],
+                                h.ujoint_limits[:, 1, 1], np.full(6, np.inf)]))
+        lo, hi = table
+        step = 1 << 16                  # bounded temporaries for very long trajectories
+        for a in range(0, len(q), step):
+            b = a + step
+            x = np.concatenate([q[a:b, 6:6 + n], diag["length"][a:b], diag["theta1"][a:b],
+                                diag["theta2"][a:b], diag["height"][a:b]], axis=1)
+            if not ((x >= lo) & (x <= hi)).all():
+                return False
+        return True
+    return bool(((x >= lo) & (x <= hi)).all())
 
 
 def _range_check(x, lo, hi, joints, units, t, what=None):

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..checks import Thresholds, apply_policy, check_below_base, check_limits, condition_1
+from ..checks import Thresholds, apply_policy, check_limits, condition_1
 from ..errors import InputError
 from ..model.hybrid import ACTUATORS
 from ..validation import as_gravity, as_samples, same_length
@@ -190,9 +190,7 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
             policy_done = True                                    # would fail if singular
         X = solve_actuators(B, legs.J)
     if limits:
-        check_limits(robot, q, diag, t)
-        if want_legs:
-            check_below_base(diag, t)
+        check_limits(robot, q, diag, t)       # includes the platform-below-base check
     with np.errstate(divide="ignore"):      # exactly singular: κ = inf, reported below
         gimbal = None if diag is None else 1.0 / diag["cos_theta2"].min(axis=1)
         attitude = 1.0 / np.abs(np.cos(q[:, 4]))
