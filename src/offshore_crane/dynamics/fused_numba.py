@@ -101,6 +101,66 @@ def _platform_state(q, qd, qdd, k, R, W, w, al):
     al[2] = W[0, 2] * qdd[k, 3] + qdd[k, 5] + cz
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _leg_geometry(q, k, l, R, leg_s, leg_P, leg_X, leg_Y, leg_Z, rS, d, u):
+    """Leg l of sample k: fills ``rS = R s_l`` (O2 → S), ``d = S − P`` and ``u = d/l``;
+    returns ``(l, 1/l, X·d, Y·d, Z·d, h = |(X·d, Z·d)|)`` (U-joint frame axes X, Y, Z)."""
+    _matvec(R, leg_s[l], rS)
+    for i in range(3):
+        d[i] = q[k, i] + rS[i] - leg_P[l, i]
+    length = np.sqrt(_dot(d, d))
+    il = 1.0 / length
+    for i in range(3):
+        u[i] = d[i] * il
+    dlx, dly, dlz = _dot(leg_X[l], d), _dot(leg_Y[l], d), _dot(leg_Z[l], d)
+    return length, il, dlx, dly, dlz, np.sqrt(dlx * dlx + dlz * dlz)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _leg_motion(l, w, al, v, a, rS, u, length, il, dlx, dlz, h, leg_X, leg_Y, leg_Z, full,
+                n_, a2, vS, aS, wl, wxu, e, alp, t1, t2, t3):
+    """Leg l's motion (see :mod:`offshore_crane.kinematics.legs`): fills the sphere
+    centre's velocity ``vS`` and acceleration ``aS``, the leg's angular velocity ``wl`` and
+    acceleration ``alp``, ``wxu = wl × u``, ``e = α × u + ω × (ω × u)`` and, when ``full``
+    (U-joint spin included), the U-joint normal ``n_ = a1 × a2`` and axis ``a2``. Without
+    ``full`` the leg has no spin (thin rods: ω, α ⟂ u). Returns ``(l̇, l̈, θ̇1, θ̇2)``
+    (θ̇ zero without ``full``)."""
+    _cross(w, rS, t1)
+    _cross(al, rS, t2)
+    _cross(w, t1, t3)
+    for i in range(3):
+        vS[i] = v[i] + t1[i]
+        aS[i] = a[i] + t2[i] + t3[i]
+    rate = _dot(u, vS)
+    _cross(u, vS, wl)
+    for i in range(3):
+        wl[i] *= il
+    th1d = th2d = 0.0
+    if full:
+        ih = 1.0 / h
+        for i in range(3):
+            n_[i] = -(leg_X[l, i] * dlx + leg_Z[l, i] * dlz) * ih
+            a2[i] = (leg_X[l, i] * dlz - leg_Z[l, i] * dlx) * ih
+        sp = _dot(wl, n_) * length * ih
+        for i in range(3):
+            wl[i] += sp * u[i]
+        th1d = _dot(wl, leg_Y[l])
+        th2d = _dot(wl, a2)
+    _cross(wl, u, wxu)
+    accel = _dot(aS, u) + length * _dot(wxu, wxu)
+    for i in range(3):
+        e[i] = (aS[i] - accel * u[i] - 2.0 * rate * wxu[i]) * il
+    _cross(wl, wxu, t1)
+    for i in range(3):
+        t2[i] = e[i] - t1[i]
+    _cross(u, t2, alp)
+    if full:
+        mu = (_dot(alp, n_) - th1d * th2d) * length / h
+        for i in range(3):
+            alp[i] += mu * u[i]
+    return rate, accel, th1d, th2d
+
+
 @njit(cache=True, error_model="numpy")
 def _solve6(A, rhs, x, Ainv, want_inverse):
     """Gauss–Jordan with partial pivoting on [A | I | rhs]; returns the 1-norm κ of A.
@@ -346,19 +406,12 @@ def kernel(q, qd, qdd, g, plat_m, plat_c, plat_I,
             M[i] += t1[i] + t3[i]
         # ---------------- legs
         for l in range(6):
-            _matvec(R, leg_s[l], rS)
-            for i in range(3):
-                d[i] = q[k, i] + rS[i] - leg_P[l, i]
-            length = np.sqrt(_dot(d, d))
-            il = 1.0 / length
-            for i in range(3):
-                u[i] = d[i] * il
+            length, il, dlx, dly, dlz, h = _leg_geometry(q, k, l, R, leg_s, leg_P, leg_X,
+                                                         leg_Y, leg_Z, rS, d, u)
             _cross(rS, u, t1)
             for i in range(3):
                 A[i, l] = u[i]
                 A[3 + i, l] = t1[i] / L
-            dlx, dly, dlz = _dot(leg_X[l], d), _dot(leg_Y[l], d), _dot(leg_Z[l], d)
-            h = np.sqrt(dlx * dlx + dlz * dlz)
             if want_diag:
                 diag[0, k, l] = length
                 diag[1, k, l] = np.arctan2(dlx, dlz)
@@ -367,43 +420,13 @@ def kernel(q, qd, qdd, g, plat_m, plat_c, plat_I,
                 diag[4, k, l] = d[2]
             if leg_model == MASSLESS:
                 continue
-            ih = 1.0 / h
-            l_h = length * ih
-            for i in range(3):
-                n_[i] = -(leg_X[l, i] * dlx + leg_Z[l, i] * dlz) * ih
-            _cross(w, rS, t1)
-            _cross(al, rS, t2)
-            _cross(w, t1, t3)
-            for i in range(3):
-                vS[i] = v[i] + t1[i]
-                aS[i] = a[i] + t2[i] + t3[i]
-            rate = _dot(u, vS)
-            _cross(u, vS, wl)
-            for i in range(3):
-                wl[i] *= il
-            th12 = 0.0
-            if leg_model == FULL:
-                sp = _dot(wl, n_) * l_h
-                for i in range(3):
-                    wl[i] += sp * u[i]
-                for i in range(3):
-                    a2[i] = (leg_X[l, i] * dlz - leg_Z[l, i] * dlx) * ih
-                th12 = _dot(wl, leg_Y[l]) * _dot(wl, a2)
-            _cross(wl, u, wxu)
-            accel = _dot(aS, u) + length * _dot(wxu, wxu)
-            for i in range(3):
-                e[i] = (aS[i] - accel * u[i] - 2.0 * rate * wxu[i]) * il
-            _cross(wl, wxu, t1)
-            for i in range(3):
-                t2[i] = e[i] - t1[i]
-            _cross(u, t2, alp)
+            l_h = length / h
+            _leg_motion(l, w, al, v, a, rS, u, length, il, dlx, dlz, h, leg_X, leg_Y, leg_Z,
+                        leg_model == FULL, n_, a2, vS, aS, wl, wxu, e, alp, t1, t2, t3)
             for i in range(3):
                 Flo[i] = m_lo[l] * (e[i] * c_lo[l] + neg_g[i])
                 Fup[i] = m_up[l] * (aS[i] + e[i] * c_up[l] + neg_g[i])
             if leg_model == FULL:
-                mu = (_dot(alp, n_) - th12) * l_h
-                for i in range(3):
-                    alp[i] += mu * u[i]
                 dI = Ia[l] - It[l]
                 ua = _dot(u, alp) * dI
                 uw = _dot(u, wl) * dI

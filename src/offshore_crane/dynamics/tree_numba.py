@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .fused_numba import _cross, _dot, _matvec, _platform_state, _solve6
+from .fused_numba import _cross, _dot, _leg_geometry, _leg_motion, _platform_state, _solve6
 
 
 @njit(cache=True, error_model="numpy")
@@ -57,46 +57,12 @@ def tree_kernel(q, qd, qdd, leg_s, leg_P, leg_X, leg_Y, leg_Z, idx_plat, idx_arm
             A[idx_arm[j], k] = qdd[k, 6 + j]
         _platform_state(q, qd, qdd, k, R, W, w, al)
         for l in range(6):
-            _matvec(R, leg_s[l], rS)
-            for i in range(3):
-                d[i] = q[k, i] + rS[i] - leg_P[l, i]
-            length = np.sqrt(_dot(d, d))
-            il = 1.0 / length
-            for i in range(3):
-                u[i] = d[i] * il
-            dlx, dly, dlz = _dot(leg_X[l], d), _dot(leg_Y[l], d), _dot(leg_Z[l], d)
-            h = np.sqrt(dlx * dlx + dlz * dlz)
-            ih = 1.0 / h
-            l_h = length * ih
-            for i in range(3):
-                n_[i] = -(leg_X[l, i] * dlx + leg_Z[l, i] * dlz) * ih
-                a2[i] = (leg_X[l, i] * dlz - leg_Z[l, i] * dlx) * ih
-            _cross(w, rS, t1)
-            _cross(al, rS, t2)
-            _cross(w, t1, t3)
-            for i in range(3):
-                vS[i] = qd[k, i] + t1[i]
-                aS[i] = qdd[k, i] + t2[i] + t3[i]
-            rate = _dot(u, vS)
-            _cross(u, vS, wl)
-            for i in range(3):
-                wl[i] *= il
-            sp = _dot(wl, n_) * l_h
-            for i in range(3):
-                wl[i] += sp * u[i]
-            th1d = _dot(wl, leg_Y[l])
-            th2d = _dot(wl, a2)
-            _cross(wl, u, wxu)
-            accel = _dot(aS, u) + length * _dot(wxu, wxu)
-            for i in range(3):
-                e[i] = (aS[i] - accel * u[i] - 2.0 * rate * wxu[i]) * il
-            _cross(wl, wxu, t1)
-            for i in range(3):
-                t2[i] = e[i] - t1[i]
-            _cross(u, t2, alp)
-            mu = (_dot(alp, n_) - th1d * th2d) * l_h
-            for i in range(3):
-                alp[i] += mu * u[i]
+            length, il, dlx, dly, dlz, h = _leg_geometry(q, k, l, R, leg_s, leg_P, leg_X,
+                                                         leg_Y, leg_Z, rS, d, u)
+            l_h = length / h
+            rate, accel, th1d, th2d = _leg_motion(
+                l, w, al, qd[k, :3], qdd[k, :3], rS, u, length, il, dlx, dlz, h,
+                leg_X, leg_Y, leg_Z, True, n_, a2, vS, aS, wl, wxu, e, alp, t1, t2, t3)
             j1, j2, j3 = idx_legs[l, 0], idx_legs[l, 1], idx_legs[l, 2]
             Q[j1, k] = np.arctan2(dlx, dlz)
             Q[j2, k] = np.arctan2(-dly, h)
