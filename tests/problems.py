@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from offshore_crane.kinematics.legs import leg_kinematics
-from offshore_crane.kinematics.platform import platform_motion
+from offshore_crane.kinematics import legs
 
 #: Sampling box of the random states [m, rad]: Table 1's range with margins.
 Q_LOW = np.array([-0.06, -0.06, 0.44, -0.45, -0.45, -0.45, -np.pi, -1.9, -0.19])
@@ -23,8 +22,7 @@ def random_states(robot, n: int, seed: int, speed: float = 1.0, accel: float = 5
     kept = []
     while sum(len(k) for k in kept) < n:
         q = rng.uniform(Q_LOW, Q_HIGH, size=(2 * n, 9))
-        z = np.zeros_like(q)
-        length = leg_kinematics(robot.hybrid, platform_motion(q, z, z)).length
+        length = legs(robot, q).length
         ok = np.all((length > stroke[:, 0]) & (length < stroke[:, 1]), axis=1)
         kept.append(q[ok])
     q = np.concatenate(kept)[:n]

@@ -24,7 +24,7 @@ import pytest
 import offshore_crane as oc
 from offshore_crane import trajectories
 from offshore_crane.__main__ import main
-from offshore_crane.checks import Thresholds
+from offshore_crane.kinematics.workspace import Thresholds
 from offshore_crane.dynamics import solve
 
 PREFIX = "offshore-crane: error: "

@@ -1,19 +1,29 @@
-"""Leg kinematics checked independently: loop closure in Pinocchio, finite differences."""
+"""Kinematics checked independently: loop closure in Pinocchio, finite differences.
+
+Two implementations meet here: the formulas of the Kane kernels
+(:func:`offshore_crane.kinematics.legs`) and the RNEA reference's loop closure
+(:mod:`offshore_crane.reference.rnea`, Newton on each leg's chain); Pinocchio's own
+forward kinematics checks the reference, finite differences check the formulas.
+"""
 
 import numpy as np
 import pinocchio as pin
 
-from offshore_crane.dynamics.rnea import tree_state
-from offshore_crane.kinematics.legs import leg_kinematics
-from offshore_crane.kinematics.platform import platform_motion
+from offshore_crane.conventions import LEG_JOINTS
+from offshore_crane.kinematics import legs as leg_kinematics
+from offshore_crane.reference.rnea import tree_states
 from problems import random_states
 
 
+def _leg_columns(model, names):
+    return [model.idx_vs[model.getJointId(n)] for n in names]
+
+
 def test_loops_close_in_pinocchio(robot):
-    """Tree states from our kinematics put leg{i}_tip on platform_anchor{i}: position,
+    """Tree states of the RNEA reference put leg{i}_tip on platform_anchor{i}: position,
     velocity and classical acceleration (Pinocchio's own forward kinematics)."""
     q, qd, qdd = random_states(robot, 60, seed=5)
-    qt, vt, at, _, _ = tree_state(robot, q, qd, qdd)
+    qt, vt, at = tree_states(robot, q, qd, qdd)
     model = robot.pinocchio_model
     data = model.createData()
     tips = [model.getFrameId(f"leg{i}_tip") for i in range(1, 7)]
@@ -41,7 +51,7 @@ def test_leg_rates_are_derivatives(robot):
     h = 1e-4
     t = np.linspace(0.0, 30.0, 61)
     states = [table1(t + s * h) for s in (-1, 0, 1)]
-    legs = [leg_kinematics(robot.hybrid, platform_motion(*st)) for st in states]
+    legs = [leg_kinematics(robot, *st) for st in states]
     lm, l0, lp = legs
     d1 = (lp.length - lm.length) / (2 * h)
     d2 = (lp.length - 2 * l0.length + lm.length) / h**2
@@ -63,13 +73,28 @@ def test_partial_velocities_by_finite_differences(robot):
     """v_S,r = ∂S/∂q_r and the leg Jacobian J = ∂l/∂q (u_r = q̇_r, paper Eq. 19)."""
     q, _, _ = random_states(robot, 5, seed=9)
     z = np.zeros_like(q)
-    base = leg_kinematics(robot.hybrid, platform_motion(q, z, z))
+    base = leg_kinematics(robot, q, z, z)
     h = 1e-6
     for r in range(6):
         dq = np.zeros(9)
         dq[r] = h
-        lp = leg_kinematics(robot.hybrid, platform_motion(q + dq, z, z))
-        lm = leg_kinematics(robot.hybrid, platform_motion(q - dq, z, z))
+        lp = leg_kinematics(robot, q + dq, z, z)
+        lm = leg_kinematics(robot, q - dq, z, z)
         # central difference error O(h²) plus round-off ε/h ~ 1e-10
         assert np.abs((lp.p_S - lm.p_S) / (2 * h) - base.V_S[:, :, r]).max() < 1e-8
         assert np.abs((lp.length - lm.length) / (2 * h) - base.J[:, :, r]).max() < 1e-8
+
+
+def test_formulas_agree_with_the_reference_closure(robot):
+    """The Kane formulas' closed-form legs (U-joint spin, derived accelerations) against
+    the reference's Newton closure on the URDF's chains: angles, length, rates and
+    accelerations of every leg joint (values ~1, round-off of both ~1e-15)."""
+    q, qd, qdd = random_states(robot, 200, seed=6)
+    qt, vt, at = tree_states(robot, q, qd, qdd)
+    legs = leg_kinematics(robot, q, qd, qdd)
+    model = robot.pinocchio_model
+    cols = np.array([_leg_columns(model, names) for names in LEG_JOINTS])     # (6, 3)
+    for tree, ours in ((qt, np.concatenate([legs.theta, legs.length[..., None]], -1)),
+                       (vt, np.concatenate([legs.theta_d, legs.rate[..., None]], -1)),
+                       (at, np.concatenate([legs.theta_dd, legs.accel[..., None]], -1))):
+        assert np.abs(tree[:, cols] - ours).max() < 1e-12

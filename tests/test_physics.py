@@ -1,13 +1,15 @@
-"""Hand checks and conservation laws, computed without our solver's kinematics."""
+"""Hand checks and conservation laws, computed without our solver's kinematics
+(tree states from the RNEA reference's own loop closure, energies from Pinocchio)."""
 
 import numpy as np
 import pinocchio as pin
 import pytest
 
 import offshore_crane as oc
-from offshore_crane.dynamics.rnea import tree_state
-from offshore_crane.kinematics.legs import leg_kinematics
-from offshore_crane.kinematics.platform import platform_motion
+from offshore_crane.conventions import LEG_JOINTS
+from offshore_crane.kinematics import legs as leg_kinematics
+from offshore_crane.kinematics import formulas
+from offshore_crane.reference.rnea import tree_states
 from offshore_crane.spatial import attitude_matrix
 from offshore_crane.trajectories import table1
 
@@ -22,7 +24,7 @@ def test_static_massless_legs_support_the_weight():
     q = np.array([0.01, -0.02, 0.52, 0.1, -0.15, 0.2, 0.7, -0.4, 0.05])
     z = np.zeros(9)
     X = oc.inverse_dynamics(robot, q, z, z)
-    legs = leg_kinematics(h, platform_motion(q[None], z[None], z[None]))
+    legs = leg_kinematics(robot, q)
     u, S = legs.u[0], legs.p_S[0]
     support = (X[3:, None] * u).sum(axis=0)
     weight = (h.platform_mass + h.arm.mass.sum()) * G
@@ -30,7 +32,7 @@ def test_static_massless_legs_support_the_weight():
     # moments about O2: legs' forces vs weights of platform and arm bodies (from Pinocchio)
     model = robot.pinocchio_model
     data = model.createData()
-    qt, _, _, _, _ = tree_state(robot, q[None], z[None], z[None])
+    qt, _, _ = tree_states(robot, q, z, z)
     pin.forwardKinematics(model, data, qt[0])
     weight_moment = np.zeros(3)
     for name in ("platform_roll", "arm_joint1", "arm_joint2", "arm_slide"):
@@ -65,15 +67,15 @@ def test_energy_balance_table1(robot):
     h = 1e-4
     q, qd, qdd = table1(t)
     X = oc.inverse_dynamics(robot, q, qd, qdd)
-    _, vt, _, legs, _ = tree_state(robot, q, qd, qdd)
-    power = (X[:, :3] * qd[:, 6:9]).sum(axis=1) + (X[:, 3:] * legs.rate).sum(axis=1)
-
+    _, vt, _ = tree_states(robot, q, qd, qdd)
     model = robot.pinocchio_model
+    slides = [model.idx_vs[model.getJointId(names[2])] for names in LEG_JOINTS]
+    power = (X[:, :3] * qd[:, 6:9]).sum(axis=1) + (X[:, 3:] * vt[:, slides]).sum(axis=1)
+
     data = model.createData()
 
     def energy(tt):
-        qq, vv, aa = table1(tt)
-        qt, vt_, _, _, _ = tree_state(robot, qq, vv, aa)
+        qt, vt_, _ = tree_states(robot, *table1(tt))
         return np.array([pin.computeKineticEnergy(model, data, qt[k], vt_[k])
                          + pin.computePotentialEnergy(model, data, qt[k])
                          for k in range(len(tt))])
@@ -84,8 +86,6 @@ def test_energy_balance_table1(robot):
 
 def test_rotating_frame_partials_match_attitude():
     """w4, w5, w6 (CONVENTIONS.md) give skew(Ω) = Ṙ Rᵀ for R = Rz(q6)Ry(q5)Rx(q4)."""
-    from offshore_crane.kinematics.platform import platform_motion
-
     rng = np.random.default_rng(1)
     q = rng.uniform(-1, 1, (20, 9))
     qd = rng.uniform(-1, 1, (20, 9))
@@ -95,5 +95,6 @@ def test_rotating_frame_partials_match_attitude():
     R = attitude_matrix(*q[:, 3:6].T)
     W = (Rp - Rm) / (2 * h) @ np.swapaxes(R, -1, -2)
     omega = np.stack([W[:, 2, 1], W[:, 0, 2], W[:, 1, 0]], axis=-1)
-    plat = platform_motion(q, qd, np.zeros_like(q))
-    assert np.abs(plat.omega - omega).max() < 1e-9
+    _, w4, w5, _ = formulas.attitude(q.T)
+    ours = np.array(formulas.platform_rates(w4, w5, qd.T, np.zeros_like(q).T)[0]).T
+    assert np.abs(ours - omega).max() < 1e-9

@@ -20,8 +20,11 @@ import offshore_crane as oc
 from conftest import relative_error
 from offshore_crane import scenes
 from offshore_crane.__main__ import main
-from offshore_crane.dynamics import fused, solve
-from offshore_crane.dynamics.fused import Options, fused_inverse_dynamics
+from offshore_crane import dynamics
+from offshore_crane.dynamics import REGISTRY, solve
+from offshore_crane.dynamics.kernels import Options
+from offshore_crane.kinematics import legs as leg_kinematics
+from offshore_crane.kinematics.formulas import FULL, MASSLESS
 from offshore_crane.errors import SceneError
 from problems import random_states
 
@@ -39,8 +42,8 @@ def example(name: str) -> scenes.Scene:
 
 @pytest.fixture
 def numpy_kernel(monkeypatch):
-    """Make solve() use the NumPy fused kernel (whose Python functions can be traced)."""
-    monkeypatch.setattr(fused, "_NUMBA", [False])
+    """Make solve() use the NumPy backend (whose Python functions can be traced)."""
+    monkeypatch.setattr(dynamics, "numba_available", lambda: False)
 
 
 # --------------------------------------------------------------------------- examples
@@ -88,11 +91,10 @@ def test_robot_without_arm():
     for method in ("kane", "rnea"):
         with pytest.raises(oc.InputError, match="outputs T1 do not exist: the robot has no arm"):
             solve(robot, q, qd, qdd, method=method, outputs=["T1", "Fl1"])
-    # the fused kernel copes with 0 arm joints on every path: vectorised, per-sample
-    # (N ≤ SCALAR_MAX) and compiled; same formulas, so round-off only
-    for n in (20, 3):
-        Xv, _, _ = fused_inverse_dynamics(robot.fused, q[:n], qd[:n], qdd[:n], G,
-                                          backend="numpy")
+    # the kernels cope with 0 arm joints on every backend: arrays, Python floats
+    # (N ≤ PYTHON_MAX) and compiled; same formulas, so round-off only
+    for n, backend in ((20, "numpy"), (3, "numpy"), (20, "numba")):
+        Xv = REGISTRY[("kane", backend)](robot, q[:n], qd[:n], qdd[:n], G, Options(), 1)[0]
         assert np.isnan(Xv[:, :3]).all()
         assert relative_error(Xv[:, 3:], res.X[:n, 3:]) < EXACT
 
@@ -127,10 +129,7 @@ def test_payload_static_equilibrium():
     q[:, 2] = 0.5
     q[:, 6:] = rng.uniform([-3.0, -1.5, -0.15], [3.0, 1.5, 0.15], size=(5, 3))
     zero = np.zeros_like(q)
-    from offshore_crane.kinematics.legs import leg_kinematics
-    from offshore_crane.kinematics.platform import platform_motion
-
-    u = leg_kinematics(robot.hybrid, platform_motion(q, zero, zero)).u      # (5, 6, 3)
+    u = leg_kinematics(robot, q).u                                    # (5, 6, 3)
     weight = robot.hybrid.total_mass * 9.81
     for method in ("kane", "kane-explicit", "rnea"):
         X = oc.inverse_dynamics(robot, q, zero, zero, method=method)
@@ -159,13 +158,9 @@ def test_kane_agrees_with_rnea(name):
 # --------------------------------------------------------------------------- pruning is exact
 @pytest.mark.parametrize("backend", ["numba", "numpy"])
 def test_arm_only_outputs_are_exact(robot, table1, backend, monkeypatch):
-    if backend == "numpy":
-        monkeypatch.setattr(fused, "_NUMBA", [False])
-    else:
-        pytest.importorskip("numba")
     _, q, qd, qdd = table1
-    full = solve(robot, q, qd, qdd)
-    arm = solve(robot, q, qd, qdd, outputs=ARM)
+    full = solve(robot, q, qd, qdd, backend=backend)
+    arm = solve(robot, q, qd, qdd, outputs=ARM, backend=backend)
     assert relative_error(arm.X[:, :3], full.X[:, :3]) < EXACT
     assert any("leg kinematics" in p for p in arm.pruned)
 
@@ -180,10 +175,9 @@ def test_fixed_deck_equals_the_full_robot_held_still():
     assert any("leg kinematics" in p for p in res.pruned)
     np.testing.assert_array_equal(traj.q[:, :6], np.tile(scenes.deck_pose(scene, done.robot),
                                                          (len(traj), 1)))
-    for backend in ("numpy", "numba") if fused.numba_available() else ("numpy",):
-        ref, _, _ = fused_inverse_dynamics(done.robot.fused, traj.q, traj.qd, traj.qdd, G,
-                                           Options(legs=True, platform_static=False),
-                                           backend=backend)
+    for backend in ("numpy", "numba"):
+        ref = REGISTRY[("kane", backend)](done.robot, traj.q, traj.qd, traj.qdd, G,
+                                          Options(legs=True, static=False), 1)[0]
         assert relative_error(res.X[:, :3], ref[:, :3]) < EXACT
     Xr = oc.inverse_dynamics(done.robot, traj.q, traj.qd, traj.qdd, method="rnea")
     assert relative_error(res.X[:, :3], Xr[:, :3]) <= AGREE
@@ -195,23 +189,24 @@ def test_massless_leg_robot_skips_leg_inertia_exactly(table1):
     res = solve(light, q, qd, qdd)
     assert any("the legs have no mass" in p for p in res.pruned)
     assert res.approximations == ()                       # exact for this robot
-    for backend in ("numpy", "numba") if fused.numba_available() else ("numpy",):
-        ref, _, _ = fused_inverse_dynamics(light.fused, q, qd, qdd, G,
-                                           Options(leg_model="full"), backend=backend)
+    for backend in ("numpy", "numba"):
+        ref = REGISTRY[("kane", backend)](light, q, qd, qdd, G, Options(leg_model=FULL), 1)[0]
         assert relative_error(res.X, ref) < EXACT
     assert not any("no mass" in p for p in solve(oc.load_robot(), q, qd, qdd).pruned)
 
 
 # --------------------------------------------------------------------------- skips happen
 def test_legs_not_evaluated_for_arm_outputs(robot, numpy_kernel, monkeypatch):
+    from offshore_crane.dynamics import formulas
+
     calls = []
-    legs = fused._legs
+    legs = formulas.leg_force
 
     def counting(*args, **kwargs):
         calls.append(1)
         return legs(*args, **kwargs)
 
-    monkeypatch.setattr(fused, "_legs", counting)
+    monkeypatch.setattr(formulas, "leg_force", counting)
     q, qd, qdd = random_states(robot, 100, seed=3)
     solve(robot, q, qd, qdd, outputs=ARM)
     assert calls == []
@@ -221,19 +216,18 @@ def test_legs_not_evaluated_for_arm_outputs(robot, numpy_kernel, monkeypatch):
 
 def test_options_passed_to_the_kernel(robot, monkeypatch):
     seen = []
-    kernel = fused.fused_inverse_dynamics
+    for key in (("kane", "numpy"), ("kane", "numba")):
+        def spy(robot, q, qd, qdd, g, opts, threads, entry=REGISTRY[key]):
+            seen.append(opts)
+            return entry(robot, q, qd, qdd, g, opts, threads)
 
-    def spy(fd, q, qd, qdd, g, opts=Options(), **kw):
-        seen.append(opts)
-        return kernel(fd, q, qd, qdd, g, opts, **kw)
-
-    monkeypatch.setattr(fused, "fused_inverse_dynamics", spy)
+        monkeypatch.setitem(REGISTRY, key, spy)
     deck = scenes.run(example("arm_fixed_deck"))
-    assert not seen[-1].legs and seen[-1].platform_static and deck.result.condition is None
+    assert not seen[-1].legs and seen[-1].static and deck.result.condition is None
     light = scenes.Scene(robot={"leg_lower_mass": 0.0, "leg_upper_mass": 0.0},
                          trajectory="table1", duration=1.0)
     scenes.run(light)
-    assert seen[-1].leg_model == "massless" and seen[-1].legs
+    assert seen[-1].leg_model == MASSLESS and seen[-1].legs
 
 
 @pytest.mark.parametrize("name", ["platform_only", "arm_fixed_deck"])

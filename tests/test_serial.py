@@ -19,7 +19,6 @@ import pytest
 import offshore_crane as oc
 from offshore_crane import serial
 from offshore_crane.errors import InputError, ModelError
-from offshore_crane.kinematics.chain import BaseMotion, chain_kinematics
 from offshore_crane.spatial import attitude_matrix, rpy_matrix
 
 pin = pytest.importorskip("pinocchio")
@@ -272,18 +271,6 @@ def test_batch_equals_per_sample_loop(source, tip):
     # Same operations in the same order except BLAS kernels chosen by array size: the
     # results agree to rounding (a few ulps of |τ| ~ 10-100).
     np.testing.assert_allclose(batch, loop, rtol=0, atol=1e-12 * max(1, np.abs(loop).max()))
-
-
-def test_trimmed_partials_equal_the_full_ones():
-    chain = serial.load_chain(MIXED)
-    q, qd, qdd = serial.random_states(chain, 7, seed=4)
-    full = chain_kinematics(chain, q, qd, qdd, BaseMotion.fixed(7))
-    trim = chain_kinematics(chain, q, qd, qdd, BaseMotion.fixed(7), trim=True)
-    for k, (a, b) in enumerate(zip(full, trim)):
-        assert a.V.shape == (7, 4, 3) and b.V.shape == (7, k + 1, 3)
-        assert np.array_equal(a.V[:, :k + 1], b.V) and not a.V[:, k + 1:].any()
-        assert np.array_equal(a.W[:, :k + 1], b.W) and not a.W[:, k + 1:].any()
-        assert np.array_equal(a.a_com, b.a_com)
 
 
 # --------------------------------------------------------------------------- wrench

@@ -13,19 +13,24 @@ Heavy dependencies (pinocchio, matplotlib, xacro, yourdfpy) are imported only wh
 from __future__ import annotations
 
 from .dynamics import inverse_dynamics
-from .errors import (BackendMissingError, InputError, ModelError, OffshoreCraneError,
-                     SceneError, SingularConfigurationError, TrajectoryError, WorkspaceError)
-from .model import ACTUATORS, ACTUATOR_UNITS, Robot, load_robot
+from .errors import (BackendMissingError, InputError, ModelError, NumericalError,
+                     OffshoreCraneError, SceneError, SingularConfigurationError,
+                     TrajectoryError, WorkspaceError)
+from .conventions import ACTUATORS, ACTUATOR_UNITS, GRAVITY
+from .kinematics.workspace import OffshoreCraneWarning, Thresholds
+from .model import Robot, load_robot
 
 __version__ = "0.1.0"
 
 __all__ = ["load_robot", "inverse_dynamics", "trajectories", "Robot", "ACTUATORS",
-           "ACTUATOR_UNITS", "OffshoreCraneError", "InputError", "TrajectoryError", "SceneError",
-           "ModelError", "WorkspaceError", "SingularConfigurationError", "BackendMissingError"]
+           "ACTUATOR_UNITS", "GRAVITY", "Thresholds", "OffshoreCraneWarning",
+           "OffshoreCraneError", "InputError", "TrajectoryError", "SceneError", "ModelError",
+           "WorkspaceError", "SingularConfigurationError", "NumericalError",
+           "BackendMissingError"]
 
 
 def __getattr__(name):
-    if name in ("trajectories", "serial", "scenes"):
+    if name in ("trajectories", "serial", "scenes", "kinematics", "dynamics"):
         import importlib
 
         return importlib.import_module(f".{name}", __name__)

@@ -10,9 +10,9 @@ import argparse
 import sys
 
 from .errors import InputError, OffshoreCraneError
-from .model.hybrid import ACTUATOR_UNITS, ACTUATORS
+from .conventions import ACTUATOR_UNITS, ACTUATORS, AGREEMENT_RTOL
 
-RELATIVE_LIMIT = 1e-9
+RELATIVE_LIMIT = AGREEMENT_RTOL
 
 
 def _parse_set(items) -> dict:
@@ -72,7 +72,7 @@ def _id_parser(sub) -> None:
 
 
 def _thresholds(args):
-    from .checks import Thresholds
+    from .kinematics.workspace import Thresholds
 
     try:
         return Thresholds(warn=args.warn_cond, error=args.error_cond)
@@ -156,7 +156,7 @@ def _run_id(args) -> int:
 #: Modules adding sub-commands: each has ``add_parser(subparsers)``, which registers its
 #: parser with ``set_defaults(run=...)``; ``run(args) -> int`` is its exit status. They
 #: must import nothing heavy at module level (the CLI imports them all to build --help).
-SUBCOMMANDS = ("offshore_crane.serial.cli", "offshore_crane.bench")
+SUBCOMMANDS = ("offshore_crane.serial.cli",)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -189,7 +189,7 @@ def main(argv=None) -> int:
     """Run the command line with ``argv`` (default ``sys.argv[1:]``); return exit status."""
     import warnings
 
-    from .checks import OffshoreCraneWarning
+    from .kinematics.workspace import OffshoreCraneWarning
 
     def one_line(message, category, filename, lineno, file=None, line=None):
         print(f"offshore-crane: warning: {message}", file=sys.stderr)

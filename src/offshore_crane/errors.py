@@ -96,6 +96,20 @@ class SingularConfigurationError(OffshoreCraneError, ArithmeticError):
         self.kind = kind
 
 
+class NumericalError(OffshoreCraneError, ArithmeticError):
+    """A result is not finite (NaN or inf): the computation overflowed or was undefined.
+
+    Attributes:
+        index: Index of the first offending time sample, or None.
+        name: The quantity concerned (an actuator such as ``"Fl3"``), or None.
+    """
+
+    def __init__(self, message: str, index: int | None = None, name: str | None = None):
+        super().__init__(message)
+        self.index = index
+        self.name = name
+
+
 class BackendMissingError(OffshoreCraneError, ImportError):
     """An optional dependency (pinocchio, matplotlib, xacro, yourdfpy) is not installed.
 

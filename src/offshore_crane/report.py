@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError, require
-from .model.hybrid import ACTUATOR_UNITS, ACTUATORS
+from .conventions import ACTUATOR_UNITS, ACTUATORS
 
 CSV_HEADER = "t_s," + ",".join(f"{a}_{u.replace('·', '')}"
                                for a, u in zip(ACTUATORS, ACTUATOR_UNITS))

@@ -67,12 +67,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .dynamics import GRAVITY, LEG_MODELS, METHODS
+from .conventions import ARM_ACTUATORS, ACTUATOR_UNITS, ACTUATORS, GRAVITY, INERTIA_RTOL, LEG_ACTUATORS
+from .dynamics import LEG_MODELS, METHODS
 from .errors import SceneError
-from .model.hybrid import ACTUATOR_UNITS, ACTUATORS
 
-ARM_ACTUATORS = ACTUATORS[:3]
-LEG_ACTUATORS = ACTUATORS[3:]
 SECTIONS = ("robot", "subsystems", "payload", "trajectory")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
@@ -83,9 +81,6 @@ TRAJECTORY_KEYS = ("source", "duration", "rate", "fd_order")
 SCENE_ARGUMENTS = {"with_arm": "[subsystems] arm",
                    **{f"payload_{k}": "[payload]" for k in ("mass", "x", "y", "z")},
                    **{f"payload_{k}": "[payload] inertia" for k in INERTIA_KEYS}}
-#: Margin of the triangle inequality, relative to the sum of the principal moments (a
-#: thin disc sits on the boundary; inertias are often printed with 6-7 digits).
-INERTIA_RTOL = 1e-6
 #: Run time of the fidelity report: median of this many runs per leg model.
 FIDELITY_REPEAT = 5
 

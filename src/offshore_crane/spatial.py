@@ -121,3 +121,16 @@ def attitude_matrix(roll: np.ndarray, pitch: np.ndarray, yaw: np.ndarray) -> np.
     R[..., 2, 1] = cp * sr
     R[..., 2, 2] = cp * cr
     return R
+
+
+def condition_1(A: np.ndarray) -> np.ndarray:
+    """1-norm condition numbers of a stack of square matrices ``(N, n, n) -> (N,)``
+    (inf for an exactly singular matrix)."""
+    try:
+        inv = np.linalg.inv(A)
+    except np.linalg.LinAlgError:
+        inv = np.linalg.pinv(A)
+        out = np.abs(A).sum(axis=-2).max(axis=-1) * np.abs(inv).sum(axis=-2).max(axis=-1)
+        out[np.linalg.matrix_rank(A) < A.shape[-1]] = np.inf
+        return out
+    return np.abs(A).sum(axis=-2).max(axis=-1) * np.abs(inv).sum(axis=-2).max(axis=-1)

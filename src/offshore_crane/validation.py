@@ -7,12 +7,14 @@ import numpy as np
 from .errors import InputError
 
 
-def as_samples(name: str, x, width: int = 9) -> tuple[np.ndarray, bool]:
+def as_samples(name: str, x, width: int = 9, finite: bool = True) -> tuple[np.ndarray, bool]:
     """Return ``x`` as a float ``(N, width)`` array and whether it was one sample.
 
     Args:
         name: Argument name used in messages (``"q"``, ``"qd"``...).
         x: ``(width,)`` or ``(N, width)`` array-like.
+        finite: Check here that every value is finite (False: the caller's kernel checks
+            it, sample by sample, and reports the same message).
 
     Raises:
         InputError: non-numeric data, wrong shape, NaN or inf (naming the sample index
@@ -30,6 +32,8 @@ def as_samples(name: str, x, width: int = 9) -> tuple[np.ndarray, bool]:
                          name=name)
     if arr.shape[0] == 0:
         raise InputError(f"{name} has no samples; give at least one row", name=name)
+    if not finite:
+        return np.ascontiguousarray(arr), single
     bad = ~np.isfinite(arr)
     if bad.any():
         i, j = np.argwhere(bad)[0]

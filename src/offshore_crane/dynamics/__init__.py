@@ -1,29 +1,40 @@
 """Inverse dynamics of the hybrid robot: Kane (fused, default), explicit Kane, RNEA.
 
-- ``"kane"``: Kane's method with factored partial velocities (:mod:`.fused`), NumPy,
-  chunked; the only method offering the leg-model approximations and output pruning.
-- ``"kane-explicit"``: Kane's method with every body's partial velocities formed as
-  ``(N, 9, 3)`` arrays, as the paper writes it (:mod:`.kane_hybrid`); a reference.
-- ``"rnea"``: Pinocchio's RNEA on the equivalent tree, projected on the independent
-  speeds (:mod:`.rnea`); the independent reference.
+- ``"kane"``: Kane's method with factored partial velocities (:func:`.formulas.kane_sample`);
+  the only method offering the leg-model approximations and output pruning.
+- ``"kane-explicit"``: Kane's method with every body's partial velocities formed, as the
+  paper writes them (:func:`.formulas.explicit_sample`); it checks the fused factoring.
+- ``"rnea"``: Pinocchio's RNEA on the equivalent tree with loop-closing tree states of its
+  own (:mod:`offshore_crane.reference.rnea`): shares only the URDF with the Kane paths.
+
+Each (method, backend) pair is an entry of :data:`REGISTRY` returning the same triple
+``(X, kappa, health)``; :func:`solve` validates, picks the entry and applies the checks.
 """
 
 from __future__ import annotations
 
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..checks import Thresholds, apply_policy, check_limits, condition_1
-from ..errors import InputError
-from ..model.hybrid import ACTUATORS
+from ..conventions import ACTUATORS, GRAVITY
+from ..errors import BackendMissingError, InputError
+from ..kinematics import workspace as ws
+from ..kinematics.formulas import LEG_MODEL_CODES
 from ..validation import as_gravity, as_samples, same_length
+from .constants import robot_arrays
+from .kernels import Options, allocate, run_numpy, run_python
 
 METHODS = ("kane", "kane-explicit", "rnea")
-LEG_MODELS = ("full", "thin-rod", "massless")
-GRAVITY = (0.0, 0.0, -9.81)
+LEG_MODELS = tuple(LEG_MODEL_CODES)
+BACKENDS = ("auto", "numpy", "numba")
 APPROXIMATIONS = {"thin-rod": "thin-rod legs (axial inertia and U-joint spin dropped)",
                   "massless": "massless legs (no inertia, no weight)"}
+#: Up to this many samples the NumPy backend evaluates the text on Python floats (no
+#: NumPy per-call cost, ~150 µs a sample) instead of arrays (~1.5 ms for any n ≤ 4096).
+PYTHON_MAX = 8
 
 
 @dataclass
@@ -32,17 +43,17 @@ class Result:
 
     Attributes:
         X: ``(N, 9)`` actuator forces ``[T1, T2 [N·m], Fs, Fl1..Fl6 [N]]``. The arm
-            columns are computed whenever the robot has an arm (NaN without one); the
-            leg columns are NaN when no leg force was asked for (``outputs``), since the
-            legs were then not evaluated.
+            columns are NaN without an arm; the leg columns are NaN when no leg force was
+            asked for (``outputs``), since the legs were then not evaluated.
         method: ``"kane"``, ``"kane-explicit"`` or ``"rnea"``.
         leg_model: ``"full"``, ``"thin-rod"`` or ``"massless"``.
         outputs: Names of the actuators asked for.
         condition: ``(N,)`` condition number of the leg-force system, or None.
         gimbal: ``(N,)`` worst ``1/cos θ2`` over the legs (U-joint gimbal), or None.
-        attitude: ``(N,)`` ``1/|cos q5|`` (attitude-coordinate singularity).
+        attitude: ``(N,)`` ``1/|cos q5|`` (attitude-coordinate singularity), or None.
         approximations: Labels of the approximations used (empty: exact).
         pruned: What was skipped because the result does not depend on it.
+        backend: ``"numpy"`` or ``"numba"``: what ran.
     """
 
     X: np.ndarray
@@ -51,26 +62,144 @@ class Result:
     outputs: tuple
     condition: np.ndarray | None
     gimbal: np.ndarray | None
-    attitude: np.ndarray
+    attitude: np.ndarray | None
     approximations: tuple = ()
     pruned: tuple = field(default_factory=tuple)
+    backend: str = "numpy"
 
     def worst(self) -> list[tuple[str, float, int]]:
         """``[(kind, worst condition number, sample index), ...]`` of what was measured."""
         out = []
         for kind, kappa in (("leg-Jacobian", self.condition), ("U-joint gimbal", self.gimbal),
                             ("attitude", self.attitude)):
-            if kappa is not None and kappa.size:
-                k = int(np.argmax(kappa))
+            if kappa is not None and kappa.size and not np.isnan(kappa).all():
+                k = int(np.nanargmax(kappa))
                 out.append((kind, float(kappa[k]), k))
         return out
 
 
-def _outputs(outputs, available: tuple = ACTUATORS) -> tuple:
+# --------------------------------------------------------------------------- entries
+def numba_available() -> bool:
+    """True when Numba is installed (looked up once, without importing it)."""
+    if not _NUMBA:
+        import importlib.util
+
+        _NUMBA.append(importlib.util.find_spec("numba") is not None)
+    return _NUMBA[0]
+
+
+_NUMBA: list = []
+
+
+def _compiled():
+    if not numba_available():
+        raise BackendMissingError("backend='numba' needs Numba: pip install numba",
+                                  package="numba")
+    from . import compiled
+
+    return compiled
+
+
+def _blocks(N: int, threads: int):
+    """``threads`` contiguous ranges covering 0..N-1."""
+    edges = np.linspace(0, N, min(threads, N) + 1).astype(int)
+    return list(zip(edges[:-1], edges[1:]))
+
+
+def _threaded(run, N: int, threads: int) -> np.ndarray:
+    """Run ``run(start, stop, health)`` on blocks in threads; the merged health record."""
+    blocks = _blocks(N, threads)
+    records = [ws.new_health() for _ in blocks]
+    if len(blocks) == 1:
+        run(0, N, records[0])
+        return records[0]
+    with ThreadPoolExecutor(len(blocks)) as pool:
+        list(pool.map(lambda b: run(*b[0], b[1]), zip(blocks, records)))
+    return ws.merge(records)
+
+
+def _limits_args(arrays):
+    lim = arrays.limits
+    return lim.arm, lim.stroke, lim.ujoint
+
+
+def _kane_numba(robot, q, qd, qdd, g, opts: Options, threads: int):
+    c = _compiled()
+    arrays = robot_arrays(robot)
+    X, kappa = allocate(len(q), opts)
+    kap = kappa if kappa is not None else np.empty((3, 1))
+
+    def run(start, stop, health):
+        c.kane(arrays.kane, q, qd, qdd, g, opts.static, opts.leg_model, opts.legs,
+               opts.conditioning, opts.limits, opts.warn, opts.error, *_limits_args(arrays),
+               start, stop, X, kap, health)
+
+    return X, kappa, _threaded(run, len(q), threads)
+
+
+def _explicit_numba(robot, q, qd, qdd, g, opts: Options, threads: int):
+    c = _compiled()
+    arrays = robot_arrays(robot)
+    X, kappa = allocate(len(q), opts)
+    kap = kappa if kappa is not None else np.empty((3, 1))
+
+    def run(start, stop, health):
+        c.explicit(arrays.kane, q, qd, qdd, g, opts.conditioning, opts.limits, opts.warn,
+                   opts.error, *_limits_args(arrays), start, stop, X, kap, health)
+
+    return X, kappa, _threaded(run, len(q), threads)
+
+
+def _kane_numpy(robot, q, qd, qdd, g, opts: Options, threads: int):
+    arrays = robot_arrays(robot)
+    X, kappa = allocate(len(q), opts)
+    health = ws.new_health()
+    if len(q) > PYTHON_MAX or not run_python(arrays, q, qd, qdd, g, opts, X, kappa, health):
+        health = ws.new_health()
+        run_numpy(arrays, q, qd, qdd, g, opts, X, kappa, health)
+    return X, kappa, health
+
+
+def _explicit_numpy(robot, q, qd, qdd, g, opts: Options, threads: int):
+    from .kernels import run_explicit_numpy
+
+    arrays = robot_arrays(robot)
+    X, kappa = allocate(len(q), opts)
+    health = ws.new_health()
+    run_explicit_numpy(arrays, q, qd, qdd, g, opts, X, kappa, health)
+    return X, kappa, health
+
+
+def _rnea(robot, q, qd, qdd, g, opts: Options, threads: int):
+    from ..reference import rnea
+
+    arrays = robot_arrays(robot)
+    X, kappa = allocate(len(q), opts)
+    health = ws.new_health()
+    rnea.run(robot, arrays.limits, q, qd, qdd, g, opts, X, kappa, health, threads)
+    return X, kappa, health
+
+
+#: (method, backend) -> entry(robot, q, qd, qdd, g, options, threads) -> (X, kappa, health).
+REGISTRY = {
+    ("kane", "numba"): _kane_numba, ("kane", "numpy"): _kane_numpy,
+    ("kane-explicit", "numba"): _explicit_numba, ("kane-explicit", "numpy"): _explicit_numpy,
+    ("rnea", "numba"): _rnea, ("rnea", "numpy"): _rnea,
+}
+
+
+# --------------------------------------------------------------------------- solve
+def _outputs(outputs, available: tuple) -> tuple:
     """Actuators asked for, in the order of X; all those of the robot by default."""
     if outputs is None:
         return available
-    names = tuple(outputs)
+    if isinstance(outputs, str):
+        outputs = (outputs,)
+    try:
+        names = tuple(outputs)
+    except TypeError:
+        raise InputError(f"outputs must be a list of actuator names out of "
+                         f"{', '.join(ACTUATORS)}, got {outputs!r}", name="outputs") from None
     unknown = [n for n in names if n not in ACTUATORS]
     if unknown or not names:
         raise InputError(f"unknown outputs {unknown}: choose among {', '.join(ACTUATORS)}"
@@ -84,140 +213,117 @@ def _outputs(outputs, available: tuple = ACTUATORS) -> tuple:
     return tuple(n for n in ACTUATORS if n in names)
 
 
-def _massless_legs(model) -> bool:
-    """True when no leg link has mass or inertia (their inertia terms are exact zeros)."""
-    return not (model.lower_mass.any() or model.upper_mass.any()
-                or model.lower_inertia.any() or model.upper_inertia.any())
+def resolve_backend(backend: str) -> str:
+    """``"auto"`` → ``"numba"`` (installed: it is a dependency) else ``"numpy"``."""
+    if backend not in BACKENDS:
+        raise InputError(f"unknown backend {backend!r}: use one of {', '.join(BACKENDS)}",
+                         name="backend")
+    if backend == "auto":
+        return "numba" if numba_available() else "numpy"
+    return backend
+
+
+def _threads(threads) -> int:
+    if threads is None:
+        return 1
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
+        raise InputError(f"threads must be a positive integer, got {threads!r}", name="threads")
+    return int(min(threads, os.cpu_count() or 1))
 
 
 def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model: str = "full",
           outputs=None, t=None, limits: bool = True, checks: bool = True,
-          thresholds: Thresholds = Thresholds(), backend: str = "auto") -> Result:
+          thresholds: ws.Thresholds = ws.Thresholds(), backend: str = "auto",
+          threads: int = 1) -> Result:
     """Inverse dynamics with validation, workspace limits and the singularity policy.
 
     Args:
         robot: From :func:`offshore_crane.load_robot`.
-        q, qd, qdd: ``(N, 9)`` coordinates [m, rad], rates, accelerations (CONVENTIONS.md).
+        q, qd, qdd: ``(N, 9)`` coordinates [m, rad], rates, accelerations
+            (``docs/conventions.md``).
         method: One of :data:`METHODS`.
         gravity: ``(3,)`` in the base frame [m/s²].
         leg_model: ``"full"`` (exact) or the approximations ``"thin-rod"``,
             ``"massless"`` (method ``"kane"`` only).
-        outputs: Actuator names wanted (default all those the robot has: no T1, T2,
-            Fs without arm). Without any leg force, method ``"kane"`` skips the legs
-            entirely (exact for T1, T2, Fs), and no method checks the legs' limits or
-            conditioning.
+        outputs: Actuator names wanted (default all those the robot has). Without any leg
+            force, method ``"kane"`` skips the legs entirely (exact for T1, T2, Fs), and
+            no method checks the legs' limits or conditioning.
         t: ``(N,)`` times [s], only used in messages.
-        limits: Check leg strokes, U-joint and arm joint limits (:mod:`..checks`).
+        limits: Check leg strokes, U-joint and arm joint limits.
         checks: Measure the condition numbers and apply ``thresholds``.
         thresholds: Warning and error thresholds of the singularity policy.
-        backend: ``"auto"`` (Numba when installed, else NumPy), ``"numpy"`` or ``"numba"``:
-            the compiled or vectorised kernels of methods ``"kane"`` and ``"rnea"``
-            (same formulas; ``"kane-explicit"`` is NumPy only).
+        backend: ``"auto"`` (compiled when Numba is installed), ``"numpy"`` or
+            ``"numba"``.
+        threads: Threads for large N (compiled backend): samples are split into
+            contiguous blocks; results are bit-identical to one thread.
 
     Returns:
         :class:`Result`.
 
     Raises:
-        InputError, WorkspaceError, SingularConfigurationError.
+        InputError, WorkspaceError, SingularConfigurationError, NumericalError.
     """
     if method not in METHODS:
-        raise InputError(f"unknown method '{method}': use one of {', '.join(METHODS)}",
+        raise InputError(f"unknown method {method!r}: use one of {', '.join(METHODS)}",
                          name="method")
     if leg_model not in LEG_MODELS:
-        raise InputError(f"unknown leg model '{leg_model}': use one of {', '.join(LEG_MODELS)}",
+        raise InputError(f"unknown leg model {leg_model!r}: use one of {', '.join(LEG_MODELS)}",
                          name="leg_model")
     if leg_model != "full" and method != "kane":
         raise InputError(f"leg model '{leg_model}' is an approximation offered by method "
                          "'kane' only", name="leg_model")
-    q, _ = as_samples("q", q)
-    qd, _ = as_samples("qd", qd)
-    qdd, _ = as_samples("qdd", qdd)
+    if not isinstance(thresholds, ws.Thresholds):
+        raise InputError(f"thresholds must be a Thresholds(warn, error), got {thresholds!r}",
+                         name="thresholds")
+    backend = resolve_backend(backend)
+    threads = _threads(threads)
+    q, _ = as_samples("q", q, finite=False)
+    qd, _ = as_samples("qd", qd, finite=False)
+    qdd, _ = as_samples("qdd", qdd, finite=False)
     N = same_length(q=q, qd=qd, qdd=qdd)
     if t is not None:
         t = np.asarray(t, dtype=float)
         if t.shape != (N,):
             raise InputError(f"t has shape {t.shape}; expected ({N},)", name="t")
     g = as_gravity(gravity)
-    names = _outputs(outputs, robot.hybrid.actuators)
+    model = robot.hybrid
+    names = _outputs(outputs, model.actuators)
     want_legs = any(n.startswith("Fl") for n in names)
     pruned = []
-    cond = diag = None
-    policy_done = False
+    kernel_legs = leg_model
+    static = False
     if method == "kane":
-        from .fused import Options, fused_inverse_dynamics
-
         static = bool(not qd[:, :6].any() and not qdd[:, :6].any()
                       and (q[:, :6] == q[0, :6]).all())
         if static:
             pruned.append("platform velocity and acceleration terms (static platform)")
         if not want_legs:
             pruned.append("leg kinematics and dynamics (no leg force wanted)")
-        kernel_legs = leg_model
-        if want_legs and leg_model != "massless" and _massless_legs(robot.hybrid):
+        elif leg_model != "massless" and model.massless_legs:
             kernel_legs = "massless"          # exact: every leg inertia term is zero
             pruned.append("leg inertia and weight terms (the legs have no mass)")
-        opts = Options(leg_model=kernel_legs, legs=want_legs, platform_static=static,
-                       conditioning=checks and want_legs,
-                       diagnostics=(checks or limits) and want_legs)
-        X, cond, diag = fused_inverse_dynamics(robot.fused, q, qd, qdd, g, opts,
-                                               backend=_backend(backend))
-    elif method == "rnea" and _backend(backend) == "numba":
-        from .tree_numba import rnea_numba
-
-        X, cond, diag = rnea_numba(robot, q, qd, qdd, g)
-        if not want_legs:
-            cond = diag = None
-        elif not checks:
-            cond = None
-    else:
-        from .kane_hybrid import kane_B, solve_actuators
-
-        if method == "kane-explicit":
-            B, legs = kane_B(robot.hybrid, q, qd, qdd, g)
-        else:
-            from .rnea import rnea_B
-
-            B, legs = rnea_B(robot, q, qd, qdd, g)
-        if want_legs:
-            diag = {"length": legs.length, "theta1": legs.theta[..., 0],
-                    "theta2": legs.theta[..., 1], "cos_theta2": np.abs(legs.u_dot_n),
-                    "height": legs.p_S[..., 2] - robot.hybrid.p_base_P[:, 2]}
-        if checks and want_legs:
-            J = legs.J.copy()
-            J[:, :, 3:] /= robot.fused.length_scale
-            cond = condition_1(np.swapaxes(J, 1, 2))
-            apply_policy("leg-Jacobian", cond, thresholds, t)   # before the solve: it
-            policy_done = True                                    # would fail if singular
-        X = solve_actuators(B, legs.J)
+    opts = Options(leg_model=LEG_MODEL_CODES[kernel_legs], legs=want_legs or method != "kane",
+                   static=static, conditioning=checks, limits=limits,
+                   warn=thresholds.warn, error=thresholds.error)
+    X, kappa, health = REGISTRY[(method, backend)](robot, q, qd, qdd, g, opts, threads)
+    arrays = (q, qd, qdd)
+    ws.check_inputs(health, arrays)
     if limits:
-        check_limits(robot, q, diag, t)       # includes the platform-below-base check
-    with np.errstate(divide="ignore"):      # exactly singular: κ = inf, reported below
-        gimbal = None if diag is None else 1.0 / diag["cos_theta2"].min(axis=1)
-        attitude = 1.0 / np.abs(np.cos(q[:, 4]))
+        ws.check_workspace(health, robot_arrays(robot).limits, q, t)
     if checks:
-        if not policy_done:
-            apply_policy("leg-Jacobian", cond, thresholds, t)
-        apply_policy("U-joint gimbal", gimbal, thresholds, t)
-        apply_policy("attitude", attitude, thresholds, t, error=False)
+        error_kinds = (ws.LEG_JACOBIAN, ws.GIMBAL) if want_legs else ()
+        ws.check_singularities(health, kappa, thresholds, t, error_kinds)
+    ws.check_outputs(health, ACTUATORS, arrays, t)
     if not want_legs:
         X[:, 3:] = np.nan          # not computed
-    X[:, robot.hybrid.arm.n:3] = np.nan   # no arm: these actuators do not exist
+        if kappa is not None:
+            kappa[:2] = np.nan
     approx = (APPROXIMATIONS[leg_model],) if leg_model != "full" else ()
-    return Result(X=X, method=method, leg_model=leg_model, outputs=names, condition=cond,
-                  gimbal=gimbal, attitude=attitude, approximations=approx,
-                  pruned=tuple(pruned))
-
-
-def _backend(backend: str) -> str:
-    """Resolve ``"auto"`` to ``"numba"`` or ``"numpy"``."""
-    from .fused import BACKENDS, numba_available
-
-    if backend not in BACKENDS:
-        raise InputError(f"unknown backend '{backend}': use one of {', '.join(BACKENDS)}",
-                         name="backend")
-    if backend == "auto":
-        return "numba" if numba_available() else "numpy"
-    return backend
+    return Result(X=X, method=method, leg_model=leg_model, outputs=names,
+                  condition=None if kappa is None or not want_legs else kappa[0],
+                  gimbal=None if kappa is None or not want_legs else kappa[1],
+                  attitude=None if kappa is None else kappa[2], approximations=approx,
+                  pruned=tuple(pruned), backend=backend)
 
 
 def inverse_dynamics(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY,
@@ -226,22 +332,22 @@ def inverse_dynamics(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY,
 
     Args:
         robot: From :func:`offshore_crane.load_robot`.
-        q: ``(N, 9)`` or ``(9,)`` coordinates (CONVENTIONS.md): q1..q3 [m] position of
-            the platform CoM in the base frame, q4..q6 [rad] roll, pitch, yaw, q7, q8 [rad]
-            arm joint angles, q9 [m] slider displacement.
+        q: ``(N, 9)`` or ``(9,)`` coordinates (``docs/conventions.md``): q1..q3 [m] the
+            platform's reference point O2 in the base frame, q4..q6 [rad] roll, pitch, yaw,
+            q7, q8 [rad] arm joint angles, q9 [m] slider displacement.
         qd: Same shape, rates [m/s, rad/s].
         qdd: Same shape, accelerations [m/s², rad/s²].
         method: ``"kane"`` (default), ``"kane-explicit"`` or ``"rnea"``.
         gravity: ``(3,)`` gravity in the base frame [m/s²].
         **options: Keyword options of :func:`solve` (``leg_model``, ``outputs``, ``t``,
-            ``limits``, ``checks``, ``thresholds``).
+            ``limits``, ``checks``, ``thresholds``, ``backend``, ``threads``).
 
     Returns:
         X ``(N, 9)`` (or ``(9,)``): ``[T1, T2 [N·m], Fs, Fl1..Fl6 [N]]``, signed along
         the joint directions (positive Fl extends the leg).
 
     Raises:
-        InputError, WorkspaceError, SingularConfigurationError (see :func:`solve`).
+        InputError, WorkspaceError, SingularConfigurationError, NumericalError.
     """
     single = np.ndim(q) == 1
     X = solve(robot, q, qd, qdd, method, gravity, **options).X

@@ -5,7 +5,9 @@ from __future__ import annotations
 from functools import cached_property
 from pathlib import Path
 
-from .hybrid import ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, ARM_JOINTS, HybridModel, PLATFORM_JOINTS
+from ..conventions import (ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, ARM_JOINTS,
+                           PLATFORM_JOINTS)
+from .hybrid import HybridModel
 from .urdf import URDF, parse_urdf
 from .xacro_cache import expand, normalise_overrides, xacro_arguments, xacro_path
 
@@ -41,13 +43,6 @@ class Robot:
     def parameters(self) -> dict[str, str]:
         """All xacro arguments with the values used (defaults overridden)."""
         return {**xacro_arguments(), **self.overrides}
-
-    @cached_property
-    def fused(self):
-        """Constants of the fused Kane kernel (:func:`..dynamics.fused.prepare`)."""
-        from ..dynamics.fused import prepare
-
-        return prepare(self.hybrid)
 
     @cached_property
     def pinocchio_model(self):

@@ -11,24 +11,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..conventions import (ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, ARM_JOINTS, N_LEGS,
+                           PLATFORM_JOINTS)
 from ..errors import ModelError
-from ..kinematics.chain import SerialChain, chain_from_urdf, merged_inertial
+from .chain import SerialChain, chain_from_urdf, merged_inertial
 from .urdf import URDF
 
-N_LEGS = 6
-#: Virtual joints carrying the platform, in the order of q1..q6 (CONVENTIONS.md).
-PLATFORM_JOINTS = ("platform_x", "platform_y", "platform_z",
-                   "platform_roll", "platform_pitch", "platform_yaw")
+__all__ = ["HybridModel", "hybrid_from_urdf", "ACTUATED_JOINTS", "ACTUATORS",
+           "ACTUATOR_UNITS", "ARM_JOINTS", "N_LEGS", "PLATFORM_JOINTS"]
 _PLATFORM_CHAIN = ("platform_x", "platform_y", "platform_z",
                    "platform_yaw", "platform_pitch", "platform_roll")
 _PLATFORM_AXES = {"platform_x": (1, 0, 0), "platform_y": (0, 1, 0), "platform_z": (0, 0, 1),
                   "platform_yaw": (0, 0, 1), "platform_pitch": (0, 1, 0),
                   "platform_roll": (1, 0, 0)}
-ARM_JOINTS = ("arm_joint1", "arm_joint2", "arm_slide")
-#: Order of the actuator vector X (paper Eq. 40, CONVENTIONS.md).
-ACTUATORS = ("T1", "T2", "Fs", "Fl1", "Fl2", "Fl3", "Fl4", "Fl5", "Fl6")
-ACTUATOR_UNITS = ("N·m", "N·m", "N", "N", "N", "N", "N", "N", "N")
-ACTUATED_JOINTS = ARM_JOINTS + tuple(f"leg{i}_slide" for i in range(1, N_LEGS + 1))
 _TOL = 1e-12
 
 
@@ -79,6 +74,12 @@ class HybridModel:
     def actuators(self) -> tuple:
         """Names of the actuators that exist (of :data:`ACTUATORS`)."""
         return ACTUATORS[:self.arm.n] + ACTUATORS[3:]
+
+    @property
+    def massless_legs(self) -> bool:
+        """True when no leg link has mass or inertia (their inertia terms are exact zeros)."""
+        return not (self.lower_mass.any() or self.upper_mass.any()
+                    or self.lower_inertia.any() or self.upper_inertia.any())
 
     @property
     def total_mass(self) -> float:

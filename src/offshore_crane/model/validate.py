@@ -41,13 +41,12 @@ import re
 
 import numpy as np
 
+from ..conventions import INERTIA_RTOL
 from ..errors import ModelError
 from .urdf import MOVABLE, URDF
 
-#: Relative tolerance (of the sum of the principal moments) of the inertia checks.
-INERTIA_RTOL = 1e-6
 #: A design whose Stewart matrix at the home pose has a larger 1-norm condition number
-#: is rejected (the default error threshold of the singularity policy, checks.py).
+#: is rejected (the default error threshold of the singularity policy, kinematics/workspace.py).
 HOME_CONDITION_LIMIT = 1e8
 
 #: Link (or ``leg_lower``/``leg_upper`` for ``leg{i}_...``) -> (mass argument, size
@@ -258,7 +257,7 @@ def _check_home(urdf: URDF, arguments) -> None:
                 f"'leg{i + 1}_slide'"
                 f"{_args(['leg_min_length', 'leg_max_length', 'home_height'], arguments)}",
                 element=f"leg{i + 1}_slide")
-    from ..checks import condition_1
+    from ..spatial import condition_1
 
     u = d / length[:, None]
     L = float(np.linalg.norm(s, axis=1).mean())

@@ -9,9 +9,11 @@ joint torques and forces. For a fixed base every generalized speed is a joint ra
     τ_r = Σ_bodies [v_r · m (a − g) + w_r · (I α + ω × I ω)] − (v_r^P · F + w_r^P · M),
 
 the last term for an external wrench ``(F, M)`` acting on the robot at the origin ``P``
-of a tip frame. The kinematics
-(:func:`~offshore_crane.kinematics.chain.chain_kinematics`) and the body terms
-(:mod:`offshore_crane.kane`) are those of the hybrid robot's arm.
+of a tip frame. The sums are evaluated with the partial velocities factored, by the same
+formulas as the hybrid robot's arm: the forward recursion
+(:func:`~offshore_crane.dynamics.formulas.arm_forward`) gives each body's wrench and the
+backward accumulation (:func:`~offshore_crane.dynamics.formulas.arm_backward`) projects
+the wrenches beyond each joint on its axis.
 
 Quick start::
 
@@ -26,7 +28,7 @@ Quick start::
 
 from __future__ import annotations
 
-from ..kinematics.chain import SerialChain
+from ..model.chain import SerialChain
 from .core import GRAVITY, inverse_dynamics, load_chain, random_states
 
 __all__ = ["SerialChain", "GRAVITY", "load_chain", "inverse_dynamics", "random_states"]

@@ -14,15 +14,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..conventions import GRAVITY
 from ..errors import InputError, ModelError
-from ..kane import body_load, inertia_to_world, inertia_wrench
-from ..kinematics.chain import BaseMotion, SerialChain, chain_from_urdf, chain_kinematics
+from ..model.chain import SerialChain, chain_from_urdf
 from ..model.urdf import URDF, parse_urdf
-from ..spatial import cross, matvec
 from ..validation import as_gravity, as_samples, same_length
-
-GRAVITY = (0.0, 0.0, -9.81)
-"""Default gravity [m/s²], world (= base) axes: z up."""
 
 # A rotation given as base pose must be orthonormal to this (absolute, per entry). Any
 # matrix built from angles in float64 is so to ~1e-15; 1e-9 rejects hand-typed rounded
@@ -172,15 +168,13 @@ def inverse_dynamics(chain: SerialChain, q, qd, qdd, gravity=GRAVITY, wrench=Non
                      frame: str | None = None, base_pose=None) -> np.ndarray:
     """Joint torques and forces of a fixed-base serial chain by Kane's method.
 
-    For every body ``k`` (paper Eqs. 27-30, recursively) the chain kinematics gives its
-    centre-of-mass acceleration ``a``, angular velocity ``ω`` and acceleration ``α``, the
-    partial velocities ``v_r`` of its centre of mass and partial angular velocities
-    ``w_r``. The generalized inertia force plus gravity (Eq. 31, ``F_r + F*_r = 0``) gives
-
-        τ_r = Σ_k v_r · m_k (a_k − g) + w_r · (I_k α_k + ω_k × I_k ω_k)
-              − (v_r^P · F + w_r^P · M),
-
-    the last term for an external wrench acting on the robot at point ``P``.
+    The arm recursion of the hybrid robot's formulas (paper Eqs. 27-30,
+    :func:`offshore_crane.dynamics.formulas.arm_forward`) gives every body's motion and
+    its inertia-and-gravity wrench ``(m (a − g), I α + ω × I ω)``; the generalized forces
+    (Eq. 31, ``F_r + F*_r = 0``) are then accumulated from the tip
+    (:func:`~offshore_crane.dynamics.formulas.arm_backward`): joint k's force is
+    ``z_k · (moment about o_k of the bodies beyond it)`` (revolute) or ``z_k · (their
+    force)`` (prismatic). An external wrench on a body enters its wrench with a minus sign.
 
     Args:
         chain: From :func:`load_chain`.
@@ -213,16 +207,15 @@ def inverse_dynamics(chain: SerialChain, q, qd, qdd, gravity=GRAVITY, wrench=Non
     qdd, _ = as_samples("qdd", qdd, n)
     N = same_length(q=q, qd=qd, qdd=qdd)
     g = as_gravity(gravity)
-    if base_pose is None:
-        base = BaseMotion.fixed(N)
-    else:
+    R_b = np.broadcast_to(np.eye(3), (N, 3, 3))
+    if base_pose is not None:
         try:
             R_b, p_b = base_pose
         except (TypeError, ValueError):
             raise InputError("base_pose must be a pair (R_world_base, p_world_base)",
                              name="base_pose") from None
-        base = BaseMotion.fixed(N, _rotations("base_pose R", R_b, N),
-                                _vectors("base_pose p", p_b, N))
+        R_b = _rotations("base_pose R", R_b, N)
+        _vectors("base_pose p", p_b, N)       # validated; a base at rest: p changes nothing
     load = None
     if wrench is not None:
         try:
@@ -235,24 +228,33 @@ def inverse_dynamics(chain: SerialChain, q, qd, qdd, gravity=GRAVITY, wrench=Non
             raise ModelError(f"the wrench frame '{name}' is not a link of the chain "
                              f"(links: {', '.join(chain.frames)})", element=name)
         load = (name, F, M)
+    tau = _solve(chain, q, qd, qdd, g, R_b, load)
+    return tau[0] if single else tau
 
-    # Body k moves with joints 0..k only: trim=True gives its partials for those
-    # columns only, (N, k + 1, 3); the others are zero.
-    bodies = chain_kinematics(chain, q, qd, qdd, base, trim=True)
-    tau = np.zeros((N, n))
-    for k, body in enumerate(bodies):
-        if chain.mass[k] == 0.0 and not chain.inertia[k].any():
-            continue  # massless body: no inertia or gravity force
-        force, torque = inertia_wrench(chain.mass[k], inertia_to_world(body.R, chain.inertia[k]),
-                                       body.a_com, body.omega, body.alpha, g)
-        tau[:, :k + 1] += body_load(body.V, body.W, force, torque)
+
+def _solve(chain: SerialChain, q, qd, qdd, g, R_b, load) -> np.ndarray:
+    """The formulas' arm recursion on the chain, vectorised over the N samples."""
+    from ..dynamics import backends
+    from ..dynamics.formulas import ATT_, F_, STORE_WIDTH, T_, KaneConstants
+
+    B = backends.NUMPY
+    N, n = q.shape
+    C = KaneConstants(*([None] * len(KaneConstants._fields)))._replace(
+        n_arm=n, arm_t=chain.p_parent_joint, arm_Ro=chain.R_parent_joint, arm_axis=chain.axis,
+        arm_prism=chain.prismatic, arm_m=chain.mass, arm_c=chain.com, arm_I=chain.inertia)
+    R = tuple(tuple(R_b[:, i, j] for j in range(3)) for i in range(3))
+    zero = (np.zeros(N),) * 3
+    store = np.empty((n, STORE_WIDTH), dtype=object)
+    B.arm_forward(C, R, zero, zero, zero, q.T, qd.T, qdd.T, 0, tuple(g), store)
     if load is not None:
         name, F, M = load
         k, p_frame, _ = chain.frames[name]
-        if k >= 0:
-            body = bodies[k]
-            P = body.p + matvec(body.R, p_frame)
-            # v_r^P = v_r^C + w_r × (P − C), C the centre of mass
-            V_P = body.V + cross(body.W, (P - body.p_com)[:, None, :])
-            tau[:, :k + 1] -= body_load(V_P, body.W, F, M)
-    return tau[0] if single else tau
+        if k >= 0:      # the force acts at the frame's origin P: moment about the CoM
+            Rk = (B.take(store, k, ATT_), B.take(store, k, ATT_ + 3), B.take(store, k, ATT_ + 6))
+            lever = B.mv(Rk, B.sub(tuple(p_frame), tuple(chain.com[k])))
+            Fe, Me = tuple(F.T), tuple(M.T)
+            B.put(store, k, F_, B.sub(B.take(store, k, F_), Fe))
+            B.put(store, k, T_, B.sub(B.take(store, k, T_), B.add(Me, B.cross(lever, Fe))))
+    rows = np.empty(n, dtype=object)
+    B.arm_backward(C, store, rows)
+    return np.column_stack([np.broadcast_to(r, (N,)) for r in rows])

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ModelError, require
-from ..kinematics.chain import SerialChain
+from ..model.chain import SerialChain
 from .core import GRAVITY, read_urdf
 
 

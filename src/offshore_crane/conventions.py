@@ -1,0 +1,44 @@
+"""Names, units and tolerances that several modules share (one place for each).
+
+The coordinates, frames and signs they refer to are described in ``docs/conventions.md``
+(the repository's conventions page); this module only holds the values the code needs.
+"""
+
+from __future__ import annotations
+
+#: Number of U-P-S legs of the Stewart-Gough platform.
+N_LEGS = 6
+#: Number of independent coordinates q1..q9 (docs/conventions.md, "Coordinates").
+N_COORDINATES = 9
+#: Names of q1..q9 and their units.
+COORDINATES = tuple(f"q{i}" for i in range(1, N_COORDINATES + 1))
+COORDINATE_UNITS = ("m", "m", "m", "rad", "rad", "rad", "rad", "rad", "m")
+
+#: Order of the actuator vector X (paper Eq. 40).
+ACTUATORS = ("T1", "T2", "Fs", "Fl1", "Fl2", "Fl3", "Fl4", "Fl5", "Fl6")
+ACTUATOR_UNITS = ("N·m", "N·m", "N", "N", "N", "N", "N", "N", "N")
+ARM_ACTUATORS = ACTUATORS[:3]
+LEG_ACTUATORS = ACTUATORS[3:]
+
+#: URDF joints (the equivalent tree, docs/conventions.md "URDF names").
+PLATFORM_JOINTS = ("platform_x", "platform_y", "platform_z",
+                   "platform_roll", "platform_pitch", "platform_yaw")   # q1..q6
+ARM_JOINTS = ("arm_joint1", "arm_joint2", "arm_slide")                  # q7..q9
+LEG_JOINTS = tuple((f"leg{i}_u1", f"leg{i}_u2", f"leg{i}_slide")
+                   for i in range(1, N_LEGS + 1))
+ACTUATED_JOINTS = ARM_JOINTS + tuple(j[2] for j in LEG_JOINTS)
+LEG_TIPS = tuple(f"leg{i}_tip" for i in range(1, N_LEGS + 1))
+PLATFORM_ANCHORS = tuple(f"platform_anchor{i}" for i in range(1, N_LEGS + 1))
+
+#: Default gravity in the base frame [m/s²] (z up).
+GRAVITY = (0.0, 0.0, -9.81)
+
+#: Two exact methods (Kane and the RNEA reference, which share only the URDF) must agree
+#: to this, relative to max |X|: both are exact, so they differ by round-off (~1e-15);
+#: 1e-9 leaves room for ill-conditioned poses (κ ε ≤ 2e-11 below the warning threshold).
+AGREEMENT_RTOL = 1e-9
+
+#: Relative tolerance (of λ1 + λ2 + λ3) of the inertia checks (positive semi-definite,
+#: triangle inequality): URDF and CAD files print inertias with 6-7 significant digits,
+#: and a thin disc sits exactly on the triangle boundary.
+INERTIA_RTOL = 1e-6

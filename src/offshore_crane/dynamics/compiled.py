@@ -1,0 +1,259 @@
+"""The compiled backend: the one text of the formulas, compiled by Numba.
+
+Every function of :mod:`offshore_crane.kinematics.formulas` and :mod:`.formulas` is
+re-bound and wrapped in ``numba.njit`` (:func:`.backends.bind`); the drivers below loop
+over samples, solve each 6x6 Stewart system by Gauss–Jordan elimination with partial
+pivoting (which also gives the inverse for the 1-norm condition number) and apply the
+checks inside the loop, writing a health record
+(:mod:`offshore_crane.kinematics.workspace`) instead of NumPy reductions.
+
+Compilation happens on first call and is cached on disk (``cache=True``, beside the
+package's files, or in ``NUMBA_CACHE_DIR``); the drivers close over a hash of the
+formulas' source, so editing a formula recompiles what inlines it. The drivers release
+the GIL (``nogil``), so ``threads=`` runs blocks of samples on several cores, with results
+bit-identical to one thread (every sample is computed independently).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..kinematics import workspace as ws
+from . import backends
+
+JIT = dict(cache=True, nogil=True, error_model="numpy")
+K = backends.bind({}, njit(**JIT))
+_kane_sample = K.kane_sample
+_explicit_sample = K.explicit_sample
+STAMP = backends.source_stamp()
+
+_BAD_INPUT, _VIOLATION, _BAD_OUTPUT, _KAPPA = ws.BAD_INPUT, ws.VIOLATION, ws.BAD_OUTPUT, ws.KAPPA
+_LENGTH, _COS, _HEIGHT, _TH1, _TH2 = 0, 1, 2, 3, 4
+
+
+@njit(**JIT)
+def solve6(A, rhs, x, M):
+    """Gauss–Jordan with partial pivoting on ``[A | I | rhs]`` (6x6); fills ``x``;
+    returns the 1-norm condition number of A (inf, and a NaN solution, when singular
+    or not finite). ``M`` is a (6, 13) workspace."""
+    n = 6
+    w = 2 * n + 1
+    for i in range(n):
+        for j in range(n):
+            M[i, j] = A[i, j]
+            M[i, n + j] = 1.0 if i == j else 0.0
+        M[i, 2 * n] = rhs[i]
+    for k in range(n):
+        p = k
+        best = abs(M[k, k])
+        for r in range(k + 1, n):
+            v = abs(M[r, k])
+            if v > best:
+                best = v
+                p = r
+        if not best > 0.0:        # zero or NaN pivot
+            for i in range(n):
+                x[i] = np.nan
+            return np.inf
+        if p != k:
+            for j in range(w):
+                tmp = M[k, j]
+                M[k, j] = M[p, j]
+                M[p, j] = tmp
+        inv = 1.0 / M[k, k]
+        for j in range(w):
+            M[k, j] *= inv
+        for r in range(n):
+            if r != k:
+                f = M[r, k]
+                if f != 0.0:
+                    for j in range(w):
+                        M[r, j] -= f * M[k, j]
+    norm_a = 0.0
+    norm_inv = 0.0
+    for j in range(n):
+        x[j] = M[j, 2 * n]
+        sa = 0.0
+        si = 0.0
+        for i in range(n):
+            sa += abs(A[i, j])
+            si += abs(M[i, n + j])
+        norm_a = max(norm_a, sa)
+        norm_inv = max(norm_inv, si)
+    return norm_a * norm_inv
+
+
+@njit(**JIT)
+def _first(health, slot, k, a, b):
+    if health[slot] < 0.0:
+        health[slot] = k
+        health[slot + 1] = a
+        health[slot + 2] = b
+
+
+@njit(**JIT)
+def _kappa(health, kind, k, value, warn, error):
+    s = _KAPPA + 4 * kind
+    if value > health[s] or (value != value and health[s] == health[s]):
+        health[s] = value
+        health[s + 1] = k
+    if health[s + 2] < 0.0 and value > warn:
+        health[s + 2] = k
+    if health[s + 3] < 0.0 and not value <= error:
+        health[s + 3] = k
+
+
+@njit(**JIT)
+def _finite_inputs(q, qd, qdd, k, health):
+    """False (and the first one recorded) if sample k has a non-finite input."""
+    for which in range(3):
+        arr = q if which == 0 else (qd if which == 1 else qdd)
+        for j in range(9):
+            if not np.isfinite(arr[k, j]):
+                if health[_BAD_INPUT] < 0.0:
+                    _first(health, _BAD_INPUT, k, j, which)
+                return False
+    return True
+
+
+@njit(**JIT)
+def _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error, lim_arm,
+          lim_stroke, lim_ujoint, X, kappa, health, x, M):
+    """Sample k after the formulas: solve the legs, measure κ, check the limits and the
+    result's finiteness (the arm columns of X are filled)."""
+    for b in range(na, 3):
+        X[k, b] = np.nan
+    cond = 0.0
+    if want_legs:
+        cond = solve6(A, rhs, x, M)
+        for j in range(6):
+            X[k, 3 + j] = x[j]
+    else:
+        for j in range(6):
+            X[k, 3 + j] = np.nan
+    if want_cond:
+        att = 1.0 / abs(np.cos(q[k, 4]))
+        kappa[2, k] = att
+        _kappa(health, 2, k, att, warn, error)
+        if want_legs:
+            kappa[0, k] = cond
+            _kappa(health, 0, k, cond, warn, error)
+            worst = diag[_COS, 0]
+            for l in range(1, 6):
+                worst = min(worst, diag[_COS, l])
+            gim = 1.0 / worst if worst > 0.0 else np.inf
+            kappa[1, k] = gim
+            _kappa(health, 1, k, gim, warn, error)
+        else:
+            kappa[0, k] = np.nan
+            kappa[1, k] = np.nan
+    if want_limits:
+        s = _VIOLATION
+        if health[s] < 0.0:
+            for b in range(na):
+                v = q[k, 6 + b]
+                if v < lim_arm[b, 0] or v > lim_arm[b, 1]:
+                    _first(health, s, k, b, v)
+                    break
+        if want_legs:
+            if health[s + 3] < 0.0:
+                for l in range(6):
+                    if diag[_HEIGHT, l] <= 0.0:
+                        _first(health, s + 3, k, l, diag[_HEIGHT, l])
+                        break
+            if health[s + 6] < 0.0:
+                for l in range(6):
+                    v = diag[_LENGTH, l]
+                    if v < lim_stroke[l, 0] or v > lim_stroke[l, 1]:
+                        _first(health, s + 6, k, l, v)
+                        break
+            if health[s + 9] < 0.0:
+                for c in range(12):
+                    l = c // 2
+                    v = diag[_TH1 + c % 2, l]
+                    if v < lim_ujoint[l, c % 2, 0] or v > lim_ujoint[l, c % 2, 1]:
+                        _first(health, s + 9, k, c, v)
+                        break
+    if health[_BAD_OUTPUT] < 0.0:
+        for j in range(9 if want_legs else na):
+            if (j < na or j >= 3) and not np.isfinite(X[k, j]):
+                health[_BAD_OUTPUT] = k
+                health[_BAD_OUTPUT + 1] = j
+                break
+
+
+def _make(stamp):
+    """The drivers, closed over the formulas' hash (it keys their disk cache)."""
+
+    @njit(**JIT)
+    def kane(C, q, qd, qdd, g, static, leg_model, want_legs, want_cond, want_limits, warn,
+             error, lim_arm, lim_stroke, lim_ujoint, start, stop, X, kappa, health):
+        """Samples ``start..stop-1`` of the fused Kane equations, checked."""
+        if len(stamp) == 0:
+            return
+        na = C.n_arm
+        rows = np.zeros(3)
+        A = np.empty((6, 6))
+        rhs = np.empty(6)
+        diag = np.zeros((5, 6))
+        store = np.empty((max(na, 1), 27))
+        x = np.empty(6)
+        M = np.empty((6, 13))
+        gt = (g[0], g[1], g[2])
+        for k in range(start, stop):
+            if not _finite_inputs(q, qd, qdd, k, health):
+                for j in range(9):
+                    X[k, j] = np.nan
+                continue
+            _kane_sample(C, q[k], qd[k], qdd[k], gt, static, leg_model, want_legs,
+                         want_limits, rows, A, rhs, diag, store)
+            for b in range(na):
+                X[k, b] = rows[b]
+            _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error,
+                  lim_arm, lim_stroke, lim_ujoint, X, kappa, health, x, M)
+
+    @njit(**JIT)
+    def explicit(C, q, qd, qdd, g, want_cond, want_limits, warn, error, lim_arm, lim_stroke,
+                 lim_ujoint, start, stop, X, kappa, health):
+        """Samples ``start..stop-1`` of Kane's equations with explicit partials, checked:
+        ``(T1, T2, Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]`` (rotation rows scaled by 1/L)."""
+        if len(stamp) == 0:
+            return
+        na = C.n_arm
+        B = np.zeros(9)
+        J = np.empty((6, 6))
+        Mm = np.zeros((9, 9))
+        A = np.empty((6, 6))
+        rhs = np.empty(6)
+        diag = np.zeros((5, 6))
+        store = np.empty((max(na, 1), 27))
+        Vw = np.empty((9, 3))
+        Ww = np.empty((9, 3))
+        Vs = np.empty((9, 3))
+        x = np.empty(6)
+        M = np.empty((6, 13))
+        gt = (g[0], g[1], g[2])
+        iL = 1.0 / C.L
+        for k in range(start, stop):
+            if not _finite_inputs(q, qd, qdd, k, health):
+                for j in range(9):
+                    X[k, j] = np.nan
+                continue
+            B[:] = 0.0
+            _explicit_sample(C, q[k], qd[k], qdd[k], gt, False, B, J, Mm, store, Vw, Ww, Vs,
+                             diag)
+            for b in range(na):
+                X[k, b] = B[6 + b]
+            for r in range(6):
+                f = iL if r >= 3 else 1.0
+                rhs[r] = B[r] * f
+                for l in range(6):
+                    A[r, l] = J[l, r] * f
+            _post(k, q, na, A, rhs, diag, True, want_cond, want_limits, warn, error,
+                  lim_arm, lim_stroke, lim_ujoint, X, kappa, health, x, M)
+
+    return kane, explicit
+
+
+kane, explicit = _make(STAMP)

@@ -1,0 +1,95 @@
+"""The arrays Kane's formulas read, derived once per robot from its URDF.
+
+Owned by the dynamics package (the robot object stays immutable): :func:`kane_constants`
+keeps them in a per-robot cache.
+"""
+
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass
+
+import numpy as np
+
+from .formulas import KaneConstants
+
+_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Workspace limits the kernels check, as flat arrays.
+
+    Attributes:
+        arm: ``(na, 2)`` lower and upper limit of each arm joint [rad or m].
+        stroke: ``(6, 2)`` shortest and longest leg length [m].
+        ujoint: ``(6, 2, 2)`` [leg, axis, (lower, upper)] U-joint angles [rad].
+    """
+
+    arm: np.ndarray
+    stroke: np.ndarray
+    ujoint: np.ndarray
+
+
+@dataclass(frozen=True)
+class RobotArrays:
+    """What the kernels read of one robot."""
+
+    kane: KaneConstants
+    limits: Limits
+
+
+def build(model) -> RobotArrays:
+    """Constants of :class:`~offshore_crane.model.hybrid.HybridModel` ``model``.
+
+    The leg links share the leg's angular velocity and acceleration (the joint between
+    them is prismatic), so their central inertias are summed in the leg frame
+    (``leg_I``). The thin-rod approximation keeps the transverse inertia
+    ``(Ixx + Iyy) / 2`` of that sum (exact for links symmetric about the leg axis) and
+    the centres of mass projected on the axis.
+    """
+    arm = model.arm
+    f = np.ascontiguousarray
+    leg_I = model.lower_inertia + model.upper_inertia
+    RU = model.R_base_U
+    kane = KaneConstants(
+        plat_m=float(model.platform_mass), plat_c=f(model.platform_com),
+        plat_I=f(model.platform_inertia), n_arm=int(arm.n), arm_t=f(arm.p_parent_joint),
+        arm_Ro=f(arm.R_parent_joint), arm_axis=f(arm.axis),
+        arm_prism=f(arm.prismatic, dtype=np.bool_), arm_m=f(arm.mass), arm_c=f(arm.com),
+        arm_I=f(arm.inertia), leg_s=f(model.p_platform_S), leg_P=f(model.p_base_P),
+        leg_X=f(RU[:, :, 0]), leg_Y=f(RU[:, :, 1]), leg_Z=f(RU[:, :, 2]),
+        lo_m=f(model.lower_mass), lo_c=f(model.lower_com), up_m=f(model.upper_mass),
+        up_c=f(model.upper_com), leg_I=f(leg_I),
+        thin_It=f(0.5 * (leg_I[:, 0, 0] + leg_I[:, 1, 1])), lo_cz=f(model.lower_com[:, 2]),
+        up_cz=f(model.upper_com[:, 2]),
+        L=float(np.linalg.norm(model.p_platform_S, axis=1).mean()))
+    limits = Limits(arm=f(np.stack([arm.lower, arm.upper], axis=-1).reshape(arm.n, 2)),
+                    stroke=f(model.stroke), ujoint=f(model.ujoint_limits))
+    return RobotArrays(kane, limits)
+
+
+def robot_arrays(robot) -> RobotArrays:
+    """:func:`build` of ``robot.hybrid``, cached per robot."""
+    out = _CACHE.get(robot)
+    if out is None:
+        out = _CACHE[robot] = build(robot.hybrid)
+    return out
+
+
+def as_mpf(C: KaneConstants) -> KaneConstants:
+    """The constants as object arrays of ``mpf`` (exact conversions), for the mpmath
+    backend; integers and booleans unchanged."""
+    import mpmath as mp
+
+    def conv(x):
+        if isinstance(x, np.ndarray) and x.dtype.kind == "f":
+            out = np.empty(x.shape, dtype=object)
+            for idx, v in np.ndenumerate(x):
+                out[idx] = mp.mpf(float(v))
+            return out
+        if isinstance(x, float):
+            return mp.mpf(x)
+        return x
+
+    return KaneConstants(*(conv(x) for x in C))

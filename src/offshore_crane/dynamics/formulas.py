@@ -1,0 +1,332 @@
+"""Kane's method for the hybrid robot, written once, per sample (paper Eqs. 18-40).
+
+Like :mod:`offshore_crane.kinematics.formulas` (whose formulas these call), this is plain
+arithmetic on 3-tuples that :mod:`.backends` runs vectorised with NumPy, compiled with
+Numba, or in Python floats / mpmath. Two forms of Kane's equations live here:
+
+**Fused** (:func:`kane_sample`, the default ``method="kane"``). Every body's partial
+velocities are linear images of a few *carrier* partials, so Kane's sums
+``Σ v_r · F + ω_r · T`` are taken *before* the dot product with the carrier:
+
+- a leg reduces to an equivalent force ``f_S`` at its sphere centre S_i: with both links
+  sharing ω_r = Ω v_S,r, ``Ω = (I − u nᵀ/(u·n)) [u]× / l``,
+  ``v_r^{up}·F_up + v_r^{lo}·F_lo + ω_r·(T_lo + T_up) = v_S,r · f_S`` with
+  ``f_S = F_up + (M' × u)/l``, ``M = ρ_lo × F_lo + ρ_up × F_up + T``,
+  ``M' = M − n (u·M)/(u·n)`` (ρ: the links' centres of mass from P_i and S_i);
+- the platform rows are the wrench ``(F, M_O2)`` of everything the platform carries;
+- arm row j is ``z_j · (moment about o_j of the bodies below j)`` (revolute) or
+  ``z_j · (their force)`` (prismatic);
+- the leg forces solve the dimensionless Stewart system
+  ``Σ_i Fl_i (u_i, r_i × u_i / L) = (F, M_O2 / L)``: the attitude coordinates never enter
+  it (no division by cos q5).
+
+**Explicit** (:func:`explicit_sample`, ``method="kane-explicit"``, and the mass matrix).
+Every body's partial velocities ``v_r``, ``ω_r`` (r = 1..9) are formed, as the paper
+writes them, and ``B_r = Σ_bodies v_r · m (a − g) + ω_r · (I α + ω × I ω)``,
+``M_rs = Σ_bodies m v_r · v_s + ω_r · I ω_s``; ``A X = B`` with ``A = [[0, Jᵀ], [I3, 0]]``,
+``J_ir = u_i · v_S_i,r`` the leg-length Jacobian (a leg's rate is ``l̇_i = J_i · u``).
+It checks the fused factoring (same kinematics, other algebra) and gives the equations of
+motion ``M q̈ + h = A X``.
+
+``C`` is a :class:`KaneConstants` (arrays read once from the robot's URDF); workspaces
+(``rows``, ``A``, ``rhs``, ``diag``, ``store``, …) are indexable arrays the caller
+provides (float arrays compiled, object arrays vectorised). Units: SI; vectors in base
+axes; ``g`` the gravity [m/s²].
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+from ..kinematics.formulas import (FULL, MASSLESS, add, arm_child, arm_joint, attitude, axpy,
+                                   cross, platform_partials, put, take, dot, leg_frame, leg_geometry, leg_motion,
+                                   leg_spin, mat3, mm, mtv, mv, platform_rates,
+                                   point_acceleration, point_velocity, row3, scale, sub,
+                                   ujoint_angles, ujoint_axes)
+
+#: The arrays Kane's formulas read, built by :func:`offshore_crane.dynamics.constants.build`.
+#: Shapes: plat_c (3,), plat_I (3, 3) [platform frame, about the CoM]; arm_* (na, ...):
+#: arm_t, arm_Ro joint origin and orientation in the parent body frame, arm_axis unit axis
+#: in the joint frame, arm_prism bool, arm_m [kg], arm_c CoM in the body frame, arm_I
+#: central inertia in body axes; leg_s (6, 3) S_i in the platform frame, leg_P P_i (base),
+#: leg_X/Y/Z (6, 3) the U-joint frame's axes (Y = a1, Z = leg at zero angles); lo_*/up_*
+#: lower/upper link mass (6,) and CoM (6, 3) in the leg frame (origins P_i and S_i);
+#: leg_I (6, 3, 3) both links' central inertias summed, leg axes (they share ω, α);
+#: thin_It (6,), lo_cz, up_cz (6,): the thin-rod approximation's transverse inertia and
+#: CoMs on the axis; L [m] the length scale of the Stewart matrix.
+KaneConstants = namedtuple("KaneConstants", (
+    "plat_m", "plat_c", "plat_I", "n_arm", "arm_t", "arm_Ro", "arm_axis", "arm_prism",
+    "arm_m", "arm_c", "arm_I", "leg_s", "leg_P", "leg_X", "leg_Y", "leg_Z", "lo_m", "lo_c",
+    "up_m", "up_c", "leg_I", "thin_It", "lo_cz", "up_cz", "L"))
+
+#: Columns of the arm's per-body workspace ``store`` (n_arm, STORE_WIDTH).
+Z_, R_, OFF_, RC_, F_, T_, ATT_ = 0, 3, 6, 9, 12, 15, 18
+STORE_WIDTH = 27
+#: Rows of the legs' diagnostics workspace ``diag`` (DIAG_ROWS, 6).
+LENGTH, COS_THETA2, HEIGHT, THETA1, THETA2 = 0, 1, 2, 3, 4
+DIAG_ROWS = 5
+
+
+def body_torque(R, I, omega, alpha):
+    """``I_w α + ω × I_w ω`` [N·m] with ``I_w = R I Rᵀ`` (computed in body axes)."""
+    wb = mtv(R, omega)
+    tb = add(mv(I, mtv(R, alpha)), cross(wb, mv(I, wb)))
+    return mv(R, tb)
+
+
+def rigid_force(m, a_com, g):
+    """``m (a − g)`` [N]: minus the inertia and gravity forces of a body."""
+    return scale(sub(a_com, g), m)
+
+
+# --------------------------------------------------------------------------- fused
+def platform_wrench(C, R, omega, alpha, a, g):
+    """The platform body's ``(F, M about O2)``: ``m (a_c − g)`` and ``T + ρ × F``."""
+    rho = mv(R, C.plat_c)
+    F = rigid_force(C.plat_m, point_acceleration(a, omega, alpha, rho), g)
+    return F, add(body_torque(R, C.plat_I, omega, alpha), cross(rho, F))
+
+
+def arm_forward(C, R, omega, alpha, a, q, qd, qdd, first, g, store):
+    """Forward recursion over the arm bodies on a base of attitude ``R``, angular velocity
+    ``omega``, acceleration ``alpha``, origin acceleration ``a``: fills ``store`` (see the
+    ``*_`` columns). Joint b's coordinate is ``q[first + b]`` (6 for the hybrid robot)."""
+    for b in range(C.n_arm):
+        axis = row3(C.arm_axis, b)
+        r, Rj, z = arm_joint(R, mat3(C.arm_Ro, b), row3(C.arm_t, b), axis)
+        a_j = point_acceleration(a, omega, alpha, r)
+        R, off, omega, alpha, a = arm_child(Rj, z, axis, omega, alpha, a_j, C.arm_prism[b],
+                                            q[first + b], qd[first + b], qdd[first + b])
+        rc = mv(R, row3(C.arm_c, b))
+        put(store, b, Z_, z)
+        put(store, b, R_, r)
+        put(store, b, OFF_, off)
+        put(store, b, RC_, rc)
+        put(store, b, F_, rigid_force(C.arm_m[b], point_acceleration(a, omega, alpha, rc), g))
+        put(store, b, T_, body_torque(R, mat3(C.arm_I, b), omega, alpha))
+        put(store, b, ATT_, R[0])
+        put(store, b, ATT_ + 3, R[1])
+        put(store, b, ATT_ + 6, R[2])
+
+
+def arm_backward(C, store, rows):
+    """Arm rows ``rows[b]`` [N·m or N] and the arm's wrench ``(F, M about the base
+    body's origin)`` by backward accumulation of the bodies' wrenches in ``store``."""
+    F = (0.0, 0.0, 0.0)
+    M = (0.0, 0.0, 0.0)
+    for b in range(C.n_arm - 1, -1, -1):
+        off = take(store, b, OFF_)
+        if b < C.n_arm - 1:        # shift the moment of bodies > b from o_{b+1} to o_b
+            M = add(M, cross(add(off, take(store, b + 1, R_)), F))
+        Fb = take(store, b, F_)
+        M = add(add(M, take(store, b, T_)), cross(add(off, take(store, b, RC_)), Fb))
+        F = add(F, Fb)
+        rows[b] = dot(take(store, b, Z_), F) if C.arm_prism[b] else dot(take(store, b, Z_), M)
+    if C.n_arm > 0:
+        M = add(M, cross(take(store, 0, R_), F))
+    return F, M
+
+
+def leg_force(C, l, R, p, v, a, omega, alpha, g, static, leg_model):
+    """Leg ``l``'s geometry and its equivalent force ``f_S`` [N] at S_l (module docstring).
+
+    Returns:
+        ``(r, u, l, dx, dy, dz, h, d_z, f_S)``: O2 → S_l, the unit leg vector, its length
+        [m], ``S − P`` in the U-joint frame, ``h = l cos θ2``, the height of S_l above
+        P_l [m] and ``f_S`` (zero for massless legs).
+    """
+    X, Y, Z = row3(C.leg_X, l), row3(C.leg_Y, l), row3(C.leg_Z, l)
+    P = row3(C.leg_P, l)
+    r, d, length, il, u, dx, dy, dz, h = leg_geometry(p, R, row3(C.leg_s, l), P, X, Y, Z)
+    f_S = (0.0 * length, 0.0 * length, 0.0 * length)
+    if leg_model != MASSLESS:
+        neg_g = scale(g, -1.0)
+        l_h = 0.0 * length
+        if leg_model == FULL:
+            a2, n = ujoint_axes(X, Z, dx, dz, h)
+            l_h = length / h
+            Rl = leg_frame(u, a2)
+            rho_lo = mv(Rl, row3(C.lo_c, l))
+            rho_up = mv(Rl, row3(C.up_c, l))
+        else:
+            a2 = n = f_S
+            Rl = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))   # unused
+            rho_lo = scale(u, C.lo_cz[l])
+            rho_up = scale(u, C.up_cz[l])
+        if static:                      # the legs are at rest: weight only
+            F_lo = scale(neg_g, C.lo_m[l])
+            F_up = scale(neg_g, C.up_m[l])
+            T = f_S
+        else:
+            v_S = point_velocity(v, omega, r)
+            a_S = point_acceleration(a, omega, alpha, r)
+            rate, accel, w, al, wxu, e, th1d, th2d = leg_motion(
+                v_S, a_S, u, length, il, Y, a2, n, l_h, leg_model == FULL)
+            F_lo = scale(add(point_acceleration(f_S, w, al, rho_lo), neg_g), C.lo_m[l])
+            F_up = scale(add(point_acceleration(a_S, w, al, rho_up), neg_g), C.up_m[l])
+            if leg_model == FULL:
+                T = body_torque(Rl, mat3(C.leg_I, l), w, al)
+            else:                       # thin rods: ω ⟂ u, I = It (1 − u uᵀ)
+                T = scale(al, C.thin_It[l])
+        M = add(add(cross(rho_lo, F_lo), cross(rho_up, F_up)), T)
+        if leg_model == FULL:
+            M = axpy(dot(u, M) * l_h, n, M)         # M' = M − n (u·M)/(u·n)
+        f_S = add(F_up, scale(cross(M, u), il))
+    return r, u, length, dx, dy, dz, h, d[2], f_S
+
+
+def kane_sample(C, q, qd, qdd, g, static, leg_model, want_legs, want_angles, rows, A, rhs,
+                diag, store):
+    """The fused Kane equations of one sample (or of n samples, vectorised).
+
+    Fills ``rows[0:n_arm]`` with the arm actuators ``T1, T2, Fs``; with ``want_legs``, the
+    dimensionless 6x6 Stewart matrix ``A`` (column l: ``(u_l, r_l × u_l / L)``), its
+    right-hand side ``rhs = (F, M_O2 / L)`` (the leg forces solve ``A Fl = rhs``) and the
+    legs' diagnostics ``diag`` (rows LENGTH, COS_THETA2, HEIGHT and, with
+    ``want_angles``, THETA1, THETA2).
+
+    Args:
+        static: the platform is at rest (q̇ = q̈ = 0 for q1..q6): its velocity and
+            acceleration terms are skipped (exact; the caller checks the premise).
+        leg_model: FULL, THIN_ROD or MASSLESS.
+        want_legs: False when no leg force is wanted: legs and platform are skipped.
+    """
+    R, w4, w5, w6 = attitude(q)
+    p = (q[0], q[1], q[2])
+    zero = scale(p, 0.0)
+    if static:
+        omega = alpha = v = a = zero
+    else:
+        omega, alpha = platform_rates(w4, w5, qd, qdd)
+        v = (qd[0], qd[1], qd[2])
+        a = (qdd[0], qdd[1], qdd[2])
+    arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store)
+    F, M = arm_backward(C, store, rows)
+    if want_legs:
+        Fp, Mp = platform_wrench(C, R, omega, alpha, a, g)
+        F = add(F, Fp)
+        M = add(M, Mp)
+        iL = 1.0 / C.L
+        for l in range(6):
+            r, u, length, dx, dy, dz, h, height, f_S = leg_force(
+                C, l, R, p, v, a, omega, alpha, g, static, leg_model)
+            F = add(F, f_S)
+            M = add(M, cross(r, f_S))
+            rxu = cross(r, u)
+            for i in range(3):
+                A[i, l] = u[i]
+                A[3 + i, l] = rxu[i] * iL
+            diag[LENGTH, l] = length
+            diag[COS_THETA2, l] = h / length
+            diag[HEIGHT, l] = height
+            if want_angles:
+                th1, th2 = ujoint_angles(dx, dy, dz, h)
+                diag[THETA1, l] = th1
+                diag[THETA2, l] = th2
+        for i in range(3):
+            rhs[i] = F[i]
+            rhs[3 + i] = M[i] * iL
+
+
+# --------------------------------------------------------------------------- explicit
+def accumulate(B, Mm, Vw, Ww, m, Iw, F, T, want_mass):
+    """Add one body's share to ``B_r += v_r·F + ω_r·T`` and, with ``want_mass``,
+    ``M_rs += m v_r·v_s + ω_r·(I_w ω_s)``; ``Vw, Ww`` (9, 3) hold its partials."""
+    for r in range(9):
+        vr, wr = take(Vw, r, 0), take(Ww, r, 0)
+        B[r] = B[r] + dot(vr, F) + dot(wr, T)
+        if want_mass:
+            Iwr = mv(Iw, wr)
+            for s in range(r + 1):
+                Mm[r, s] = Mm[r, s] + m * dot(vr, take(Vw, s, 0)) + dot(Iwr, take(Ww, s, 0))
+
+
+def world_inertia(R, I):
+    """``R I Rᵀ`` [kg·m²]."""
+    RI = mm(R, I)
+    return ((dot(RI[0], R[0]), dot(RI[0], R[1]), dot(RI[0], R[2])),
+            (dot(RI[1], R[0]), dot(RI[1], R[1]), dot(RI[1], R[2])),
+            (dot(RI[2], R[0]), dot(RI[2], R[1]), dot(RI[2], R[2])))
+
+
+def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, diag):
+    """Kane's equations with every body's partial velocities formed (module docstring).
+
+    Fills ``B`` (9,) [N or N·m per generalized speed], the leg-length Jacobian ``J``
+    (6, 6) [l̇_i per u_r, r ≤ 6] and, with ``want_mass``, the lower triangle of the mass
+    matrix ``Mm`` (9, 9) [kg, kg·m, kg·m²] (the caller zeroes ``B`` and ``Mm``).
+    ``store`` is the arm workspace, ``Vw, Ww`` (9, 3) a body's partials, ``Vs`` (9, 3)
+    the sphere centre's; ``diag`` receives the legs' diagnostics (as
+    :func:`kane_sample`'s, angles included).
+    """
+    R, w4, w5, w6 = attitude(q)
+    p = (q[0], q[1], q[2])
+    omega, alpha = platform_rates(w4, w5, qd, qdd)
+    v = (qd[0], qd[1], qd[2])
+    a = (qdd[0], qdd[1], qdd[2])
+    # platform body
+    rho = mv(R, C.plat_c)
+    platform_partials(w4, w5, w6, rho, Vw, Ww)
+    accumulate(B, Mm, Vw, Ww, C.plat_m, world_inertia(R, C.plat_I),
+               rigid_force(C.plat_m, point_acceleration(a, omega, alpha, rho), g),
+               body_torque(R, C.plat_I, omega, alpha), want_mass)
+    # legs
+    for l in range(6):
+        X, Y, Z = row3(C.leg_X, l), row3(C.leg_Y, l), row3(C.leg_Z, l)
+        r, d, length, il, u, dx, dy, dz, h = leg_geometry(p, R, row3(C.leg_s, l),
+                                                          row3(C.leg_P, l), X, Y, Z)
+        a2, n = ujoint_axes(X, Z, dx, dz, h)
+        l_h = length / h
+        Rl = leg_frame(u, a2)
+        rho_lo = mv(Rl, row3(C.lo_c, l))
+        rho_up = mv(Rl, row3(C.up_c, l))
+        th1, th2 = ujoint_angles(dx, dy, dz, h)
+        diag[LENGTH, l] = length
+        diag[COS_THETA2, l] = h / length
+        diag[HEIGHT, l] = d[2]
+        diag[THETA1, l] = th1
+        diag[THETA2, l] = th2
+        v_S = point_velocity(v, omega, r)
+        a_S = point_acceleration(a, omega, alpha, r)
+        w, al = leg_motion(v_S, a_S, u, length, il, Y, a2, n, l_h, True)[2:4]
+        zero = scale(r, 0.0)
+        F_lo = rigid_force(C.lo_m[l], point_acceleration(zero, w, al, rho_lo), g)
+        F_up = rigid_force(C.up_m[l], point_acceleration(a_S, w, al, rho_up), g)
+        platform_partials(w4, w5, w6, r, Vs, Ww)           # v_S,r; Ww: scratch
+        for k in range(6):
+            J[l, k] = dot(u, take(Vs, k, 0))
+        # lower link: v_r = ω_r × ρ_lo, ω_r = Ω v_S,r
+        for k in range(9):
+            w_r = leg_spin(scale(cross(u, take(Vs, k, 0)), il), u, n, l_h)
+            put(Ww, k, 0, w_r)
+            put(Vw, k, 0, cross(w_r, rho_lo))
+        Iw = world_inertia(Rl, mat3(C.leg_I, l))
+        accumulate(B, Mm, Vw, Ww, C.lo_m[l], Iw, F_lo, body_torque(Rl, mat3(C.leg_I, l), w, al),
+                   want_mass)
+        # upper link: v_r = v_S,r + ω_r × ρ_up (its inertia is counted with the lower's)
+        for k in range(9):
+            put(Vw, k, 0, add(take(Vs, k, 0), cross(take(Ww, k, 0), rho_up)))
+            put(Ww, k, 0, zero)
+        accumulate(B, Mm, Vw, Ww, C.up_m[l], Iw, F_up, zero, want_mass)
+    # arm: positions from O2 of the joint origins o_j and the bodies' CoMs c_b
+    arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store)
+    origin = scale(p, 0.0)
+    for b in range(C.n_arm):
+        o_b = add(origin, take(store, b, R_))
+        origin = add(o_b, take(store, b, OFF_))
+        c_b = add(origin, take(store, b, RC_))
+        platform_partials(w4, w5, w6, c_b, Vw, Ww)
+        o_j = scale(p, 0.0)
+        orig_j = scale(p, 0.0)
+        for j in range(b + 1):
+            o_j = add(orig_j, take(store, j, R_))
+            orig_j = add(o_j, take(store, j, OFF_))
+            z = take(store, j, Z_)
+            if C.arm_prism[j]:
+                put(Vw, 6 + j, 0, z)
+            else:
+                put(Vw, 6 + j, 0, cross(z, sub(c_b, o_j)))
+                put(Ww, 6 + j, 0, z)
+        Rb = (take(store, b, ATT_), take(store, b, ATT_ + 3), take(store, b, ATT_ + 6))
+        accumulate(B, Mm, Vw, Ww, C.arm_m[b], world_inertia(Rb, mat3(C.arm_I, b)),
+                   take(store, b, F_), take(store, b, T_), want_mass)

@@ -1,0 +1,221 @@
+"""Workspace limits and the singularity policy: what the kernels check, and the thresholds.
+
+Three kinds of singularity are watched, each by a dimensionless *condition number*
+``κ ≥ 1`` whose product with the machine epsilon bounds the relative error it causes:
+
+- **Stewart (leg-Jacobian) singularity**: ``κ`` is the 1-norm condition number of the
+  linear system solved for the leg forces (for the fused Kane path the dimensionless
+  Stewart Jacobian ``[u_i; r_i × u_i / L]``; for the explicit Kane and RNEA paths the
+  leg-length Jacobian in the coordinates' rates, columns 4-6 times ``1/L``).
+- **U-joint gimbal**: the leg axis along the first U-joint axis; ``κ = 1/cos θ2`` (the
+  leg's spin is ``(ω⊥·n)/(u·n)`` with ``u·n = −cos θ2``).
+- **Attitude coordinates** at pitch ``q5 = ±π/2``: ``κ = 1/|cos q5|``. Roll and yaw rates
+  are then not defined by the angular velocity. The fused Kane path solves in twist form
+  and does not divide by ``cos q5``; the explicit Kane and RNEA paths do, through ``κ``
+  of their leg Jacobian.
+
+Policy (``Thresholds(warn, error)``, CLI ``--warn-cond``, ``--error-cond``;
+``docs/numerics.md`` shows the measured errors): ``κ > warn`` warns once per kind and run
+(the first sample and its value, as an :class:`OffshoreCraneWarning`); ``κ > error``
+raises :class:`~offshore_crane.errors.SingularConfigurationError` with the sample index,
+time and ``κ``. Defaults: warn 1e5 (relative error bound ``κ ε ≈ 2e-11``), error 1e8
+(``κ ε ≈ 2e-8``, which no longer meets the 1e-9 agreement the validation promises).
+
+Workspace limits (``limits=True``): each leg's length inside its stroke, the U-joint
+angles and the arm joints inside the URDF limits, and the sphere centres above the
+U-joint centres (a platform below the base). Violations raise
+:class:`~offshore_crane.errors.WorkspaceError` naming the joint, sample and value.
+
+The kernels record what they find in a small float array, the *health record*
+(layout below, :func:`new_health`), filled sample by sample in compiled code or chunk by
+chunk in NumPy; :func:`merge` combines the records of chunks or threads and
+:func:`enforce` turns one into errors and warnings.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..conventions import ARM_JOINTS
+from ..errors import (InputError, NumericalError, SingularConfigurationError,
+                      WorkspaceError)
+
+
+class OffshoreCraneWarning(UserWarning):
+    """A result computed near a singularity: valid, but check the pose."""
+
+
+@dataclass(frozen=True)
+class Thresholds:
+    """Condition-number thresholds of the singularity policy (see module docstring).
+
+    Attributes:
+        warn: Warn above this condition number (default 1e5).
+        error: Raise :class:`SingularConfigurationError` above it (default 1e8).
+    """
+
+    warn: float = 1e5
+    error: float = 1e8
+
+    def __post_init__(self):
+        for name in ("warn", "error"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)):
+                raise InputError(f"condition-number threshold {name} must be a number, got "
+                                 f"{value!r} (CLI --{name}-cond)", name="thresholds")
+        if not (1.0 <= self.warn <= self.error):      # also rejects NaN
+            raise InputError(
+                f"condition-number thresholds need 1 <= warn <= error, got warn={self.warn:g}, "
+                f"error={self.error:g} (CLI --warn-cond, --error-cond)", name="thresholds")
+
+
+# ---------------------------------------------------------------- the health record
+#: Workspace categories, in the order they are reported (the most telling first).
+CATEGORIES = ("arm", "height", "stroke", "ujoint")
+#: Singularity kinds (index into the record's κ blocks).
+KINDS = ("leg-Jacobian", "U-joint gimbal", "attitude")
+LEG_JACOBIAN, GIMBAL, ATTITUDE = 0, 1, 2
+#: Slots: first non-finite input (sample, column, array 0 q / 1 qd / 2 qdd).
+BAD_INPUT = 0
+#: Slots: per category (sample, code, value); code = arm joint b, or leg l (height,
+#: stroke), or 2 l + axis (U-joint).
+VIOLATION = 3
+#: Slots: first non-finite result (sample, column of X).
+BAD_OUTPUT = VIOLATION + 3 * len(CATEGORIES)
+#: Slots: per kind (worst κ, its sample, first sample above warn, first above error).
+KAPPA = BAD_OUTPUT + 2
+SIZE = KAPPA + 4 * len(KINDS)
+
+
+def new_health() -> np.ndarray:
+    """An empty health record: no sample found yet (-1), worst κ −inf."""
+    h = np.full(SIZE, -1.0)
+    h[KAPPA::4] = -np.inf
+    return h
+
+
+def merge(records) -> np.ndarray:
+    """One record from those of consecutive chunks or threads (any order).
+
+    ``first`` slots keep the smallest sample index found; worst κ the largest value.
+    """
+    out = new_health()
+    groups = [(BAD_INPUT, 3), *((VIOLATION + 3 * c, 3) for c in range(len(CATEGORIES))),
+              (BAD_OUTPUT, 2)]
+    for h in records:
+        for start, width in groups:
+            if h[start] >= 0 and (out[start] < 0 or h[start] < out[start]):
+                out[start:start + width] = h[start:start + width]
+        for kind in range(len(KINDS)):
+            s = KAPPA + 4 * kind
+            if h[s] > out[s] or (np.isnan(h[s]) and not np.isnan(out[s])):
+                out[s:s + 2] = h[s:s + 2]
+            for slot in (s + 2, s + 3):
+                if h[slot] >= 0 and (out[slot] < 0 or h[slot] < out[slot]):
+                    out[slot] = h[slot]
+    return out
+
+
+def _when(index: int, t) -> str:
+    return f"sample {index}" + ("" if t is None else f" (t = {t[index]:.4g} s)")
+
+
+def check_inputs(health: np.ndarray, arrays) -> None:
+    """Raise :class:`InputError` for the first non-finite input the kernel met.
+
+    Args:
+        arrays: the ``(N, 9)`` arrays ``(q, qd, qdd)`` it read.
+    """
+    if health[BAD_INPUT] < 0:
+        return
+    k, j, which = (int(x) for x in health[BAD_INPUT:BAD_INPUT + 3])
+    name = ("q", "qd", "qdd")[which]
+    raise InputError(f"{name}[{k}, {j}] is {arrays[which][k, j]} (sample {k}, column "
+                     f"{j + 1}); every value must be finite", name=name, index=k)
+
+
+def check_workspace(health: np.ndarray, limits, q: np.ndarray, t=None) -> None:
+    """Raise :class:`WorkspaceError` for the first limit violation, category by category
+    in :data:`CATEGORIES` order (a platform below the base is named before the U-joint
+    angles and leg lengths it distorts).
+
+    Args:
+        limits: :class:`~offshore_crane.dynamics.constants.Limits` of the robot.
+        q: ``(N, 9)`` coordinates (for the arm's messages).
+    """
+    for c, category in enumerate(CATEGORIES):
+        s = VIOLATION + 3 * c
+        if health[s] < 0:
+            continue
+        k, code, value = int(health[s]), int(health[s + 1]), float(health[s + 2])
+        if category == "height":
+            raise WorkspaceError(
+                f"sphere centre S{code + 1} is {-value:.4g} m below its U-joint at "
+                f"{_when(k, t)} (platform below the base); raise q3",
+                joint=f"leg{code + 1}_slide", index=k, value=value)
+        if category == "arm":
+            joint, what, unit = ARM_JOINTS[code], ARM_JOINTS[code], ("rad", "rad", "m")[code]
+            lo, hi = limits.arm[code]
+        elif category == "stroke":
+            joint, what, unit = f"leg{code + 1}_slide", f"leg{code + 1} length", "m"
+            lo, hi = limits.stroke[code]
+        else:
+            leg, axis = divmod(code, 2)
+            joint = what = f"leg{leg + 1}_u{axis + 1}"
+            unit = "rad"
+            lo, hi = limits.ujoint[leg, axis]
+        raise WorkspaceError(
+            f"{what} = {value:.6g} {unit} at {_when(k, t)} is outside [{lo:.6g}, {hi:.6g}] "
+            f"{unit}; change the trajectory or the robot parameters, or pass limits=False "
+            "(CLI --no-limits) to study it anyway", joint=joint, index=k, value=value)
+
+
+def check_singularities(health: np.ndarray, kappa: dict, thresholds: Thresholds, t=None,
+                        error_kinds=(LEG_JACOBIAN, GIMBAL)) -> None:
+    """Apply the policy: :class:`SingularConfigurationError` for the first sample above
+    ``thresholds.error`` (or non-finite κ) of a kind in ``error_kinds``; one warning per
+    kind above ``thresholds.warn``.
+
+    Args:
+        kappa: ``{kind index: (N,) condition numbers}`` for the messages.
+    """
+    for kind in error_kinds:
+        s = KAPPA + 4 * kind
+        if health[s + 3] >= 0:
+            k = int(health[s + 3])
+            value = float(kappa[kind][k])
+            raise SingularConfigurationError(
+                f"{KINDS[kind]} singularity: condition number {value:.3g} at {_when(k, t)} "
+                f"exceeds {thresholds.error:.3g}; the forces there are unreliable (move the "
+                "trajectory away from the singularity or raise the error threshold)",
+                index=k, time=None if t is None else float(t[k]), condition=value,
+                kind=KINDS[kind])
+    for kind in range(len(KINDS)):
+        s = KAPPA + 4 * kind
+        if health[s + 2] >= 0:
+            k = int(health[s + 2])
+            warnings.warn(OffshoreCraneWarning(
+                f"near a {KINDS[kind]} singularity: condition number {kappa[kind][k]:.3g} at "
+                f"{_when(k, t)} (worst {health[s]:.3g}) exceeds {thresholds.warn:.3g}"),
+                stacklevel=4)
+
+
+def check_outputs(health: np.ndarray, names, arrays, t=None) -> None:
+    """Raise :class:`NumericalError` for the first non-finite actuator force.
+
+    Args:
+        names: Actuator names of X's columns.
+        arrays: ``(q, qd, qdd)``, to state the inputs' magnitude.
+    """
+    if health[BAD_OUTPUT] < 0:
+        return
+    k, j = int(health[BAD_OUTPUT]), int(health[BAD_OUTPUT + 1])
+    scale = max(float(np.abs(x[k]).max()) for x in arrays)
+    raise NumericalError(
+        f"{names[j]} is not finite at {_when(k, t)}: the dynamics overflowed (largest input "
+        f"|q|, |qd|, |qdd| there {scale:.3g}); check the inputs' units and the robot's "
+        "parameters", index=k, name=names[j])
+

@@ -1,0 +1,545 @@
+"""The RNEA reference path: Pinocchio's RNEA on the equivalent tree, projected on u.
+
+It shares nothing with Kane's code but the URDF (it reads the joint placements, axes and
+frames from Pinocchio's own model of it):
+
+1. **Loop closure** (:func:`tree_state`): for each leg, the passive U-joint angles and the
+   leg length that put frame ``leg{i}_tip`` on frame ``platform_anchor{i}``, by Newton's
+   method on the tip position of the leg's serial chain; their rates and accelerations
+   from the chain's 3x3 Jacobian: ``J θ̇ = v_S``, ``J θ̈ = a_S − (J̇ θ̇)``, where ``v_S``,
+   ``a_S`` follow from the platform's chain of virtual joints. Both chains' kinematics are
+   a generic forward recursion over 1-DOF joints (compiled with Numba), tested against
+   Pinocchio's forward kinematics (``tests/test_reference.py``). With ``backend="numpy"``
+   the closure uses Pinocchio's frame placements and Jacobians instead, sample by sample
+   (slow, a second opinion on the first).
+2. ``τ = RNEA(q_tree, v_tree, a_tree)`` [N, N·m] by ``pin.rneaInParallel``.
+3. With ``G = ∂v_tree/∂u`` (its leg rows ``J⁻¹ ∂v_S/∂u``), the virtual power of the tree
+   equals that of the mechanism: ``Gᵀ S X = Gᵀ τ``, ``S`` placing X on the actuated
+   joints; so ``(T1, T2, Fs) = τ_arm`` and ``Jlᵀ Fl = (Gᵀ τ)[0:6]`` with ``Jl`` the
+   leg-length rows of G, solved with LAPACK.
+
+Frames: the base frame is Pinocchio's world (the URDF root ``base``); units SI.
+"""
+
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from ..conventions import ARM_JOINTS, LEG_TIPS, N_LEGS, PLATFORM_ANCHORS, PLATFORM_JOINTS
+from ..errors import ModelError, NumericalError, require
+
+#: Samples per block: the tree's Q, V, A, τ arrays (4 x 27 doubles a sample) stay bounded.
+BLOCK = 1 << 16
+#: Newton on a leg's tip position stops when the residual is below this, relative to
+#: 1 m + |S| (a few ulps of the positions: the reference closes the loops to round-off);
+#: from the previous samples' extrapolation it takes 2 evaluations, from zero angles
+#: 5-8; at most MAX_NEWTON. Revolute steps are limited to MAX_TURN [rad].
+RESIDUAL_TOL = 4e-16
+MAX_NEWTON = 60
+MAX_TURN = 0.5
+
+_MODELS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+class Chain(NamedTuple):
+    """Serial chains of 1-DOF joints read from Pinocchio's model, stacked.
+
+    Attributes:
+        R, p: ``(m, n, 3, 3)``, ``(m, n, 3)`` joint placements in the parent joint frame.
+        axis: ``(m, n, 3)`` unit axis in the joint frame; ``prismatic``: ``(m, n)``.
+        R_end, p_end: ``(m, 3, 3)``, ``(m, 3)`` the end frame in the last joint's frame.
+        coordinate: ``(m, n)`` index of each joint's coordinate (in q1..q9, or -1).
+        v_index: ``(m, n)`` velocity index of each joint in the tree.
+    """
+
+    R: np.ndarray
+    p: np.ndarray
+    axis: np.ndarray
+    prismatic: np.ndarray
+    R_end: np.ndarray
+    p_end: np.ndarray
+    coordinate: np.ndarray
+    v_index: np.ndarray
+
+
+@dataclass(frozen=True)
+class Tree:
+    """What the reference reads of Pinocchio's model of the URDF."""
+
+    platform: Chain       # one chain per anchor (6), the platform's virtual joints
+    legs: Chain           # one chain per leg tip (6): u1, u2, slide
+    arm_v: np.ndarray     # velocity indices of the arm joints (0 or 3)
+    plat_v: np.ndarray    # velocity indices of q1..q6's joints
+    nv: int
+    L: float              # mean |S_i − O2| [m]: scales the rotation rows of Jlᵀ
+
+
+def _joint_axis(pin, jmodel):
+    """Unit axis (in the joint frame) and type of a 1-DOF joint from its motion subspace."""
+    data = jmodel.createData()
+    jmodel.calc(data, np.zeros(jmodel.nq))
+    S = np.asarray(data.S).reshape(6)
+    lin, ang = S[:3], S[3:]
+    if np.linalg.norm(ang) > 0.5:
+        return ang / np.linalg.norm(ang), False
+    return lin / np.linalg.norm(lin), True
+
+
+def _chain(pin, model, frame: str, coordinates: dict) -> tuple:
+    fid = model.getFrameId(frame)
+    if fid >= len(model.frames):
+        raise NumericalError(f"the tree has no frame '{frame}'", name=frame)
+    f = model.frames[fid]
+    joints = []
+    j = f.parentJoint
+    while j > 0:
+        joints.append(j)
+        j = model.parents[j]
+    joints.reverse()
+    R, p, axis, prism, coord, vidx = [], [], [], [], [], []
+    for j in joints:
+        M = model.jointPlacements[j]
+        a, is_p = _joint_axis(pin, model.joints[j])
+        R.append(M.rotation)
+        p.append(M.translation)
+        axis.append(a)
+        prism.append(is_p)
+        coord.append(coordinates.get(model.names[j], -1))
+        vidx.append(model.idx_vs[j])
+    return (np.array(R), np.array(p), np.array(axis), np.array(prism), f.placement.rotation,
+            f.placement.translation, np.array(coord), np.array(vidx))
+
+
+def _stack(chains) -> Chain:
+    return Chain(*(np.ascontiguousarray(np.array([c[k] for c in chains])) for k in range(8)))
+
+
+def tree(robot) -> Tree:
+    """The reference's view of ``robot.pinocchio_model`` (cached per robot)."""
+    out = _MODELS.get(robot)
+    if out is None:
+        pin = require("pinocchio", "pin", "The RNEA reference")
+        model = robot.pinocchio_model
+        coords = {name: k for k, name in enumerate(PLATFORM_JOINTS)}
+        plat = _stack([_chain(pin, model, a, coords) for a in PLATFORM_ANCHORS])
+        legs = _stack([_chain(pin, model, t, {}) for t in LEG_TIPS])
+        if (not (plat.v_index == plat.v_index[0]).all()
+                or sorted(plat.coordinate[0]) != list(range(6)) or legs.v_index.shape[1] != 3
+                or not (legs.prismatic == [False, False, True]).all()):
+            raise ModelError("the RNEA reference needs the six platform anchors on the "
+                             "platform's six virtual joints and three joints per leg "
+                             "(revolute, revolute, prismatic)",
+                             element="platform")
+        arm_v = np.array([model.idx_vs[model.getJointId(n)] for n in ARM_JOINTS
+                          if model.existJointName(n)], dtype=np.int64)
+        plat_v = np.array([model.idx_vs[model.getJointId(n)] for n in PLATFORM_JOINTS],
+                          dtype=np.int64)
+        L = float(np.mean([np.linalg.norm(p) for p in plat.p_end]))
+        out = _MODELS[robot] = Tree(plat, legs, arm_v, plat_v, model.nv, L)
+    return out
+
+
+# --------------------------------------------------------------------------- compiled
+# Numba is imported with this module (which the dynamics package imports lazily, when the
+# reference runs): the compiled closure and projection below.
+jit = njit(cache=True, nogil=True, error_model="numpy")
+ijit = njit(cache=True, nogil=True, error_model="numpy", inline="always")
+
+# Small vectors and matrices are tuples here (kept in registers by the compiler).
+@ijit
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0])
+
+@ijit
+def lin(a, s, b, t):
+    """``s a + t b``."""
+    return (s * a[0] + t * b[0], s * a[1] + t * b[1], s * a[2] + t * b[2])
+
+@ijit
+def rot(R, v):
+    """``R v`` for R a tuple of rows."""
+    return (R[0][0] * v[0] + R[0][1] * v[1] + R[0][2] * v[2],
+            R[1][0] * v[0] + R[1][1] * v[1] + R[1][2] * v[2],
+            R[2][0] * v[0] + R[2][1] * v[1] + R[2][2] * v[2])
+
+
+@ijit
+def vec(a, c, j):
+    """``a[c, j]`` of a (m, n, 3) array as a tuple."""
+    return (a[c, j, 0], a[c, j, 1], a[c, j, 2])
+
+
+@ijit
+def compose(R, P, c, j):
+    """``R P[c, j]`` (R a tuple of rows, P a (m, n, 3, 3) array) as a tuple of rows."""
+    return ((R[0][0] * P[c, j, 0, 0] + R[0][1] * P[c, j, 1, 0] + R[0][2] * P[c, j, 2, 0],
+             R[0][0] * P[c, j, 0, 1] + R[0][1] * P[c, j, 1, 1] + R[0][2] * P[c, j, 2, 1],
+             R[0][0] * P[c, j, 0, 2] + R[0][1] * P[c, j, 1, 2] + R[0][2] * P[c, j, 2, 2]),
+            (R[1][0] * P[c, j, 0, 0] + R[1][1] * P[c, j, 1, 0] + R[1][2] * P[c, j, 2, 0],
+             R[1][0] * P[c, j, 0, 1] + R[1][1] * P[c, j, 1, 1] + R[1][2] * P[c, j, 2, 1],
+             R[1][0] * P[c, j, 0, 2] + R[1][1] * P[c, j, 1, 2] + R[1][2] * P[c, j, 2, 2]),
+            (R[2][0] * P[c, j, 0, 0] + R[2][1] * P[c, j, 1, 0] + R[2][2] * P[c, j, 2, 0],
+             R[2][0] * P[c, j, 0, 1] + R[2][1] * P[c, j, 1, 1] + R[2][2] * P[c, j, 2, 1],
+             R[2][0] * P[c, j, 0, 2] + R[2][1] * P[c, j, 1, 2] + R[2][2] * P[c, j, 2, 2]))
+
+
+@ijit
+def turn(R, k, q):
+    """``R exp([k]× q)``: R's rows turned about the unit axis k (joint frame)."""
+    c, s = np.cos(q), np.sin(q)
+    t = 1.0 - c
+    e0 = (c + t * k[0] * k[0], t * k[0] * k[1] - s * k[2], t * k[0] * k[2] + s * k[1])
+    e1 = (t * k[0] * k[1] + s * k[2], c + t * k[1] * k[1], t * k[1] * k[2] - s * k[0])
+    e2 = (t * k[0] * k[2] - s * k[1], t * k[1] * k[2] + s * k[0], c + t * k[2] * k[2])
+    return ((R[0][0] * e0[0] + R[0][1] * e1[0] + R[0][2] * e2[0],
+             R[0][0] * e0[1] + R[0][1] * e1[1] + R[0][2] * e2[1],
+             R[0][0] * e0[2] + R[0][1] * e1[2] + R[0][2] * e2[2]),
+            (R[1][0] * e0[0] + R[1][1] * e1[0] + R[1][2] * e2[0],
+             R[1][0] * e0[1] + R[1][1] * e1[1] + R[1][2] * e2[1],
+             R[1][0] * e0[2] + R[1][1] * e1[2] + R[1][2] * e2[2]),
+            (R[2][0] * e0[0] + R[2][1] * e1[0] + R[2][2] * e2[0],
+             R[2][0] * e0[1] + R[2][1] * e1[1] + R[2][2] * e2[1],
+             R[2][0] * e0[2] + R[2][1] * e1[2] + R[2][2] * e2[2]))
+
+@ijit
+def solve3(M, b):
+    """``M⁻¹ b`` for a 3x3 array ``M`` and a 3-tuple ``b`` (adjugate / determinant)."""
+    c0 = cross((M[0, 1], M[1, 1], M[2, 1]), (M[0, 2], M[1, 2], M[2, 2]))
+    c1 = cross((M[0, 2], M[1, 2], M[2, 2]), (M[0, 0], M[1, 0], M[2, 0]))
+    c2 = cross((M[0, 0], M[1, 0], M[2, 0]), (M[0, 1], M[1, 1], M[2, 1]))
+    det = M[0, 0] * c0[0] + M[1, 0] * c0[1] + M[2, 0] * c0[2]
+    return ((c0[0] * b[0] + c0[1] * b[1] + c0[2] * b[2]) / det,
+            (c1[0] * b[0] + c1[1] * b[1] + c1[2] * b[2]) / det,
+            (c2[0] * b[0] + c2[1] * b[1] + c2[2] * b[2]) / det)
+
+@jit
+def chain_frame(R_, p_, axis_, prism_, c, qj, vj, aj, org, zs):
+    """Forward recursion over one chain's 1-DOF joints (placements ``R_, p_`` in the
+    parent joint frame, axes, types) at positions ``qj``, rates ``vj``, accelerations
+    ``aj``, from a world frame at rest: the last joint frame's attitude, origin,
+    angular velocity and acceleration, origin velocity and acceleration (world);
+    ``org``, ``zs`` (n, 3) receive each joint's origin and axis."""
+    R = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    p = (0.0, 0.0, 0.0)
+    w = p
+    al = p
+    v = p
+    a = p
+    for j in range(qj.shape[0]):
+        r = rot(R, vec(p_, c, j))
+        t = cross(w, r)
+        p = lin(p, 1.0, r, 1.0)
+        v = lin(v, 1.0, t, 1.0)
+        a = lin(lin(a, 1.0, cross(al, r), 1.0), 1.0, cross(w, t), 1.0)
+        Rj = compose(R, R_, c, j)
+        k = vec(axis_, c, j)
+        z = rot(Rj, k)
+        for i in range(3):
+            org[j, i] = p[i]
+            zs[j, i] = z[i]
+        if prism_[c, j]:
+            d = lin(z, qj[j], z, 0.0)
+            wd = cross(w, d)
+            a = lin(lin(lin(a, 1.0, cross(al, d), 1.0), 1.0, cross(w, wd), 1.0), 1.0,
+                    lin(cross(w, z), 2.0 * vj[j], z, aj[j]), 1.0)
+            v = lin(lin(v, 1.0, wd, 1.0), 1.0, z, vj[j])
+            p = lin(p, 1.0, d, 1.0)
+            R = Rj
+        else:
+            R = turn(Rj, k, qj[j])
+            al = lin(al, 1.0, lin(z, aj[j], cross(w, z), vj[j]), 1.0)
+            w = lin(w, 1.0, z, vj[j])
+    return R, p, w, al, v, a
+
+@jit
+def end_point(frame, pend, prism_, c, org, zs, Jc):
+    """The point ``pend`` (in the last joint frame) of a chain in state ``frame``
+    (:func:`chain_frame`): position, velocity, acceleration (world), and its Jacobian
+    ``Jc[:, j] = ∂X/∂q_j``."""
+    R, p, w, al, v, a = frame
+    r = rot(R, (pend[c, 0], pend[c, 1], pend[c, 2]))
+    X = lin(p, 1.0, r, 1.0)
+    t = cross(w, r)
+    V = lin(v, 1.0, t, 1.0)
+    A = lin(lin(a, 1.0, cross(al, r), 1.0), 1.0, cross(w, t), 1.0)
+    for j in range(prism_.shape[1]):
+        zj = (zs[j, 0], zs[j, 1], zs[j, 2])
+        col = zj
+        if not prism_[c, j]:
+            col = cross(zj, (X[0] - org[j, 0], X[1] - org[j, 1], X[2] - org[j, 2]))
+        for i in range(3):
+            Jc[i, j] = col[i]
+    return X, V, A
+
+@jit
+def chain_end(R_, p_, axis_, prism_, pend, c, qj, vj, aj, Jc, org, zs):
+    """:func:`end_point` of :func:`chain_frame` for chain ``c``."""
+    return end_point(chain_frame(R_, p_, axis_, prism_, c, qj, vj, aj, org, zs), pend, prism_,
+                     c, org, zs, Jc)
+
+@jit
+def tip_position(R_, p_, axis_, prism_, pend, c, qj, Jc):
+    """Position of chain ``c``'s end point at joint positions ``qj`` and its Jacobian
+    ``Jc[:, j] = ∂X/∂q_j`` (the part of :func:`chain_end` Newton's method needs)."""
+    R = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    p = (0.0, 0.0, 0.0)
+    n = qj.shape[0]
+    o0 = o1 = o2 = z0 = z1 = z2 = p
+    for j in range(n):
+        p = lin(p, 1.0, rot(R, vec(p_, c, j)), 1.0)
+        Rj = compose(R, R_, c, j)
+        k = vec(axis_, c, j)
+        z = rot(Rj, k)
+        if j == 0:
+            o0, z0 = p, z
+        elif j == 1:
+            o1, z1 = p, z
+        else:
+            o2, z2 = p, z
+        if prism_[c, j]:
+            p = lin(p, 1.0, z, qj[j])
+            R = Rj
+        else:
+            R = turn(Rj, k, qj[j])
+    X = lin(p, 1.0, rot(R, (pend[c, 0], pend[c, 1], pend[c, 2])), 1.0)
+    for j in range(n):
+        o, z = (o0, z0) if j == 0 else ((o1, z1) if j == 1 else (o2, z2))
+        col = z if prism_[c, j] else cross(z, lin(X, 1.0, o, -1.0))
+        for i in range(3):
+            Jc[i, j] = col[i]
+    return X
+
+
+@ijit
+def det3(M):
+    """Determinant of a 3x3 array."""
+    return (M[0, 0] * (M[1, 1] * M[2, 2] - M[1, 2] * M[2, 1])
+            - M[0, 1] * (M[1, 0] * M[2, 2] - M[1, 2] * M[2, 0])
+            + M[0, 2] * (M[1, 0] * M[2, 1] - M[1, 1] * M[2, 0]))
+
+
+@jit
+def newton(lR, lp, lax, lpr, lpe, l, S, th, iters, Jl, branch):
+    """Leg joint positions ``th`` (updated in place) putting the tip on ``S``.
+
+    Iterates ``θ += J⁻¹ (S − tip(θ))`` (revolute steps limited to MAX_TURN rad, so that a
+    far guess does not jump to another solution), until the residual is below
+    RESIDUAL_TOL (relative to the chain's size); revolute angles are wrapped into
+    (−π, π]. The solution must lie on the leg's own branch: the U-joint and slider reach
+    each tip position twice (the second with the U-joint flipped through its gimbal
+    singularity), and the flip reverses the sign of ``det J``; ``branch`` is that sign at
+    the zero angles. On return ``Jl`` is the Jacobian at ``th``. True on success.
+    """
+    scale = 1.0 + abs(S[0]) + abs(S[1]) + abs(S[2])
+    for _ in range(iters):
+        tip = tip_position(lR, lp, lax, lpr, lpe, l, th, Jl)
+        r = (S[0] - tip[0], S[1] - tip[1], S[2] - tip[2])
+        if max(abs(r[0]), abs(r[1]), abs(r[2])) <= RESIDUAL_TOL * scale:
+            return th[2] > 0.0 and det3(Jl) * branch > 0.0
+        step = solve3(Jl, r)
+        big = 0.0
+        for i in range(3):
+            if not lpr[l, i]:
+                big = max(big, abs(step[i]))
+        f = MAX_TURN / big if big > MAX_TURN else 1.0
+        for i in range(3):
+            th[i] += f * step[i]
+            if not lpr[l, i]:
+                th[i] = np.arctan2(np.sin(th[i]), np.cos(th[i]))
+    return False
+
+
+@jit
+def closure(pR, pp, pax, ppr, ppe, pco, pvi, lR, lp, lax, lpr, lpe, lvi,
+            q, qd, qdd, Q, Vt, At, G, diag, status):
+    """Tree states closing the loops for samples of q, qd, qdd (N, 9); fills the
+    Fortran (nv, N) arrays Q, Vt, At, G (N, 6, 3, 6) = ∂(leg joint rates)/∂(q̇1..q̇6)
+    and diag (5, N, 6) (length, cos θ2, height of S above P, θ1, θ2). ``status[0]``
+    is the first sample whose Newton iteration failed (-1 if none)."""
+    N = q.shape[0]
+    qp = np.empty(6)
+    vp = np.empty(6)
+    ap = np.empty(6)
+    JS = np.empty((3, 6))
+    Jl = np.empty((3, 3))
+    org = np.empty((3, 3))
+    zs = np.empty((3, 3))
+    porg = np.empty((6, 3))
+    pzs = np.empty((6, 3))
+    th = np.zeros((6, 3))
+    branch = np.empty(6)
+    for l in range(6):                   # sign of det J at zero angles: the leg's branch
+        th[l, 2] = 1.0
+        tip_position(lR, lp, lax, lpr, lpe, l, th[l], Jl)
+        branch[l] = np.sign(det3(Jl))
+    prev = np.zeros((6, 3))
+    guess = np.zeros(3)
+    zero = np.zeros(3)
+    thd = np.empty(3)
+    for k in range(N):
+        for c in range(6):
+            qp[c] = q[k, pco[0, c]]
+            vp[c] = qd[k, pco[0, c]]
+            ap[c] = qdd[k, pco[0, c]]
+            Q[pvi[0, c], k] = qp[c]
+            Vt[pvi[0, c], k] = vp[c]
+            At[pvi[0, c], k] = ap[c]
+        frame = chain_frame(pR, pp, pax, ppr, 0, qp, vp, ap, porg, pzs)
+        for l in range(6):
+            S, vS, aS = end_point(frame, ppe, ppr, l, porg, pzs, JS)
+            if k >= 2:                   # warm start: linear extrapolation of the path
+                for j in range(3):
+                    guess[j] = 2.0 * th[l, j] - prev[l, j]
+            else:
+                for j in range(3):
+                    guess[j] = th[l, j]
+            for j in range(3):
+                prev[l, j] = th[l, j]
+                th[l, j] = guess[j]
+            ok = k > 0 and newton(lR, lp, lax, lpr, lpe, l, S, th[l], 10, Jl, branch[l])
+            if not ok:                   # from zero angles and the straight length
+                th[l, 0] = 0.0
+                th[l, 1] = 0.0
+                th[l, 2] = np.sqrt((S[0] - lp[l, 0, 0]) ** 2 + (S[1] - lp[l, 0, 1]) ** 2
+                                   + (S[2] - lp[l, 0, 2]) ** 2)
+                ok = newton(lR, lp, lax, lpr, lpe, l, S, th[l], MAX_NEWTON, Jl, branch[l])
+            if not ok and status[0] < 0:
+                status[0] = k
+            td = solve3(Jl, vS)
+            for j in range(3):
+                thd[j] = td[j]
+            at = chain_end(lR, lp, lax, lpr, lpe, l, th[l], thd, zero, Jl, org, zs)[2]
+            tdd = solve3(Jl, (aS[0] - at[0], aS[1] - at[1], aS[2] - at[2]))
+            for j in range(3):
+                vi = lvi[l, j]
+                Q[vi, k] = th[l, j]
+                Vt[vi, k] = thd[j]
+                At[vi, k] = tdd[j]
+            for c in range(6):
+                g = solve3(Jl, (JS[0, c], JS[1, c], JS[2, c]))
+                for j in range(3):
+                    G[k, l, j, pco[0, c]] = g[j]
+            diag[0, k, l] = th[l, 2]
+            diag[1, k, l] = abs(np.cos(th[l, 1]))
+            diag[2, k, l] = S[2] - lp[l, 0, 2]
+            diag[3, k, l] = th[l, 0]
+            diag[4, k, l] = th[l, 1]
+
+@jit
+def project(tau, G, plat_v, leg_v, arm_v, iL, X, A, rhs):
+    """``B = Gᵀ τ``: arm columns of X, and the leg system ``A Fl = rhs`` (Jlᵀ, rows
+    of the rotation coordinates scaled by 1/L)."""
+    N = tau.shape[1]
+    na = arm_v.shape[0]
+    for k in range(N):
+        for b in range(3):
+            X[k, b] = tau[arm_v[b], k] if b < na else np.nan
+        for r in range(6):
+            B = tau[plat_v[r], k]
+            for l in range(6):
+                for j in range(3):
+                    B += tau[leg_v[l, j], k] * G[k, l, j, r]
+            f = iL if r >= 3 else 1.0
+            rhs[k, r] = B * f
+            for l in range(6):
+                A[k, r, l] = G[k, l, 2, r] * f
+
+
+
+def tree_state(robot, q, qd, qdd):
+    """Tree positions, rates and accelerations that close the loops (compiled closure).
+
+    Args:
+        q, qd, qdd: ``(N, 9)`` [m, rad], rates, accelerations.
+
+    Returns:
+        ``(Q, V, A, G, diag)``: ``(nv, N)`` Fortran-ordered tree states (Pinocchio's
+        velocity index order), ``G`` ``(N, 6, 3, 6)`` the legs' joint-rate partials on
+        q̇1..q̇6, ``diag`` ``(5, N, 6)`` leg length [m], cos θ2, height of S_i above P_i
+        [m], θ1, θ2 [rad].
+
+    Raises:
+        NumericalError: Newton's method did not close a loop (naming the sample).
+    """
+    T = tree(robot)
+    N = q.shape[0]
+    Q, V, A = (np.zeros((T.nv, N), order="F") for _ in range(3))
+    for x, src in ((Q, q), (V, qd), (A, qdd)):
+        x[T.arm_v] = src[:, 6:6 + len(T.arm_v)].T
+    G = np.empty((N, N_LEGS, 3, 6))
+    diag = np.empty((5, N, N_LEGS))
+    status = np.array([-1], dtype=np.int64)
+    p, l = T.platform, T.legs
+    closure(p.R, p.p, p.axis, p.prismatic, p.p_end, p.coordinate, p.v_index,
+            l.R, l.p, l.axis, l.prismatic, l.p_end, l.v_index,
+            np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd),
+            Q, V, A, G, diag, status)
+    if status[0] >= 0:
+        raise NumericalError(f"the RNEA reference could not close the legs' loops at sample "
+                             f"{status[0]} (Newton's method did not converge): is the pose "
+                             "inside the workspace?", index=int(status[0]))
+    return Q, V, A, G, diag
+
+
+_POOLS: dict = {}
+
+
+def _pool(robot, gravity, threads: int):
+    """A ``pin.ModelPool`` of the tree with this gravity, reused across calls."""
+    import pinocchio as pin
+
+    key = (id(robot), tuple(float(x) for x in gravity), threads)
+    entry = _POOLS.get(key)
+    if entry is None or entry[0]() is not robot:
+        model = robot.pinocchio_model.copy()
+        model.gravity.linear = np.asarray(gravity, dtype=float)
+        entry = _POOLS[key] = (weakref.ref(robot), pin.ModelPool(model, threads))
+    return entry[1]
+
+
+def run(robot, limits, q, qd, qdd, g, opts, X, kappa, health, threads: int = 1) -> None:
+    """Actuator forces by the reference path, block by block, checked like the kernels.
+
+    Args:
+        limits: the robot's :class:`~offshore_crane.dynamics.constants.Limits` (for the
+            workspace checks' messages; the values checked come from this path's own tree
+            states).
+        q, qd, qdd: ``(N, 9)`` float64; ``g`` ``(3,)`` [m/s²].
+        opts: :class:`~offshore_crane.dynamics.kernels.Options` (legs always computed).
+        X, kappa, health: outputs, as the kernels'.
+        threads: threads of ``pin.rneaInParallel``.
+    """
+    import pinocchio as pin
+
+    from ..dynamics import kernels
+
+    T = tree(robot)
+    pool = _pool(robot, g, threads)
+    N = q.shape[0]
+    for start in range(0, N, BLOCK):
+        sl = slice(start, min(start + BLOCK, N))
+        kernels.check_finite((q[sl], qd[sl], qdd[sl]), start, health)
+        if health[0] >= 0:
+            return
+        Q, V, A, G, diag = tree_state(robot, q[sl], qd[sl], qdd[sl])
+        tau = np.empty_like(Q, order="F")
+        pin.rneaInParallel(threads, pool, Q, V, A, tau)
+        n = Q.shape[1]
+        Ab = np.empty((n, 6, 6))
+        rhs = np.empty((n, 6))
+        project(tau, G, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, X[sl], Ab, rhs)
+        kernels.finish_chunk(X[sl], Ab, rhs, diag, q[sl], start, opts, limits,
+                             None if kappa is None else kappa[:, sl], health)
+
+
+def tree_states(robot, q, qd, qdd):
+    """:func:`tree_state` as ``(N, nv)`` arrays ``(q_tree, v_tree, a_tree)`` (Pinocchio's
+    joint order), for analysis and tests."""
+    Q, V, A, _, _ = tree_state(robot, np.atleast_2d(q), np.atleast_2d(qd), np.atleast_2d(qdd))
+    return Q.T.copy(), V.T.copy(), A.T.copy()

@@ -1,0 +1,164 @@
+"""The Kane kernels: one text on several backends agrees, and the prunings are exact.
+
+The backends (NumPy arrays, Python floats, Numba) run the same formula text
+(``offshore_crane.dynamics.backends``), so these tests check the *machinery* (binding,
+compilation, chunking, threads), not the formulas: the formulas are checked against the
+independent RNEA path (``test_kane_vs_rnea.py``). Tolerance 1e-12 relative for
+"identical": the backends evaluate the same operations in the same order, but NumPy's
+and Numba's ``sin``/``cos``/``sqrt`` may differ in the last bit, and the 6x6 solves differ
+(LAPACK against Gauss–Jordan).
+"""
+
+import numpy as np
+import pytest
+
+import offshore_crane as oc
+from conftest import relative_error
+from offshore_crane.dynamics import PYTHON_MAX, REGISTRY, solve
+from offshore_crane.dynamics.kernels import Options
+from offshore_crane.kinematics.formulas import FULL, MASSLESS, THIN_ROD
+from problems import random_states
+
+G = np.array([0.0, 0.0, -9.81])
+EXACT = 1e-12
+OPTIONS = [Options(conditioning=True, limits=True, warn=1e5, error=1e8),
+           Options(leg_model=THIN_ROD), Options(leg_model=MASSLESS, limits=True),
+           Options(legs=False), Options(static=True, conditioning=True)]
+
+
+def _run(robot, backend, q, qd, qdd, opts, threads=1):
+    return REGISTRY[("kane", backend)](robot, q, qd, qdd, G, opts, threads)
+
+
+@pytest.mark.parametrize("leg_model", [FULL, THIN_ROD, MASSLESS])
+def test_python_floats_equal_numpy_arrays(robot, leg_model):
+    q, qd, qdd = random_states(robot, 30, seed=21)
+    opts = Options(leg_model=leg_model, conditioning=True, limits=True, warn=1e5, error=1e8)
+    Xv, kv, hv = _run(robot, "numpy", q, qd, qdd, opts)     # N > PYTHON_MAX: arrays
+    for k in range(0, 30, 7):
+        Xs, ks, hs = _run(robot, "numpy", q[k:k + 1], qd[k:k + 1], qdd[k:k + 1], opts)
+        assert relative_error(Xs[0], Xv[k]) < EXACT
+        np.testing.assert_allclose(ks[:, 0], kv[:, k], rtol=1e-10)
+    assert PYTHON_MAX >= 1
+
+
+@pytest.mark.parametrize("chunk", [1, 9, 64, 5000])
+def test_chunking_does_not_change_results(robot, chunk):
+    from offshore_crane.dynamics.constants import robot_arrays
+    from offshore_crane.dynamics.kernels import allocate, run_numpy
+    from offshore_crane.kinematics.workspace import new_health
+
+    q, qd, qdd = random_states(robot, 300, seed=4)
+    ref = _run(robot, "numpy", q, qd, qdd, Options())[0]
+    X, kappa = allocate(300, Options())
+    run_numpy(robot_arrays(robot), q, qd, qdd, G, Options(), X, kappa, new_health(),
+              chunk=chunk)
+    assert relative_error(X, ref) < EXACT
+
+
+@pytest.mark.parametrize("opts", OPTIONS, ids=str)
+def test_numba_kernel_equals_numpy_kernel(robot, opts):
+    q, qd, qdd = random_states(robot, 500, seed=31)
+    if opts.static:
+        q[:, :6] = q[0, :6]
+        qd[:, :6] = qdd[:, :6] = 0.0
+    Xp, kp, hp = _run(robot, "numpy", q, qd, qdd, opts)
+    Xn, kn, hn = _run(robot, "numba", q, qd, qdd, opts)
+    np.testing.assert_array_equal(np.isnan(Xn), np.isnan(Xp))
+    finite = np.isfinite(Xp)
+    assert relative_error(Xn[finite], Xp[finite]) < EXACT
+    if kp is not None:
+        np.testing.assert_allclose(kn, kp, rtol=1e-10)
+    np.testing.assert_allclose(hn, hp, rtol=1e-10)   # same samples; κ to round-off
+
+
+def test_explicit_backends_agree(robot):
+    q, qd, qdd = random_states(robot, 200, seed=32)
+    opts = Options(conditioning=True, limits=True, warn=1e5, error=1e8)
+    Xp, kp, hp = REGISTRY[("kane-explicit", "numpy")](robot, q, qd, qdd, G, opts, 1)
+    Xn, kn, hn = REGISTRY[("kane-explicit", "numba")](robot, q, qd, qdd, G, opts, 1)
+    assert relative_error(Xn, Xp) < EXACT
+    np.testing.assert_allclose(kn, kp, rtol=1e-10)
+    np.testing.assert_allclose(hn, hp, rtol=1e-10)   # same samples; κ to round-off
+
+
+@pytest.mark.parametrize("method", ["kane", "kane-explicit", "rnea"])
+def test_threads_are_bit_identical(robot, method):
+    q, qd, qdd = random_states(robot, 1001, seed=33)
+    one = solve(robot, q, qd, qdd, method=method, backend="numba")
+    two = solve(robot, q, qd, qdd, method=method, backend="numba", threads=2)
+    np.testing.assert_array_equal(one.X, two.X)
+    np.testing.assert_array_equal(one.condition, two.condition)
+
+
+def test_health_records_merge_like_one_run(robot):
+    """A workspace violation and a warning found in the second thread's block are
+    reported at the same sample as with one thread."""
+    q, qd, qdd = random_states(robot, 400, seed=34)
+    q[300, 8] = 0.5                      # arm_slide beyond its 0.2 m limit
+    for threads in (1, 2):
+        with pytest.raises(oc.WorkspaceError, match="arm_slide = 0.5 m at sample 300"):
+            solve(robot, q, qd, qdd, backend="numba", threads=threads)
+
+
+def test_arm_only_pruning_is_exact(robot, table1):
+    _, q, qd, qdd = table1
+    full = solve(robot, q, qd, qdd)
+    arm = solve(robot, q, qd, qdd, outputs=["T1", "T2", "Fs"])
+    assert relative_error(arm.X[:, :3], full.X[:, :3]) < EXACT
+    assert np.isnan(arm.X[:, 3:]).all() and arm.condition is None
+    assert "leg kinematics and dynamics (no leg force wanted)" in arm.pruned
+
+
+@pytest.mark.parametrize("backend", ["numpy", "numba"])
+def test_static_platform_pruning_is_exact(robot, table1, backend):
+    _, q, qd, qdd = table1
+    q = q.copy()
+    q[:, :6] = q[100, :6]
+    qd, qdd = qd.copy(), qdd.copy()
+    qd[:, :6] = qdd[:, :6] = 0.0
+    pruned = _run(robot, backend, q, qd, qdd, Options(static=True))[0]
+    unpruned = _run(robot, backend, q, qd, qdd, Options())[0]
+    assert relative_error(pruned, unpruned) < EXACT
+    assert any("static platform" in p for p in solve(robot, q, qd, qdd).pruned)
+
+
+def test_thin_rod_is_exact_without_axial_inertia():
+    """Zero leg radii: no axial inertia, so dropping the leg spin changes nothing."""
+    robot = oc.load_robot(leg_lower_radius=0.0, leg_upper_radius=0.0)
+    q, qd, qdd = random_states(robot, 200, seed=8)
+    full = oc.inverse_dynamics(robot, q, qd, qdd)
+    thin = oc.inverse_dynamics(robot, q, qd, qdd, leg_model="thin-rod")
+    assert relative_error(thin, full) < EXACT
+    ref = oc.inverse_dynamics(robot, q, qd, qdd, method="rnea")
+    assert relative_error(thin, ref) < 1e-9
+
+
+def test_massless_model_matches_a_massless_robot():
+    robot = oc.load_robot()
+    light = oc.load_robot(leg_lower_mass=0.0, leg_upper_mass=0.0)
+    q, qd, qdd = random_states(robot, 200, seed=12)
+    approx = oc.inverse_dynamics(robot, q, qd, qdd, leg_model="massless")
+    ref = oc.inverse_dynamics(light, q, qd, qdd, method="rnea")
+    assert relative_error(approx, ref) < 1e-9
+
+
+def test_approximations_differ_and_are_labelled(robot, table1):
+    _, q, qd, qdd = table1
+    full = solve(robot, q, qd, qdd)
+    thin = solve(robot, q, qd, qdd, leg_model="thin-rod")
+    assert full.approximations == ()
+    assert thin.approximations and "thin-rod" in thin.approximations[0]
+    assert 1e-12 < relative_error(thin.X, full.X) < 1e-3
+    with pytest.raises(oc.InputError, match="leg model 'thin-rod' is an approximation"):
+        solve(robot, q, qd, qdd, method="rnea", leg_model="thin-rod")
+
+
+@pytest.mark.parametrize("backend", ["numpy", "numba"])
+def test_twist_form_survives_the_attitude_singularity(robot, backend):
+    """At pitch q5 = π/2 the explicit form's Jᵀ is singular; the fused solve is not."""
+    q, qd, qdd = random_states(robot, 20, seed=2)
+    q[:, 4] = np.pi / 2
+    q[:, 3] = q[:, 5] = 0.0
+    res = solve(robot, q, qd, qdd, limits=False, checks=False, backend=backend)
+    assert np.isfinite(res.X).all()
