@@ -1,3 +1,5 @@
+import time
+
 import numpy as np
 import pytest
 
@@ -20,3 +22,23 @@ def table1():
 def relative_error(X, Y) -> float:
     """max |X - Y| / max |Y|."""
     return float(np.abs(np.asarray(X) - np.asarray(Y)).max() / np.abs(np.asarray(Y)).max())
+
+
+_COMPILE: dict = {}
+
+
+def pytest_sessionstart(session):
+    """Compile (or load) the Numba kernels once, timed: on a fresh clone (CI) this is the
+    cold compile of everything the tests need, reported at the end of the run."""
+    from offshore_crane.dynamics import warm_up
+
+    t0 = time.perf_counter()
+    _COMPILE["parts"] = warm_up()
+    _COMPILE["total"] = time.perf_counter() - t0
+
+
+def pytest_terminal_summary(terminalreporter):
+    if _COMPILE:
+        parts = ", ".join(f"{name} {s:.1f} s" for name, s in _COMPILE["parts"])
+        terminalreporter.write_line(f"Numba kernels compiled or loaded in "
+                                    f"{_COMPILE['total']:.1f} s ({parts})")

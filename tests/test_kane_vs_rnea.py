@@ -1,6 +1,6 @@
 """Kane (hand-written) against Pinocchio RNEA on the equivalent tree.
 
-Tolerance: CONVENTIONS.md asks max |X_kane − X_rnea| ≤ 1e-9 · max |X|. Both are exact
+Tolerance: docs/conventions.md asks max |X_kane − X_rnea| ≤ 1e-9 · max |X|. Both are exact
 methods on the same URDF, so they differ by round-off only (observed ~1e-15).
 """
 

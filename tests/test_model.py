@@ -1,4 +1,4 @@
-"""The robot description: names of CONVENTIONS.md, loading in Pinocchio and yourdfpy,
+"""The robot description: names of docs/conventions.md, loading in Pinocchio and yourdfpy,
 xacro overrides and the expansion cache."""
 
 import numpy as np

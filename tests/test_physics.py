@@ -85,7 +85,7 @@ def test_energy_balance_table1(robot):
 
 
 def test_rotating_frame_partials_match_attitude():
-    """w4, w5, w6 (CONVENTIONS.md) give skew(Ω) = Ṙ Rᵀ for R = Rz(q6)Ry(q5)Rx(q4)."""
+    """w4, w5, w6 (docs/conventions.md) give skew(Ω) = Ṙ Rᵀ for R = Rz(q6)Ry(q5)Rx(q4)."""
     rng = np.random.default_rng(1)
     q = rng.uniform(-1, 1, (20, 9))
     qd = rng.uniform(-1, 1, (20, 9))

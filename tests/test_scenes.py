@@ -4,7 +4,7 @@ Tolerances:
 - EXACT = 1e-12 relative: a pruned computation skips terms that are exact zeros (or
   columns the output does not depend on), so it differs from the unpruned one by
   round-off only (observed ≤ 1e-15).
-- AGREE = 1e-9 relative: Kane against RNEA, as CONVENTIONS.md asks (observed ~1e-15).
+- AGREE = 1e-9 relative: Kane against RNEA, as docs/conventions.md asks (observed ~1e-15).
 """
 
 import os

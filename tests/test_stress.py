@@ -55,7 +55,7 @@ from offshore_crane.model import xacro_arguments
 from problems import Q_HIGH, Q_LOW
 
 EPS = np.finfo(float).eps
-KANE_RNEA = 1e-9                      # CONVENTIONS.md agreement
+KANE_RNEA = 1e-9                      # docs/conventions.md agreement
 NO_POLICY = Thresholds(warn=np.inf, error=np.inf)
 #: c of ``error ≤ c κ ε`` per singularity kind (worst measured, docs/numerics.md: 0.14
 #: leg Jacobian; 1.24 attitude, explicit Kane and RNEA; U-joint gimbal: see above).

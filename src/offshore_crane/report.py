@@ -1,4 +1,4 @@
-"""Outputs of an inverse-dynamics run: summary table, CSV (CONVENTIONS.md columns), figure.
+"""Outputs of an inverse-dynamics run: summary table, CSV (docs/conventions.md columns), figure.
 
 Files are written atomically (temporary file, then rename), so a failed run never leaves
 a partial output behind.

@@ -97,7 +97,7 @@ def rpy_matrix(rpy) -> np.ndarray:
 
 
 def attitude_matrix(roll: np.ndarray, pitch: np.ndarray, yaw: np.ndarray) -> np.ndarray:
-    """Platform attitude ``R_base_platform = Rz(q6) Ry(q5) Rx(q4)`` (CONVENTIONS.md).
+    """Platform attitude ``R_base_platform = Rz(q6) Ry(q5) Rx(q4)`` (docs/conventions.md).
 
     Args:
         roll: q4 [rad], shape ``(N,)``.

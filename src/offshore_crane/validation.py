@@ -20,6 +20,18 @@ def as_samples(name: str, x, width: int = 9, finite: bool = True) -> tuple[np.nd
         InputError: non-numeric data, wrong shape, NaN or inf (naming the sample index
             and column).
     """
+    if (type(x) is np.ndarray and x.dtype == np.float64 and x.flags.c_contiguous
+            and not finite and x.shape[-1:] == (width,)):
+        if x.ndim == 2 and x.shape[0] > 0:
+            return x, False               # fast path: already what the kernels read
+        if x.ndim == 1:
+            return x[None], True
+    if isinstance(x, np.ma.MaskedArray):
+        raise InputError(f"{name} is a masked array: fill or remove the masked samples "
+                         "first (e.g. x.filled(...) or x.compressed()), the dynamics needs "
+                         "every value", name=name)
+    if np.iscomplexobj(x):
+        raise InputError(f"{name} has complex values: give real numbers", name=name)
     try:
         arr = np.asarray(x, dtype=float)
     except (TypeError, ValueError):
@@ -52,10 +64,33 @@ def same_length(**arrays: np.ndarray) -> int:
     return next(iter(lengths.values()))
 
 
+#: Largest gravity component accepted [m/s²] (1e5 g): no test rig or planet comes near;
+#: a larger value is a unit error, and with masses up to 1e12 kg and lengths up to 1e6 m
+#: the forces and moments stay far inside float64 (< 1e24 N·m).
+MAX_GRAVITY = 1e6
+_DEFAULT_GRAVITY: dict = {}
+
+
 def as_gravity(gravity) -> np.ndarray:
-    """Gravity ``(3,)`` [m/s²], finite."""
-    g = np.asarray(gravity, dtype=float)
+    """Gravity ``(3,)`` [m/s²], finite, each component at most :data:`MAX_GRAVITY`."""
+    key = gravity if type(gravity) is tuple else None
+    if key is not None and key in _DEFAULT_GRAVITY:
+        return _DEFAULT_GRAVITY[key]
+    if isinstance(gravity, (str, bytes)) or np.iscomplexobj(gravity):
+        raise InputError(f"gravity must be 3 real numbers [m/s²], got {gravity!r}",
+                         name="gravity")
+    try:
+        g = np.asarray(gravity, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"gravity must be 3 numbers [m/s²], got {gravity!r}",
+                         name="gravity") from None
     if g.shape != (3,) or not np.all(np.isfinite(g)):
         raise InputError(f"gravity must be 3 finite numbers [m/s²], got {gravity!r}",
                          name="gravity")
+    if np.abs(g).max() > MAX_GRAVITY:
+        raise InputError(f"gravity {gravity!r} m/s² exceeds {MAX_GRAVITY:g} m/s² in size: "
+                         "give it in m/s² (Earth: 9.81)", name="gravity")
+    if key is not None and len(_DEFAULT_GRAVITY) < 16:
+        g.flags.writeable = False
+        _DEFAULT_GRAVITY[key] = g
     return g

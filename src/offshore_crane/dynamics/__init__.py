@@ -16,6 +16,7 @@ from __future__ import annotations
 import os
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 
@@ -35,6 +36,10 @@ APPROXIMATIONS = {"thin-rod": "thin-rod legs (axial inertia and U-joint spin dro
 #: Up to this many samples the NumPy backend evaluates the text on Python floats (no
 #: NumPy per-call cost, ~150 µs a sample) instead of arrays (~1.5 ms for any n ≤ 4096).
 PYTHON_MAX = 8
+#: The platform-at-rest pruning is looked for from this many samples: below, the test
+#: (three reductions, ~3 µs) costs more than the terms it can save (~0.1 µs a sample).
+STATIC_MIN = 64
+_CPUS = os.cpu_count() or 1
 
 
 @dataclass
@@ -92,12 +97,17 @@ _NUMBA: list = []
 
 
 def _compiled():
-    if not numba_available():
-        raise BackendMissingError("backend='numba' needs Numba: pip install numba",
-                                  package="numba")
-    from . import compiled
+    if not _COMPILED:
+        if not numba_available():
+            raise BackendMissingError("backend='numba' needs Numba: pip install numba",
+                                      package="numba")
+        from . import compiled
 
-    return compiled
+        _COMPILED.append(compiled)
+    return _COMPILED[0]
+
+
+_COMPILED: list = []
 
 
 def _blocks(N: int, threads: int):
@@ -108,19 +118,15 @@ def _blocks(N: int, threads: int):
 
 def _threaded(run, N: int, threads: int) -> np.ndarray:
     """Run ``run(start, stop, health)`` on blocks in threads; the merged health record."""
+    if threads == 1 or N == 1:
+        health = ws.new_health()
+        run(0, N, health)
+        return health
     blocks = _blocks(N, threads)
     records = [ws.new_health() for _ in blocks]
-    if len(blocks) == 1:
-        run(0, N, records[0])
-        return records[0]
     with ThreadPoolExecutor(len(blocks)) as pool:
         list(pool.map(lambda b: run(*b[0], b[1]), zip(blocks, records)))
     return ws.merge(records)
-
-
-def _limits_args(arrays):
-    lim = arrays.limits
-    return lim.arm, lim.stroke, lim.ujoint
 
 
 def _kane_numba(robot, q, qd, qdd, g, opts: Options, threads: int):
@@ -130,9 +136,9 @@ def _kane_numba(robot, q, qd, qdd, g, opts: Options, threads: int):
     kap = kappa if kappa is not None else np.empty((3, 1))
 
     def run(start, stop, health):
-        c.kane(arrays.kane, q, qd, qdd, g, opts.static, opts.leg_model, opts.legs,
-               opts.conditioning, opts.limits, opts.warn, opts.error, *_limits_args(arrays),
-               start, stop, X, kap, health)
+        c.kane(arrays.flat, arrays.layout, arrays.prismatic, q, qd, qdd, g, opts.static,
+               opts.leg_model, opts.legs, opts.conditioning, opts.limits, opts.warn,
+               opts.error, start, stop, X, kap, health)
 
     return X, kappa, _threaded(run, len(q), threads)
 
@@ -144,8 +150,9 @@ def _explicit_numba(robot, q, qd, qdd, g, opts: Options, threads: int):
     kap = kappa if kappa is not None else np.empty((3, 1))
 
     def run(start, stop, health):
-        c.explicit(arrays.kane, q, qd, qdd, g, opts.conditioning, opts.limits, opts.warn,
-                   opts.error, *_limits_args(arrays), start, stop, X, kap, health)
+        c.explicit(arrays.flat, arrays.layout, arrays.prismatic, q, qd, qdd, g,
+                   opts.conditioning, opts.limits, opts.warn, opts.error, start, stop, X, kap,
+                   health)
 
     return X, kappa, _threaded(run, len(q), threads)
 
@@ -224,11 +231,16 @@ def resolve_backend(backend: str) -> str:
 
 
 def _threads(threads) -> int:
-    if threads is None:
+    if threads == 1:
         return 1
     if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
         raise InputError(f"threads must be a positive integer, got {threads!r}", name="threads")
-    return int(min(threads, os.cpu_count() or 1))
+    return int(min(threads, _CPUS))
+
+
+@lru_cache(maxsize=256)
+def _options(*args) -> Options:
+    return Options(*args)
 
 
 def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model: str = "full",
@@ -280,21 +292,23 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
     q, _ = as_samples("q", q, finite=False)
     qd, _ = as_samples("qd", qd, finite=False)
     qdd, _ = as_samples("qdd", qdd, finite=False)
-    N = same_length(q=q, qd=qd, qdd=qdd)
+    N = q.shape[0]
+    if qd.shape[0] != N or qdd.shape[0] != N:
+        same_length(q=q, qd=qd, qdd=qdd)
     if t is not None:
         t = np.asarray(t, dtype=float)
         if t.shape != (N,):
             raise InputError(f"t has shape {t.shape}; expected ({N},)", name="t")
     g = as_gravity(gravity)
     model = robot.hybrid
-    names = _outputs(outputs, model.actuators)
-    want_legs = any(n.startswith("Fl") for n in names)
+    names = model.actuators if outputs is None else _outputs(outputs, model.actuators)
+    want_legs = names[-1].startswith("Fl")          # names are in the order of X
     pruned = []
     kernel_legs = leg_model
     static = False
     if method == "kane":
-        static = bool(not qd[:, :6].any() and not qdd[:, :6].any()
-                      and (q[:, :6] == q[0, :6]).all())
+        static = N >= STATIC_MIN and bool(not qd[:, :6].any() and not qdd[:, :6].any()
+                                          and (q[:, :6] == q[0, :6]).all())
         if static:
             pruned.append("platform velocity and acceleration terms (static platform)")
         if not want_legs:
@@ -302,18 +316,12 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
         elif leg_model != "massless" and model.massless_legs:
             kernel_legs = "massless"          # exact: every leg inertia term is zero
             pruned.append("leg inertia and weight terms (the legs have no mass)")
-    opts = Options(leg_model=LEG_MODEL_CODES[kernel_legs], legs=want_legs or method != "kane",
-                   static=static, conditioning=checks, limits=limits,
-                   warn=thresholds.warn, error=thresholds.error)
+    opts = _options(LEG_MODEL_CODES[kernel_legs], want_legs or method != "kane", static,
+                    bool(checks), bool(limits), thresholds.warn, thresholds.error)
     X, kappa, health = REGISTRY[(method, backend)](robot, q, qd, qdd, g, opts, threads)
-    arrays = (q, qd, qdd)
-    ws.check_inputs(health, arrays)
-    if limits:
-        ws.check_workspace(health, robot_arrays(robot).limits, q, t)
-    if checks:
-        error_kinds = (ws.LEG_JACOBIAN, ws.GIMBAL) if want_legs else ()
-        ws.check_singularities(health, kappa, thresholds, t, error_kinds)
-    ws.check_outputs(health, ACTUATORS, arrays, t)
+    ws.enforce(health, (q, qd, qdd), robot_arrays(robot).limits if limits else None,
+               kappa if checks else None, thresholds,
+               (ws.LEG_JACOBIAN, ws.GIMBAL) if want_legs else (), t)
     if not want_legs:
         X[:, 3:] = np.nan          # not computed
         if kappa is not None:
@@ -352,3 +360,24 @@ def inverse_dynamics(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY,
     single = np.ndim(q) == 1
     X = solve(robot, q, qd, qdd, method, gravity, **options).X
     return X[0] if single else X
+
+
+def warm_up(robot=None) -> list[tuple[str, float]]:
+    """Compile (or load from the cache) every compiled kernel: ``[(name, seconds), ...]``.
+
+    Call it once before starting parallel workers, so that they load the cache rather
+    than compile the same kernels at once.
+    """
+    import time
+
+    from ..model import load_robot
+
+    robot = robot or load_robot()
+    q = np.zeros((1, 9))
+    q[0, 2] = float(robot.parameters.get("home_height", 0.5))
+    out = []
+    for method in ("kane", "kane-explicit", "rnea"):
+        t0 = time.perf_counter()
+        solve(robot, q, 0 * q, 0 * q, method=method, backend="numba", limits=False)
+        out.append((f"{method} kernels", time.perf_counter() - t0))
+    return out

@@ -2,7 +2,7 @@
 
 Every function of :mod:`offshore_crane.kinematics.formulas` and :mod:`.formulas` is
 re-bound and wrapped in ``numba.njit`` (:func:`.backends.bind`); the drivers below loop
-over samples, solve each 6x6 Stewart system by Gauss–Jordan elimination with partial
+over samples, solve each 6x6 leg-force system by Gauss–Jordan elimination with partial
 pivoting (which also gives the inverse for the 1-norm condition number) and apply the
 checks inside the loop, writing a health record
 (:mod:`offshore_crane.kinematics.workspace`) instead of NumPy reductions.
@@ -21,22 +21,74 @@ from numba import njit
 
 from ..kinematics import workspace as ws
 from . import backends
+from .constants import FIELDS
+from .formulas import KaneConstants
 
 JIT = dict(cache=True, nogil=True, error_model="numpy")
-K = backends.bind({}, njit(**JIT))
+def _jit_formula(f):
+    """Compile a formula, inlined into its caller: the drivers become one function that
+    LLVM optimises whole (measured: 1.5 µs a sample against 2.3 µs with calls, which
+    pass tuples and the constants' arrays through memory); compiling takes ~25 s, once."""
+    return njit(inline="always", **JIT)(f)
+
+
+K = backends.bind({}, _jit_formula)
 _kane_sample = K.kane_sample
 _explicit_sample = K.explicit_sample
 STAMP = backends.source_stamp()
 
 _BAD_INPUT, _VIOLATION, _BAD_OUTPUT, _KAPPA = ws.BAD_INPUT, ws.VIOLATION, ws.BAD_OUTPUT, ws.KAPPA
-_LENGTH, _COS, _HEIGHT, _TH1, _TH2 = 0, 1, 2, 3, 4
+_LENGTH, _COS, _HEIGHT, _DX, _DY, _DZ, _H = 0, 1, 2, 3, 4, 5, 6
+_ujoint_angles = K.ujoint_angles
+#: The U-joint angle check first compares tangents (no arctan2): it is trusted only well
+#: inside a limit, by this relative margin; nearer, the angle itself is computed.
+_TAN_MARGIN = 1e-12
 
 
 @njit(**JIT)
-def solve6(A, rhs, x, M):
-    """Gauss–Jordan with partial pivoting on ``[A | I | rhs]`` (6x6); fills ``x``;
-    returns the 1-norm condition number of A (inf, and a NaN solution, when singular
-    or not finite). ``M`` is a (6, 13) workspace."""
+def _v1(flat, lay, i):
+    return flat[lay[i, 0]:lay[i, 0] + lay[i, 1]]
+
+
+@njit(**JIT)
+def _v2(flat, lay, i):
+    n = lay[i, 1] * lay[i, 2]
+    return flat[lay[i, 0]:lay[i, 0] + n].reshape((lay[i, 1], lay[i, 2]))
+
+
+@njit(**JIT)
+def _v3(flat, lay, i):
+    n = lay[i, 1] * lay[i, 2] * lay[i, 3]
+    return flat[lay[i, 0]:lay[i, 0] + n].reshape((lay[i, 1], lay[i, 2], lay[i, 3]))
+
+
+assert FIELDS == ("plat_m", "plat_c", "plat_I", "arm_t", "arm_Ro", "arm_axis", "arm_m", "arm_c",
+                  "arm_I", "leg_s", "leg_P", "leg_X", "leg_Y", "leg_Z", "lo_m", "lo_c", "up_m",
+                  "up_c", "leg_I", "thin_It", "lo_cz", "up_cz", "L", "lim_arm", "lim_stroke",
+                  "lim_ujoint"), "unpack() below follows constants.FIELDS"
+
+
+@njit(**JIT)
+def unpack(flat, lay, prism):
+    """The constants' views from :attr:`~.constants.RobotArrays.flat`: ``(C, lim_arm,
+    lim_stroke, lim_ujoint)`` (:data:`~.constants.FIELDS` order)."""
+    C = KaneConstants(
+        flat[lay[0, 0]], _v1(flat, lay, 1), _v2(flat, lay, 2), prism.shape[0],
+        _v2(flat, lay, 3), _v3(flat, lay, 4), _v2(flat, lay, 5), prism, _v1(flat, lay, 6),
+        _v2(flat, lay, 7), _v3(flat, lay, 8), _v2(flat, lay, 9), _v2(flat, lay, 10),
+        _v2(flat, lay, 11), _v2(flat, lay, 12), _v2(flat, lay, 13), _v1(flat, lay, 14),
+        _v2(flat, lay, 15), _v1(flat, lay, 16), _v2(flat, lay, 17), _v3(flat, lay, 18),
+        _v1(flat, lay, 19), _v1(flat, lay, 20), _v1(flat, lay, 21), flat[lay[22, 0]])
+    return C, _v2(flat, lay, 23), _v2(flat, lay, 24), _v3(flat, lay, 25)
+
+
+@njit(**JIT)
+def solve6(A, rhs, x, M, want_cond):
+    """Gauss–Jordan elimination with partial pivoting on ``[A | I | rhs]`` (``M`` a
+    (6, 13) workspace): fills ``x = A⁻¹ rhs`` and returns the 1-norm condition number
+    ``‖A‖₁ ‖A⁻¹‖₁`` when ``want_cond``, else 0 (inf, and a NaN solution, when A is
+    singular or not finite). The inverse comes with the elimination: measured 0.20 µs,
+    against 0.17 µs for an LU solve alone and 0.31 µs for LU with the inverse's columns."""
     n = 6
     w = 2 * n + 1
     for i in range(n):
@@ -70,10 +122,13 @@ def solve6(A, rhs, x, M):
                 if f != 0.0:
                     for j in range(w):
                         M[r, j] -= f * M[k, j]
+    for j in range(n):
+        x[j] = M[j, 2 * n]
+    if not want_cond:
+        return 0.0
     norm_a = 0.0
     norm_inv = 0.0
     for j in range(n):
-        x[j] = M[j, 2 * n]
         sa = 0.0
         si = 0.0
         for i in range(n):
@@ -118,15 +173,43 @@ def _finite_inputs(q, qd, qdd, k, health):
 
 
 @njit(**JIT)
+def tangent_bounds(lim_ujoint):
+    """``(6, 2, 2)`` tangents of the U-joint limits shrunk by :data:`_TAN_MARGIN`; inf
+    (the test always defers to the angle) for a limit outside (−π/2, π/2)."""
+    out = np.empty((6, 2, 2))
+    for l in range(6):
+        for a in range(2):
+            lo, hi = lim_ujoint[l, a, 0], lim_ujoint[l, a, 1]
+            if -0.5 * np.pi < lo <= hi < 0.5 * np.pi:
+                tlo, thi = np.tan(lo), np.tan(hi)
+                out[l, a, 0] = tlo + _TAN_MARGIN * (1.0 + abs(tlo))
+                out[l, a, 1] = thi - _TAN_MARGIN * (1.0 + abs(thi))
+            else:
+                out[l, a, 0] = np.inf
+                out[l, a, 1] = -np.inf
+    return out
+
+
+@njit(**JIT)
+def _ujoint_inside(diag, l, tb):
+    """True when both U-joint angles of leg l are surely inside their limits:
+    θ1 = atan2(dx, dz) with dz > 0 and θ2 = atan2(−dy, h) with h > 0, compared through
+    their tangents."""
+    dx, dy, dz, h = diag[_DX, l], diag[_DY, l], diag[_DZ, l], diag[_H, l]
+    return (dz > 0.0 and tb[l, 0, 0] * dz <= dx <= tb[l, 0, 1] * dz
+            and h > 0.0 and tb[l, 1, 0] * h <= -dy <= tb[l, 1, 1] * h)
+
+
+@njit(**JIT)
 def _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error, lim_arm,
-          lim_stroke, lim_ujoint, X, kappa, health, x, M):
+          lim_stroke, lim_ujoint, tb, X, kappa, health, x, M):
     """Sample k after the formulas: solve the legs, measure κ, check the limits and the
     result's finiteness (the arm columns of X are filled)."""
     for b in range(na, 3):
         X[k, b] = np.nan
     cond = 0.0
     if want_legs:
-        cond = solve6(A, rhs, x, M)
+        cond = solve6(A, rhs, x, M, want_cond)
         for j in range(6):
             X[k, 3 + j] = x[j]
     else:
@@ -169,11 +252,18 @@ def _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error
                         _first(health, s + 6, k, l, v)
                         break
             if health[s + 9] < 0.0:
-                for c in range(12):
-                    l = c // 2
-                    v = diag[_TH1 + c % 2, l]
-                    if v < lim_ujoint[l, c % 2, 0] or v > lim_ujoint[l, c % 2, 1]:
-                        _first(health, s + 9, k, c, v)
+                for l in range(6):
+                    if _ujoint_inside(diag, l, tb):
+                        continue
+                    th = _ujoint_angles(diag[_DX, l], diag[_DY, l], diag[_DZ, l], diag[_H, l])
+                    hit = False
+                    for a in range(2):
+                        v = th[a]
+                        if v < lim_ujoint[l, a, 0] or v > lim_ujoint[l, a, 1]:
+                            _first(health, s + 9, k, 2 * l + a, v)
+                            hit = True
+                            break
+                    if hit:
                         break
     if health[_BAD_OUTPUT] < 0.0:
         for j in range(9 if want_legs else na):
@@ -187,16 +277,18 @@ def _make(stamp):
     """The drivers, closed over the formulas' hash (it keys their disk cache)."""
 
     @njit(**JIT)
-    def kane(C, q, qd, qdd, g, static, leg_model, want_legs, want_cond, want_limits, warn,
-             error, lim_arm, lim_stroke, lim_ujoint, start, stop, X, kappa, health):
+    def kane(flat, lay, prism, q, qd, qdd, g, static, leg_model, want_legs, want_cond,
+             want_limits, warn, error, start, stop, X, kappa, health):
         """Samples ``start..stop-1`` of the fused Kane equations, checked."""
         if len(stamp) == 0:
             return
+        C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
+        tb = tangent_bounds(lim_ujoint)
         na = C.n_arm
         rows = np.zeros(3)
         A = np.empty((6, 6))
         rhs = np.empty(6)
-        diag = np.zeros((5, 6))
+        diag = np.zeros((7, 6))
         store = np.empty((max(na, 1), 27))
         x = np.empty(6)
         M = np.empty((6, 13))
@@ -206,27 +298,29 @@ def _make(stamp):
                 for j in range(9):
                     X[k, j] = np.nan
                 continue
-            _kane_sample(C, q[k], qd[k], qdd[k], gt, static, leg_model, want_legs,
-                         want_limits, rows, A, rhs, diag, store)
+            _kane_sample(C, q[k], qd[k], qdd[k], gt, static, leg_model, want_legs, rows, A, rhs,
+                         diag, store)
             for b in range(na):
                 X[k, b] = rows[b]
             _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error,
-                  lim_arm, lim_stroke, lim_ujoint, X, kappa, health, x, M)
+                  lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 
     @njit(**JIT)
-    def explicit(C, q, qd, qdd, g, want_cond, want_limits, warn, error, lim_arm, lim_stroke,
-                 lim_ujoint, start, stop, X, kappa, health):
+    def explicit(flat, lay, prism, q, qd, qdd, g, want_cond, want_limits, warn, error, start,
+                 stop, X, kappa, health):
         """Samples ``start..stop-1`` of Kane's equations with explicit partials, checked:
         ``(T1, T2, Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]`` (rotation rows scaled by 1/L)."""
         if len(stamp) == 0:
             return
+        C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
+        tb = tangent_bounds(lim_ujoint)
         na = C.n_arm
         B = np.zeros(9)
         J = np.empty((6, 6))
         Mm = np.zeros((9, 9))
         A = np.empty((6, 6))
         rhs = np.empty(6)
-        diag = np.zeros((5, 6))
+        diag = np.zeros((7, 6))
         store = np.empty((max(na, 1), 27))
         Vw = np.empty((9, 3))
         Ww = np.empty((9, 3))
@@ -251,7 +345,7 @@ def _make(stamp):
                 for l in range(6):
                     A[r, l] = J[l, r] * f
             _post(k, q, na, A, rhs, diag, True, want_cond, want_limits, warn, error,
-                  lim_arm, lim_stroke, lim_ujoint, X, kappa, health, x, M)
+                  lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 
     return kane, explicit
 

@@ -42,7 +42,7 @@ class ExtendedResult:
     """Reference actuator forces of one sample, as ``mpf``.
 
     Attributes:
-        X: 9 ``mpf``: ``[T1, T2, Fs, Fl1..Fl6]`` (CONVENTIONS.md order).
+        X: 9 ``mpf``: ``[T1, T2, Fs, Fl1..Fl6]`` (docs/conventions.md order).
         condition: 1-norm condition number of the dimensionless 6x6 Stewart matrix
             (the one the fused kernel solves), computed in extended precision.
         cos_theta2: 6 ``mpf``, ``|cos θ2|`` of each leg's U-joint (gimbal distance).
@@ -86,8 +86,8 @@ def sample(robot, q, qd, qdd, gravity=GRAVITY, *, leg_model: str = "full",
         rhs = np.empty(6, dtype=object)
         diag = np.empty((DIAG_ROWS, 6), dtype=object)
         store = np.empty((C.n_arm, STORE_WIDTH), dtype=object)
-        B.kane_sample(C, q, qd, qdd, g, False, LEG_MODEL_CODES[leg_model], True, False, rows,
-                      A, rhs, diag, store)
+        B.kane_sample(C, q, qd, qdd, g, False, LEG_MODEL_CODES[leg_model], True, rows, A, rhs,
+                      diag, store)
         Am = mp.matrix(A.tolist())
         Fl = mp.lu_solve(Am, mp.matrix(rhs.tolist()))
         cond = mp.mnorm(Am, 1) * mp.mnorm(mp.inverse(Am), 1)

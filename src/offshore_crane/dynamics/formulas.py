@@ -42,7 +42,7 @@ from ..kinematics.formulas import (FULL, MASSLESS, add, arm_child, arm_joint, at
                                    cross, platform_partials, put, take, dot, leg_frame, leg_geometry, leg_motion,
                                    leg_spin, mat3, mm, mtv, mv, platform_rates,
                                    point_acceleration, point_velocity, row3, scale, sub,
-                                   ujoint_angles, ujoint_axes)
+                                   ujoint_axes)
 
 #: The arrays Kane's formulas read, built by :func:`offshore_crane.dynamics.constants.build`.
 #: Shapes: plat_c (3,), plat_I (3, 3) [platform frame, about the CoM]; arm_* (na, ...):
@@ -63,8 +63,11 @@ KaneConstants = namedtuple("KaneConstants", (
 Z_, R_, OFF_, RC_, F_, T_, ATT_ = 0, 3, 6, 9, 12, 15, 18
 STORE_WIDTH = 27
 #: Rows of the legs' diagnostics workspace ``diag`` (DIAG_ROWS, 6).
-LENGTH, COS_THETA2, HEIGHT, THETA1, THETA2 = 0, 1, 2, 3, 4
-DIAG_ROWS = 5
+#: LENGTH l [m], COS_THETA2 = h / l, HEIGHT of S above P [m], and S − P in the U-joint
+#: frame (DX, DY, DZ) with H = |(DX, DZ)| [m], from which the U-joint angles follow
+#: (:func:`~offshore_crane.kinematics.formulas.ujoint_angles`, only where checked).
+LENGTH, COS_THETA2, HEIGHT, DX, DY, DZ, H = 0, 1, 2, 3, 4, 5, 6
+DIAG_ROWS = 7
 
 
 def body_torque(R, I, omega, alpha):
@@ -127,17 +130,32 @@ def arm_backward(C, store, rows):
     return F, M
 
 
-def leg_force(C, l, R, p, v, a, omega, alpha, g, static, leg_model):
-    """Leg ``l``'s geometry and its equivalent force ``f_S`` [N] at S_l (module docstring).
+def leg_constants(C, l):
+    """Leg ``l``'s constants as a tuple (what :func:`leg_force` reads): S_l in the
+    platform frame, P_l, the U-joint frame's axes X, Y = a1, Z, the links' masses and
+    CoMs, their summed central inertia (leg frame), and the thin-rod values.
+
+    (The formulas that run per leg take this tuple rather than the whole constants:
+    compiled, a function reading array fields of ``C`` pays for all of them on each call.)
+    """
+    return (row3(C.leg_s, l), row3(C.leg_P, l), row3(C.leg_X, l), row3(C.leg_Y, l),
+            row3(C.leg_Z, l), C.lo_m[l], row3(C.lo_c, l), C.up_m[l], row3(C.up_c, l),
+            mat3(C.leg_I, l), C.thin_It[l], C.lo_cz[l], C.up_cz[l])
+
+
+def leg_force(K, R, p, v, a, omega, alpha, g, static, leg_model):
+    """A leg's geometry and its equivalent force ``f_S`` [N] at S (module docstring).
+
+    Args:
+        K: :func:`leg_constants` of the leg.
 
     Returns:
-        ``(r, u, l, dx, dy, dz, h, d_z, f_S)``: O2 → S_l, the unit leg vector, its length
-        [m], ``S − P`` in the U-joint frame, ``h = l cos θ2``, the height of S_l above
-        P_l [m] and ``f_S`` (zero for massless legs).
+        ``(r, u, l, dx, dy, dz, h, d_z, f_S)``: O2 → S, the unit leg vector, its length
+        [m], ``S − P`` in the U-joint frame, ``h = l cos θ2``, the height of S above P [m]
+        and ``f_S`` (zero for massless legs).
     """
-    X, Y, Z = row3(C.leg_X, l), row3(C.leg_Y, l), row3(C.leg_Z, l)
-    P = row3(C.leg_P, l)
-    r, d, length, il, u, dx, dy, dz, h = leg_geometry(p, R, row3(C.leg_s, l), P, X, Y, Z)
+    s, P, X, Y, Z, lo_m, lo_c, up_m, up_c, I, It, lo_cz, up_cz = K
+    r, d, length, il, u, dx, dy, dz, h = leg_geometry(p, R, s, P, X, Y, Z)
     f_S = (0.0 * length, 0.0 * length, 0.0 * length)
     if leg_model != MASSLESS:
         neg_g = scale(g, -1.0)
@@ -146,28 +164,28 @@ def leg_force(C, l, R, p, v, a, omega, alpha, g, static, leg_model):
             a2, n = ujoint_axes(X, Z, dx, dz, h)
             l_h = length / h
             Rl = leg_frame(u, a2)
-            rho_lo = mv(Rl, row3(C.lo_c, l))
-            rho_up = mv(Rl, row3(C.up_c, l))
+            rho_lo = mv(Rl, lo_c)
+            rho_up = mv(Rl, up_c)
         else:
             a2 = n = f_S
             Rl = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))   # unused
-            rho_lo = scale(u, C.lo_cz[l])
-            rho_up = scale(u, C.up_cz[l])
+            rho_lo = scale(u, lo_cz)
+            rho_up = scale(u, up_cz)
         if static:                      # the legs are at rest: weight only
-            F_lo = scale(neg_g, C.lo_m[l])
-            F_up = scale(neg_g, C.up_m[l])
+            F_lo = scale(neg_g, lo_m)
+            F_up = scale(neg_g, up_m)
             T = f_S
         else:
             v_S = point_velocity(v, omega, r)
             a_S = point_acceleration(a, omega, alpha, r)
             rate, accel, w, al, wxu, e, th1d, th2d = leg_motion(
                 v_S, a_S, u, length, il, Y, a2, n, l_h, leg_model == FULL)
-            F_lo = scale(add(point_acceleration(f_S, w, al, rho_lo), neg_g), C.lo_m[l])
-            F_up = scale(add(point_acceleration(a_S, w, al, rho_up), neg_g), C.up_m[l])
+            F_lo = scale(add(point_acceleration(f_S, w, al, rho_lo), neg_g), lo_m)
+            F_up = scale(add(point_acceleration(a_S, w, al, rho_up), neg_g), up_m)
             if leg_model == FULL:
-                T = body_torque(Rl, mat3(C.leg_I, l), w, al)
+                T = body_torque(Rl, I, w, al)
             else:                       # thin rods: ω ⟂ u, I = It (1 − u uᵀ)
-                T = scale(al, C.thin_It[l])
+                T = scale(al, It)
         M = add(add(cross(rho_lo, F_lo), cross(rho_up, F_up)), T)
         if leg_model == FULL:
             M = axpy(dot(u, M) * l_h, n, M)         # M' = M − n (u·M)/(u·n)
@@ -175,15 +193,24 @@ def leg_force(C, l, R, p, v, a, omega, alpha, g, static, leg_model):
     return r, u, length, dx, dy, dz, h, d[2], f_S
 
 
-def kane_sample(C, q, qd, qdd, g, static, leg_model, want_legs, want_angles, rows, A, rhs,
-                diag, store):
+def leg_diagnostics(diag, l, length, h, height, dx, dy, dz):
+    """Write leg l's diagnostics (rows LENGTH .. H) into ``diag``."""
+    diag[LENGTH, l] = length
+    diag[COS_THETA2, l] = h / length
+    diag[HEIGHT, l] = height
+    diag[DX, l] = dx
+    diag[DY, l] = dy
+    diag[DZ, l] = dz
+    diag[H, l] = h
+
+
+def kane_sample(C, q, qd, qdd, g, static, leg_model, want_legs, rows, A, rhs, diag, store):
     """The fused Kane equations of one sample (or of n samples, vectorised).
 
     Fills ``rows[0:n_arm]`` with the arm actuators ``T1, T2, Fs``; with ``want_legs``, the
     dimensionless 6x6 Stewart matrix ``A`` (column l: ``(u_l, r_l × u_l / L)``), its
     right-hand side ``rhs = (F, M_O2 / L)`` (the leg forces solve ``A Fl = rhs``) and the
-    legs' diagnostics ``diag`` (rows LENGTH, COS_THETA2, HEIGHT and, with
-    ``want_angles``, THETA1, THETA2).
+    legs' diagnostics ``diag`` (rows LENGTH .. H).
 
     Args:
         static: the platform is at rest (q̇ = q̈ = 0 for q1..q6): its velocity and
@@ -209,20 +236,14 @@ def kane_sample(C, q, qd, qdd, g, static, leg_model, want_legs, want_angles, row
         iL = 1.0 / C.L
         for l in range(6):
             r, u, length, dx, dy, dz, h, height, f_S = leg_force(
-                C, l, R, p, v, a, omega, alpha, g, static, leg_model)
+                leg_constants(C, l), R, p, v, a, omega, alpha, g, static, leg_model)
             F = add(F, f_S)
             M = add(M, cross(r, f_S))
             rxu = cross(r, u)
             for i in range(3):
                 A[i, l] = u[i]
                 A[3 + i, l] = rxu[i] * iL
-            diag[LENGTH, l] = length
-            diag[COS_THETA2, l] = h / length
-            diag[HEIGHT, l] = height
-            if want_angles:
-                th1, th2 = ujoint_angles(dx, dy, dz, h)
-                diag[THETA1, l] = th1
-                diag[THETA2, l] = th2
+            leg_diagnostics(diag, l, length, h, height, dx, dy, dz)
         for i in range(3):
             rhs[i] = F[i]
             rhs[3 + i] = M[i] * iL
@@ -280,12 +301,7 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
         Rl = leg_frame(u, a2)
         rho_lo = mv(Rl, row3(C.lo_c, l))
         rho_up = mv(Rl, row3(C.up_c, l))
-        th1, th2 = ujoint_angles(dx, dy, dz, h)
-        diag[LENGTH, l] = length
-        diag[COS_THETA2, l] = h / length
-        diag[HEIGHT, l] = d[2]
-        diag[THETA1, l] = th1
-        diag[THETA2, l] = th2
+        leg_diagnostics(diag, l, length, h, d[2], dx, dy, dz)
         v_S = point_velocity(v, omega, r)
         a_S = point_acceleration(a, omega, alpha, r)
         w, al = leg_motion(v_S, a_S, u, length, il, Y, a2, n, l_h, True)[2:4]

@@ -18,7 +18,7 @@ import numpy as np
 from ..kinematics import workspace as ws
 from ..kinematics.formulas import FULL
 from . import backends
-from .formulas import COS_THETA2, DIAG_ROWS, HEIGHT, LENGTH, STORE_WIDTH, THETA1, THETA2
+from .formulas import COS_THETA2, DIAG_ROWS, DX, DY, DZ, HEIGHT, LENGTH, STORE_WIDTH, H
 
 #: Samples per chunk of the NumPy driver: each of the text's (n,) temporaries stays in
 #: the L2 cache (4096 doubles = 32 kB).
@@ -107,20 +107,32 @@ def _policy(health, kind, kappa, offset, opts):
                 health[slot] = offset + int(np.argmax(above))
 
 
-def finish_chunk(X, A, rhs, diag, q, offset, opts, limits, kappa, health):
+def ujoint_angles(diag) -> np.ndarray:
+    """``(n, 6, 2)`` U-joint angles θ1, θ2 [rad] from the diagnostics ``(DIAG_ROWS, n, 6)``
+    (:func:`~offshore_crane.kinematics.formulas.ujoint_angles`)."""
+    return np.stack(backends.NUMPY.ujoint_angles(diag[DX], diag[DY], diag[DZ], diag[H]), -1)
+
+
+def finish_chunk(X, A, rhs, length, cos2, height, theta, q, offset, opts, limits, kappa,
+                 health):
     """Solve the legs of a chunk and check it.
 
     Args:
         X: ``(n, 9)`` view of the output with the arm columns filled.
-        A, rhs: ``(n, 6, 6)``, ``(n, 6)`` Stewart systems (ignored without legs).
-        diag: ``(DIAG_ROWS, n, 6)`` leg diagnostics.
+        A, rhs: ``(n, 6, 6)``, ``(n, 6)`` leg-force systems (ignored without legs); or, for
+            a caller that solved them, ``A`` the ``(n,)`` condition numbers and ``rhs``
+            None (the leg columns of X filled).
+        length, cos2, height: ``(n, 6)`` leg lengths [m], cos θ2, heights of S above P [m].
+        theta: ``(n, 6, 2)`` U-joint angles [rad] (read with ``opts.limits``), or None.
         q: ``(n, 9)`` the chunk's coordinates; ``offset``: index of its first sample.
         kappa: ``(3, n)`` view of the output condition numbers, or None.
     """
     na = limits.arm.shape[0]
     X[:, na:3] = np.nan
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        if opts.legs:
+        if opts.legs and rhs is None:
+            cond = A
+        elif opts.legs:
             X[:, 3:], cond = _solve(A, rhs, opts.conditioning)
         else:
             X[:, 3:] = np.nan
@@ -129,7 +141,7 @@ def finish_chunk(X, A, rhs, diag, q, offset, opts, limits, kappa, health):
             _policy(health, ws.ATTITUDE, kappa[2], offset, opts)
             if opts.legs:
                 kappa[0] = cond
-                kappa[1] = 1.0 / diag[COS_THETA2].min(axis=1)
+                kappa[1] = 1.0 / cos2.min(axis=1)
                 _policy(health, ws.LEG_JACOBIAN, kappa[0], offset, opts)
                 _policy(health, ws.GIMBAL, kappa[1], offset, opts)
             else:
@@ -140,11 +152,10 @@ def finish_chunk(X, A, rhs, diag, q, offset, opts, limits, kappa, health):
                     _first((x < limits.arm[:, 0]) | (x > limits.arm[:, 1])), x)
             if opts.legs:
                 c = ws.VIOLATION + 3
-                _record(health, c, offset, _first(diag[HEIGHT] <= 0.0), diag[HEIGHT])
-                length = diag[LENGTH]
+                _record(health, c, offset, _first(height <= 0.0), height)
                 _record(health, c + 3, offset, _first((length < limits.stroke[:, 0])
                                                       | (length > limits.stroke[:, 1])), length)
-                th = np.stack([diag[THETA1], diag[THETA2]], axis=-1).reshape(len(q), 12)
+                th = theta.reshape(len(q), 12)
                 lo, hi = limits.ujoint[..., 0].reshape(12), limits.ujoint[..., 1].reshape(12)
                 _record(health, c + 6, offset, _first((th < lo) | (th > hi)), th)
         cols = list(range(na)) + (list(range(3, 9)) if opts.legs else [])
@@ -161,6 +172,14 @@ def check_finite(arrays, offset, health):
         if hit is not None:
             health[ws.BAD_INPUT:ws.BAD_INPUT + 3] = offset + hit[0], hit[1], which
             return
+
+
+def _finish_diag(X, A, rhs, diag, q, offset, opts, limits, kappa, health):
+    """:func:`finish_chunk` from the Kane formulas' diagnostics ``(DIAG_ROWS, n, 6)``."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        theta = ujoint_angles(diag) if opts.limits else None
+    finish_chunk(X, A, rhs, diag[LENGTH], diag[COS_THETA2], diag[HEIGHT], theta, q, offset,
+                 opts, limits, kappa, health)
 
 
 def run_numpy(arrays, q, qd, qdd, g, opts: Options, X, kappa, health, chunk: int = CHUNK):
@@ -187,7 +206,7 @@ def run_numpy(arrays, q, qd, qdd, g, opts: Options, X, kappa, health, chunk: int
         check_finite((qc, qdc, qddc), start, health)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             backends.NUMPY.kane_sample(C, qc.T, qdc.T, qddc.T, gt, opts.static, opts.leg_model,
-                                       opts.legs, opts.limits, rows, Aw, rw, dw, store)
+                                       opts.legs, rows, Aw, rw, dw, store)
         Xc = X[sl]
         for b in range(C.n_arm):
             Xc[:, b] = rows[b]
@@ -200,10 +219,10 @@ def run_numpy(arrays, q, qd, qdd, g, opts: Options, X, kappa, health, chunk: int
                 rhs[:, i] = rw[i]
                 for j in range(6):
                     A[:, i, j] = Aw[i, j]
-            for r in range(DIAG_ROWS if opts.limits else THETA1):
+            for r in range(DIAG_ROWS):
                 for j in range(6):
                     diag[r, :, j] = dw[r, j]
-        finish_chunk(Xc, A, rhs, diag, qc, start, opts, limits,
+        _finish_diag(Xc, A, rhs, diag, qc, start, opts, limits,
                      None if kappa is None else kappa[:, sl], health)
 
 
@@ -225,12 +244,11 @@ def run_python(arrays, q, qd, qdd, g, opts: Options, X, kappa, health) -> bool:
     try:
         for k, (qk, qdk, qddk) in enumerate(zip(q.tolist(), qd.tolist(), qdd.tolist())):
             backends.PYTHON.kane_sample(C, qk, qdk, qddk, gt, opts.static, opts.leg_model,
-                                        opts.legs, opts.limits, rows, A[k], rhs[k],
-                                        diag[:, k], store)
+                                        opts.legs, rows, A[k], rhs[k], diag[:, k], store)
             X[k, :C.n_arm] = rows[:C.n_arm]
     except (ZeroDivisionError, ValueError, OverflowError):
         return False
-    finish_chunk(X, A, rhs, diag, q, 0, opts, limits, kappa, health)
+    _finish_diag(X, A, rhs, diag, q, 0, opts, limits, kappa, health)
     return True
 
 
@@ -269,5 +287,5 @@ def run_explicit_numpy(arrays, q, qd, qdd, g, opts: Options, X, kappa, health,
         for r in range(DIAG_ROWS):
             for j in range(6):
                 diag[r, :, j] = dw[r, j]
-        finish_chunk(Xc, A, rhs, diag, qc, start, opts, limits,
+        _finish_diag(Xc, A, rhs, diag, qc, start, opts, limits,
                      None if kappa is None else kappa[:, sl], health)

@@ -39,7 +39,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..conventions import ARM_JOINTS
+from ..conventions import ACTUATORS, ARM_JOINTS
 from ..errors import (InputError, NumericalError, SingularConfigurationError,
                       WorkspaceError)
 
@@ -90,11 +90,33 @@ KAPPA = BAD_OUTPUT + 2
 SIZE = KAPPA + 4 * len(KINDS)
 
 
+_EMPTY = np.full(SIZE, -1.0)
+_EMPTY[KAPPA::4] = -np.inf
+#: The slots that hold a sample index of something found (all -1 in a clean record).
+_FIRST = np.array([BAD_INPUT, BAD_OUTPUT, *range(VIOLATION, BAD_OUTPUT, 3),
+                   *(KAPPA + 4 * k + j for k in range(len(KINDS)) for j in (2, 3))])
+
+
 def new_health() -> np.ndarray:
     """An empty health record: no sample found yet (-1), worst κ −inf."""
-    h = np.full(SIZE, -1.0)
-    h[KAPPA::4] = -np.inf
-    return h
+    return _EMPTY.copy()
+
+
+def enforce(health: np.ndarray, arrays, limits, kappa, thresholds, error_kinds, t=None):
+    """Every check of a kernel's health record, in order: inputs, workspace (when
+    ``limits`` is given), singularities (when ``kappa`` is given), finite results.
+
+    A clean record (the common case) is recognised with one comparison.
+    """
+    if (health[_FIRST] < 0.0).all():
+        return
+    h = health.tolist()
+    check_inputs(h, arrays)
+    if limits is not None:
+        check_workspace(h, limits, arrays[0], t)
+    if kappa is not None:
+        check_singularities(h, kappa, thresholds, t, error_kinds)
+    check_outputs(h, ACTUATORS, arrays, t)
 
 
 def merge(records) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""The hybrid robot's structure, read from its expanded URDF (CONVENTIONS.md names).
+"""The hybrid robot's structure, read from its expanded URDF (docs/conventions.md names).
 
 Nothing here is a number of the robot: every mass, length and axis comes from the URDF.
 The reader checks that the URDF has the structure the closed-form leg kinematics relies
@@ -8,6 +8,7 @@ on, and says what is wrong otherwise.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -70,12 +71,12 @@ class HybridModel:
         """True when the crane arm is present (``with_arm = 1``)."""
         return self.arm.n > 0
 
-    @property
+    @cached_property
     def actuators(self) -> tuple:
         """Names of the actuators that exist (of :data:`ACTUATORS`)."""
         return ACTUATORS[:self.arm.n] + ACTUATORS[3:]
 
-    @property
+    @cached_property
     def massless_legs(self) -> bool:
         """True when no leg link has mass or inertia (their inertia terms are exact zeros)."""
         return not (self.lower_mass.any() or self.upper_mass.any()

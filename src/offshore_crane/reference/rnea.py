@@ -278,30 +278,20 @@ def end_point(frame, pend, prism_, c, org, zs, Jc):
     return X, V, A
 
 @jit
-def chain_end(R_, p_, axis_, prism_, pend, c, qj, vj, aj, Jc, org, zs):
-    """:func:`end_point` of :func:`chain_frame` for chain ``c``."""
-    return end_point(chain_frame(R_, p_, axis_, prism_, c, qj, vj, aj, org, zs), pend, prism_,
-                     c, org, zs, Jc)
-
-@jit
-def tip_position(R_, p_, axis_, prism_, pend, c, qj, Jc):
-    """Position of chain ``c``'s end point at joint positions ``qj`` and its Jacobian
-    ``Jc[:, j] = ∂X/∂q_j`` (the part of :func:`chain_end` Newton's method needs)."""
+def tip_position(R_, p_, axis_, prism_, pend, c, qj, Jc, org, zs):
+    """Position of chain ``c``'s end point at joint positions ``qj`` (world), its Jacobian
+    ``Jc[:, j] = ∂X/∂q_j``, and each joint's origin ``org[j]`` and axis ``zs[j]``."""
     R = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
     p = (0.0, 0.0, 0.0)
     n = qj.shape[0]
-    o0 = o1 = o2 = z0 = z1 = z2 = p
     for j in range(n):
         p = lin(p, 1.0, rot(R, vec(p_, c, j)), 1.0)
         Rj = compose(R, R_, c, j)
         k = vec(axis_, c, j)
         z = rot(Rj, k)
-        if j == 0:
-            o0, z0 = p, z
-        elif j == 1:
-            o1, z1 = p, z
-        else:
-            o2, z2 = p, z
+        for i in range(3):
+            org[j, i] = p[i]
+            zs[j, i] = z[i]
         if prism_[c, j]:
             p = lin(p, 1.0, z, qj[j])
             R = Rj
@@ -309,11 +299,51 @@ def tip_position(R_, p_, axis_, prism_, pend, c, qj, Jc):
             R = turn(Rj, k, qj[j])
     X = lin(p, 1.0, rot(R, (pend[c, 0], pend[c, 1], pend[c, 2])), 1.0)
     for j in range(n):
-        o, z = (o0, z0) if j == 0 else ((o1, z1) if j == 1 else (o2, z2))
-        col = z if prism_[c, j] else cross(z, lin(X, 1.0, o, -1.0))
+        z = (zs[j, 0], zs[j, 1], zs[j, 2])
+        col = z if prism_[c, j] else cross(z, (X[0] - org[j, 0], X[1] - org[j, 1],
+                                               X[2] - org[j, 2]))
         for i in range(3):
             Jc[i, j] = col[i]
     return X
+
+
+@jit
+def bias_acceleration(prism_, c, X, Jc, org, zs, qd):
+    """``J̇ q̇``: the end point's acceleration at rates ``qd`` and zero joint accelerations,
+    from the joints' origins and axes of :func:`tip_position` (base at rest).
+
+    Column j of J is ``z_j × (X − o_j)`` (revolute) or ``z_j`` (prismatic), with ``z_j``
+    and ``o_j`` fixed in the body before joint j, which turns at
+    ``ω_{j−1} = Σ_{k<j, revolute} z_k q̇_k``: ``ż_j = ω_{j−1} × z_j``,
+    ``ȯ_j = Σ_{k<j} J_k(o_j) q̇_k``, ``Ẋ = J q̇``, and
+    ``d/dt J_j = ż_j × (X − o_j) + z_j × (Ẋ − ȯ_j)`` (revolute), ``ż_j`` (prismatic).
+    """
+    n = qd.shape[0]
+    Xd = (0.0, 0.0, 0.0)
+    for j in range(n):
+        Xd = lin(Xd, 1.0, (Jc[0, j], Jc[1, j], Jc[2, j]), qd[j])
+    w = (0.0, 0.0, 0.0)
+    acc = (0.0, 0.0, 0.0)
+    for j in range(n):
+        z = (zs[j, 0], zs[j, 1], zs[j, 2])
+        o = (org[j, 0], org[j, 1], org[j, 2])
+        zd = cross(w, z)
+        if prism_[c, j]:
+            acc = lin(acc, 1.0, zd, qd[j])
+        else:
+            od = (0.0, 0.0, 0.0)
+            for k in range(j):
+                zk = (zs[k, 0], zs[k, 1], zs[k, 2])
+                if prism_[c, k]:
+                    od = lin(od, 1.0, zk, qd[k])
+                else:
+                    od = lin(od, 1.0, cross(zk, lin(o, 1.0, (org[k, 0], org[k, 1], org[k, 2]),
+                                                    -1.0)), qd[k])
+            djc = lin(cross(zd, lin(X, 1.0, o, -1.0)), 1.0, cross(z, lin(Xd, 1.0, od, -1.0)),
+                      1.0)
+            acc = lin(acc, 1.0, djc, qd[j])
+            w = lin(w, 1.0, z, qd[j])
+    return acc
 
 
 @ijit
@@ -325,7 +355,7 @@ def det3(M):
 
 
 @jit
-def newton(lR, lp, lax, lpr, lpe, l, S, th, iters, Jl, branch):
+def newton(lR, lp, lax, lpr, lpe, l, S, th, iters, Jl, branch, org, zs):
     """Leg joint positions ``th`` (updated in place) putting the tip on ``S``.
 
     Iterates ``θ += J⁻¹ (S − tip(θ))`` (revolute steps limited to MAX_TURN rad, so that a
@@ -334,11 +364,12 @@ def newton(lR, lp, lax, lpr, lpe, l, S, th, iters, Jl, branch):
     (−π, π]. The solution must lie on the leg's own branch: the U-joint and slider reach
     each tip position twice (the second with the U-joint flipped through its gimbal
     singularity), and the flip reverses the sign of ``det J``; ``branch`` is that sign at
-    the zero angles. On return ``Jl`` is the Jacobian at ``th``. True on success.
+    the zero angles. On return ``Jl``, ``org``, ``zs`` are those of :func:`tip_position`
+    at ``th``. True on success.
     """
     scale = 1.0 + abs(S[0]) + abs(S[1]) + abs(S[2])
     for _ in range(iters):
-        tip = tip_position(lR, lp, lax, lpr, lpe, l, th, Jl)
+        tip = tip_position(lR, lp, lax, lpr, lpe, l, th, Jl, org, zs)
         r = (S[0] - tip[0], S[1] - tip[1], S[2] - tip[2])
         if max(abs(r[0]), abs(r[1]), abs(r[2])) <= RESIDUAL_TOL * scale:
             return th[2] > 0.0 and det3(Jl) * branch > 0.0
@@ -376,7 +407,7 @@ def closure(pR, pp, pax, ppr, ppe, pco, pvi, lR, lp, lax, lpr, lpe, lvi,
     branch = np.empty(6)
     for l in range(6):                   # sign of det J at zero angles: the leg's branch
         th[l, 2] = 1.0
-        tip_position(lR, lp, lax, lpr, lpe, l, th[l], Jl)
+        tip_position(lR, lp, lax, lpr, lpe, l, th[l], Jl, org, zs)
         branch[l] = np.sign(det3(Jl))
     prev = np.zeros((6, 3))
     guess = np.zeros(3)
@@ -402,19 +433,20 @@ def closure(pR, pp, pax, ppr, ppe, pco, pvi, lR, lp, lax, lpr, lpe, lvi,
             for j in range(3):
                 prev[l, j] = th[l, j]
                 th[l, j] = guess[j]
-            ok = k > 0 and newton(lR, lp, lax, lpr, lpe, l, S, th[l], 10, Jl, branch[l])
+            ok = k > 0 and newton(lR, lp, lax, lpr, lpe, l, S, th[l], 10, Jl, branch[l], org, zs)
             if not ok:                   # from zero angles and the straight length
                 th[l, 0] = 0.0
                 th[l, 1] = 0.0
                 th[l, 2] = np.sqrt((S[0] - lp[l, 0, 0]) ** 2 + (S[1] - lp[l, 0, 1]) ** 2
                                    + (S[2] - lp[l, 0, 2]) ** 2)
-                ok = newton(lR, lp, lax, lpr, lpe, l, S, th[l], MAX_NEWTON, Jl, branch[l])
+                ok = newton(lR, lp, lax, lpr, lpe, l, S, th[l], MAX_NEWTON, Jl, branch[l],
+                            org, zs)
             if not ok and status[0] < 0:
                 status[0] = k
             td = solve3(Jl, vS)
             for j in range(3):
                 thd[j] = td[j]
-            at = chain_end(lR, lp, lax, lpr, lpe, l, th[l], thd, zero, Jl, org, zs)[2]
+            at = bias_acceleration(lpr, l, S, Jl, org, zs, thd)
             tdd = solve3(Jl, (aS[0] - at[0], aS[1] - at[1], aS[2] - at[2]))
             for j in range(3):
                 vi = lvi[l, j]
@@ -432,11 +464,92 @@ def closure(pR, pp, pax, ppr, ppe, pco, pvi, lR, lp, lax, lpr, lpe, lvi,
             diag[4, k, l] = th[l, 1]
 
 @jit
-def project(tau, G, plat_v, leg_v, arm_v, iL, X, A, rhs):
-    """``B = Gᵀ τ``: arm columns of X, and the leg system ``A Fl = rhs`` (Jlᵀ, rows
-    of the rotation coordinates scaled by 1/L)."""
+def qr_solve(A, b, x, Q, R, want_cond):
+    """``x = A⁻¹ b`` for a 6x6 ``A`` by Householder QR (``Q``, ``R`` (6, 6) workspaces:
+    the reflectors and the triangle); the 1-norm condition number ``‖A‖₁ ‖A⁻¹‖₁`` when
+    ``want_cond`` (else 0); inf and a NaN solution for a singular or non-finite A."""
+    n = 6
+    for i in range(n):
+        for j in range(n):
+            R[i, j] = A[i, j]
+            Q[i, j] = 0.0
+    for k in range(n):
+        norm = 0.0
+        for i in range(k, n):
+            norm += R[i, k] * R[i, k]
+        norm = np.sqrt(norm)
+        if not norm > 0.0:
+            for i in range(n):
+                x[i] = np.nan
+            return np.inf
+        alpha = -norm if R[k, k] >= 0.0 else norm
+        vnorm = 0.0
+        for i in range(k, n):
+            Q[i, k] = R[i, k] - (alpha if i == k else 0.0)
+            vnorm += Q[i, k] * Q[i, k]
+        for j in range(k, n):                 # R ← (I − 2 v vᵀ / vᵀv) R
+            dotv = 0.0
+            for i in range(k, n):
+                dotv += Q[i, k] * R[i, j]
+            f = 2.0 * dotv / vnorm
+            for i in range(k, n):
+                R[i, j] -= f * Q[i, k]
+        Q[k, k] = Q[k, k] / np.sqrt(vnorm)    # keep v normalised in Q's column k
+        for i in range(k + 1, n):
+            Q[i, k] = Q[i, k] / np.sqrt(vnorm)
+    cond = 0.0
+    if want_cond:
+        norm_a = 0.0
+        norm_inv = 0.0
+        for j in range(n):
+            sa = 0.0
+            for i in range(n):
+                sa += abs(A[i, j])
+            norm_a = max(norm_a, sa)
+        for j in range(n):
+            for i in range(n):
+                x[i] = 1.0 if i == j else 0.0
+            _qr_apply(Q, R, x)
+            si = 0.0
+            for i in range(n):
+                si += abs(x[i])
+            norm_inv = max(norm_inv, si)
+        cond = norm_a * norm_inv
+    for i in range(n):
+        x[i] = b[i]
+    _qr_apply(Q, R, x)
+    return cond
+
+
+@jit
+def _qr_apply(Q, R, x):
+    """``x ← R⁻¹ Qᵀ x`` with the unit reflectors in Q's columns."""
+    n = 6
+    for k in range(n):
+        dotv = 0.0
+        for i in range(k, n):
+            dotv += Q[i, k] * x[i]
+        for i in range(k, n):
+            x[i] -= 2.0 * dotv * Q[i, k]
+    for i in range(n - 1, -1, -1):
+        s_ = x[i]
+        for j in range(i + 1, n):
+            s_ -= R[i, j] * x[j]
+        x[i] = s_ / R[i, i]
+
+
+@jit
+def project(tau, G, plat_v, leg_v, arm_v, iL, want_cond, X, cond):
+    """``B = Gᵀ τ`` and the actuator forces: ``(T1, T2, Fs) = τ_arm`` and the legs from
+    ``Jlᵀ Fl = B[0:6]`` (rows of the rotation coordinates scaled by 1/L), solved by QR;
+    ``cond`` receives that system's 1-norm condition number."""
     N = tau.shape[1]
     na = arm_v.shape[0]
+    A = np.empty((6, 6))
+    rhs = np.empty(6)
+    x = np.empty(6)
+    Q = np.empty((6, 6))
+    R = np.empty((6, 6))
     for k in range(N):
         for b in range(3):
             X[k, b] = tau[arm_v[b], k] if b < na else np.nan
@@ -446,10 +559,13 @@ def project(tau, G, plat_v, leg_v, arm_v, iL, X, A, rhs):
                 for j in range(3):
                     B += tau[leg_v[l, j], k] * G[k, l, j, r]
             f = iL if r >= 3 else 1.0
-            rhs[k, r] = B * f
+            rhs[r] = B * f
             for l in range(6):
-                A[k, r, l] = G[k, l, 2, r] * f
-
+                A[r, l] = G[k, l, 2, r] * f
+        c = qr_solve(A, rhs, x, Q, R, want_cond)
+        cond[k] = c
+        for l in range(6):
+            X[k, 3 + l] = x[l]
 
 
 def tree_state(robot, q, qd, qdd):
@@ -530,11 +646,11 @@ def run(robot, limits, q, qd, qdd, g, opts, X, kappa, health, threads: int = 1) 
         Q, V, A, G, diag = tree_state(robot, q[sl], qd[sl], qdd[sl])
         tau = np.empty_like(Q, order="F")
         pin.rneaInParallel(threads, pool, Q, V, A, tau)
-        n = Q.shape[1]
-        Ab = np.empty((n, 6, 6))
-        rhs = np.empty((n, 6))
-        project(tau, G, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, X[sl], Ab, rhs)
-        kernels.finish_chunk(X[sl], Ab, rhs, diag, q[sl], start, opts, limits,
+        cond = np.empty(Q.shape[1])
+        project(tau, G, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, opts.conditioning,
+                X[sl], cond)
+        kernels.finish_chunk(X[sl], cond, None, diag[0], diag[1], diag[2],
+                             np.stack([diag[3], diag[4]], -1), q[sl], start, opts, limits,
                              None if kappa is None else kappa[:, sl], health)
 
 

@@ -1,0 +1,155 @@
+"""``offshore-crane id``: inverse dynamics along a trajectory or a scene."""
+
+from __future__ import annotations
+
+from ..conventions import ACTUATOR_UNITS, ACTUATORS, AGREEMENT_RTOL
+from ..errors import InputError
+
+RELATIVE_LIMIT = AGREEMENT_RTOL
+#: From this many samples the command uses the compiled kernels by default: loading Numba
+#: and the cached kernels costs ~1.2 s, the NumPy kernels ~2 µs a sample more.
+NUMBA_MIN = 500_000
+
+
+def _parse_set(items) -> dict:
+    out = {}
+    for item in items or []:
+        name, sep, value = item.partition("=")
+        if not sep or not name:
+            raise InputError(f"--set expects name=value, got '{item}'", name="--set")
+        out[name.strip()] = value.strip()
+    return out
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("id", help="inverse dynamics along a trajectory",
+                       description="Actuator forces of the hybrid crane along a trajectory. "
+                       "With --scene, the scene file sets the defaults of --trajectory, "
+                       "--duration, --rate, --fd-order, --method, --leg-model, --outputs, "
+                       "--gravity and the robot (--set is applied on top); flags given "
+                       "explicitly override the scene.")
+    p.add_argument("--scene", metavar="FILE.toml",
+                   help="scene file: sub-systems, leg model, payload, gravity, trajectory, "
+                   "outputs, methods (see scenes/)")
+    p.add_argument("--trajectory",
+                   help="'table1' (paper Table 1, analytic derivatives; default) or a CSV "
+                   "t_s,q1..q9")
+    p.add_argument("--backend", choices=("numpy", "numba", "auto"),
+                   help="kernels: numpy (starts fastest), numba (compiled: ~2x faster a "
+                   f"sample, ~1.2 s to load) or auto; default: numpy below {NUMBA_MIN:,} "
+                   "samples, numba from there")
+    p.add_argument("--threads", type=int, default=1,
+                   help="threads for the compiled kernels (large trajectories; results "
+                   "bit-identical to 1 thread)")
+    p.add_argument("--method", choices=("kane", "kane-explicit", "rnea", "both"),
+                   help="default kane; 'both' runs kane and rnea and compares them")
+    p.add_argument("--leg-model", choices=("full", "thin-rod", "massless"),
+                   help="leg model (default full); thin-rod and massless are approximations "
+                   "(kane only)")
+    p.add_argument("--outputs", help="comma-separated actuators to compute, e.g. T1,T2,Fs "
+                   "(without any Fl the legs are not evaluated)")
+    p.add_argument("--duration", type=float, help="span of table1 [s] (default 10π)")
+    p.add_argument("--rate", type=float, help="sampling rate of table1 [Hz] (default 100)")
+    p.add_argument("--fd-order", type=int, choices=(2, 4, 6),
+                   help="order of the central differences for a CSV trajectory (default 4)")
+    p.add_argument("--out", help="write the actuator forces to this CSV")
+    p.add_argument("--plot", help="write a figure like the paper's Fig. 3 (PNG, PDF, SVG)")
+    p.add_argument("--set", action="append", metavar="NAME=VALUE",
+                   help="override a robot parameter (xacro argument); repeatable")
+    p.add_argument("--gravity", type=float, nargs=3, metavar=("GX", "GY", "GZ"),
+                   help="gravity in the base frame [m/s²] (default 0 0 -9.81)")
+    p.add_argument("--no-limits", action="store_true",
+                   help="do not stop at leg strokes, U-joint or arm joint limits")
+    p.add_argument("--warn-cond", type=float, default=1e5,
+                   help="warn above this condition number (default 1e5)")
+    p.add_argument("--error-cond", type=float, default=1e8,
+                   help="stop above this condition number (default 1e8)")
+    p.add_argument("--compare-fidelity", action="store_true",
+                   help="also run every leg model (kane) and print its run time and "
+                   "largest deviation from 'full' per actuator")
+    p.set_defaults(run=run)
+
+
+def _thresholds(args):
+    from ..kinematics.workspace import Thresholds
+
+    try:
+        return Thresholds(warn=args.warn_cond, error=args.error_cond)
+    except ValueError as exc:
+        raise InputError(str(exc), name="--warn-cond") from None
+
+
+_METHOD_LABELS = {"kane": "Kane", "kane-explicit": "Kane (explicit)", "rnea": "RNEA"}
+
+
+def _scene(args):
+    """The scene to run: ``--scene`` (or the default one) with the explicit flags applied."""
+    from ..scenes import Scene, load_scene, with_overrides
+
+    scene = load_scene(args.scene) if args.scene else Scene()
+    methods = None
+    if args.method:
+        methods = ("kane", "rnea") if args.method == "both" else (args.method,)
+    outputs = None if not args.outputs else tuple(o.strip() for o in args.outputs.split(","))
+    unknown = [o for o in outputs or () if o not in ACTUATORS]
+    if unknown:
+        raise InputError(f"--outputs: unknown {', '.join(map(repr, unknown))}: choose among "
+                         f"{', '.join(ACTUATORS)}", name="--outputs")
+    where = f"{args.scene} with the command-line options" if args.scene else "command line"
+    return with_overrides(scene, where, trajectory=args.trajectory, duration=args.duration,
+                          rate=args.rate, fd_order=args.fd_order, methods=methods,
+                          leg_model=args.leg_model, outputs=outputs,
+                          gravity=None if args.gravity is None else tuple(args.gravity))
+
+
+def run(args) -> int:
+    from .. import scenes
+    from ..report import check_output, format_summary, plot, summary_rows, write_csv
+
+    for path, is_plot in ((args.out, False), (args.plot, True)):
+        if path:
+            check_output(path, plot=is_plot)
+    scene = _scene(args)
+    robot = scenes.load_robot(scene, **_parse_set(args.set))
+    traj = scenes.load_trajectory(scene, robot)
+    backend = args.backend or ("numba" if len(traj.t) >= NUMBA_MIN else "numpy")
+    options = dict(limits=not args.no_limits, thresholds=_thresholds(args),
+                   backend=backend, threads=args.threads)
+    done = scenes.run(scene, robot, traj, **options)
+    res, t = done.result, traj.t
+    X = res.X
+    if args.scene:
+        print(f"scene {scene.name} ({args.scene}): {scene.describe()}")
+    print(f"offshore-crane id: trajectory {traj.name}, {len(t)} samples, "
+          f"t = {t[0]:.2f}..{t[-1]:.2f} s, method "
+          f"{'both' if scene.methods == ('kane', 'rnea') else ' + '.join(scene.methods)} "
+          f"({', '.join(f'{m} {s * 1e3:.1f} ms' for m, s in done.seconds.items())})")
+    print(f"model: {'exact' if not res.approximations else 'APPROXIMATE: ' + '; '.join(res.approximations)}"
+          + (f"; skipped: {'; '.join(res.pruned)}" if res.pruned else ""))
+    cols = [k for k, name in enumerate(ACTUATORS) if name in res.outputs]
+    print(format_summary(summary_rows(t, X[:, cols], [ACTUATORS[k] for k in cols],
+                                      [ACTUATOR_UNITS[k] for k in cols])))
+    for kind, kappa, k in res.worst():
+        print(f"worst {kind} condition number: {kappa:.4g} at t = {t[k]:.2f} s (sample {k})")
+    status = 0
+    first = _METHOD_LABELS[scene.methods[0]]
+    for m, diff, scale, rel, i, j in scenes.compare_methods(done):
+        ok = rel <= RELATIVE_LIMIT
+        print(f"{first} vs {_METHOD_LABELS[m]}: max |ΔX| = {diff:.3e} (sample {i}, "
+              f"t = {t[i]:.2f} s, column {j + 1}); relative to max |X| = {scale:.4g}: "
+              f"{rel:.3e} "
+              f"({'OK' if ok else 'FAIL'}, limit {RELATIVE_LIMIT:g})")
+        status = status if ok else 1
+    if args.compare_fidelity:
+        names, scale, rows = scenes.compare_fidelity(scene, robot, traj, **options)
+        print()
+        print(scenes.format_fidelity(names, scale, rows, len(t)))
+    if args.out:
+        write_csv(args.out, t, X)
+        print(f"wrote {args.out}")
+    if args.plot:
+        plot(args.plot, t, X, title=f"offshore-crane: {traj.name}, {scene.methods[0]}")
+        print(f"wrote {args.plot}")
+    return status
+
+
