@@ -110,6 +110,31 @@ class NumericalError(OffshoreCraneError, ArithmeticError):
         self.name = name
 
 
+class ConstraintResidualError(OffshoreCraneError, ArithmeticError):
+    """A closed-loop solve left a loop-closure or equation-of-motion residual above its bound.
+
+    Raised by the constrained-dynamics reference (:mod:`offshore_crane.reference`) when
+    the loop-closure Newton iteration does not converge, or when a measured residual of a
+    solved sample exceeds its stated bound.
+
+    Attributes:
+        index: Index of the first offending time sample.
+        kind: ``"position"`` [m], ``"velocity"`` [m/s], ``"acceleration"`` [m/s²],
+            ``"dynamics"`` [N, N·m] or ``"proximal"`` (Pinocchio's solver did not reach
+            its accuracy).
+        residual: The residual measured there, in the units of ``kind``.
+        bound: The bound it exceeded, same units.
+    """
+
+    def __init__(self, message: str, index: int | None = None, kind: str | None = None,
+                 residual: float | None = None, bound: float | None = None):
+        super().__init__(message)
+        self.index = index
+        self.kind = kind
+        self.residual = residual
+        self.bound = bound
+
+
 class BackendMissingError(OffshoreCraneError, ImportError):
     """An optional dependency (pinocchio, matplotlib, xacro, yourdfpy) is not installed.
 

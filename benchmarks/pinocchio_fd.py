@@ -1,0 +1,160 @@
+"""Time per sample of Pinocchio's closed-loop forward dynamics on the robot's tree.
+
+    PYTHONPATH=src python benchmarks/pinocchio_fd.py [--samples N] [--repeats R]
+
+On Table 1's states (every ``3142 // N``-th sample) with X from the Kane inverse
+dynamics, one Pinocchio call per sample from Python (Pinocchio has no batched form):
+
+- ``constraintDynamics``: the six CONTACT_3D loop constraints of
+  :mod:`offshore_crane.reference.constrained`, tree states precomputed (the reference
+  against which the other rows' ratios are given);
+- ``lcaba``: the same constraints after ``computeJointMinimalOrdering``, on its own
+  ``Data`` and ``RigidConstraintData`` (in pin 4.1 lcaba leaves a nonzero
+  ``contact_acceleration_desired`` in the constraint data, which a later
+  ``constraintDynamics`` on the same data takes as the target relative acceleration,
+  even after ``initConstraintDynamics``: errors of tens of percent), for a few proximal
+  ``mu`` (lcaba needs mu > 0; its round-off grows like eps/mu, its passes with mu);
+- the loop-closure solve alone (:func:`tree_states`), and the whole reference
+  (:func:`constrained_dynamics`: tree solve + constraintDynamics + residual checks).
+
+Each Pinocchio call is timed alone (``perf_counter_ns``); the Python-level functions are
+timed per batch and divided by N. Medians and minima over ``R`` repeats are printed, with
+each row's error against the Kane accelerations (max over samples of |Δq̈| / max |q̈ with
+X = 0|, the scale of the forces in the equation).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+try:
+    import offshore_crane as oc
+except ImportError:  # run from a checkout without installing
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
+    import offshore_crane as oc
+from offshore_crane.reference import constrained as C
+
+#: lcaba's proximal regularisations to try: Pinocchio's docstring suggests 1e-6.
+LCABA_MU = (1e-8, 1e-6, 1e-4, 1e-2)
+
+
+def per_call(fn, n: int, repeats: int) -> np.ndarray:
+    """Durations [s] of ``fn(k)`` for k < n, ``repeats`` times: ``(repeats, n)``."""
+    out = np.empty((repeats, n))
+    clock = time.perf_counter_ns
+    for r in range(repeats):
+        for k in range(n):
+            t0 = clock()
+            fn(k)
+            out[r, k] = clock() - t0
+    return out * 1e-9
+
+
+def per_batch(fn, n: int, repeats: int) -> np.ndarray:
+    """Per-sample durations [s] of ``fn()`` on n samples, ``repeats`` times: ``(repeats,)``."""
+    out = np.empty(repeats)
+    for r in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        out[r] = (time.perf_counter() - t0) / n
+    return out
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--samples", type=int, default=300, help="states timed (default 300)")
+    parser.add_argument("--repeats", type=int, default=5, help="repeats (default 5)")
+    args = parser.parse_args(argv)
+    import pinocchio as pin
+
+    robot = oc.load_robot()
+    t = oc.trajectories.time_grid()
+    q, qd, qdd = oc.trajectories.table1(t)
+    step = max(1, len(t) // args.samples)
+    q, qd, qdd = q[::step][:args.samples], qd[::step][:args.samples], qdd[::step][:args.samples]
+    n = len(q)
+    X = oc.inverse_dynamics(robot, q, qd, qdd)
+    free = C.forward_dynamics(robot, q, qd, np.zeros_like(X))
+    scale = np.abs(free).max()
+
+    tree = C._tree(robot)                       # the reference's Pinocchio objects
+    model = tree.model
+    model.gravity = pin.Motion(np.array([0.0, 0.0, -9.81]), np.zeros(3))
+    states = C.tree_states(robot, q, qd)
+    tau = np.zeros((n, model.nv))
+    tau[:, tree.act] = X[:, tree.act_columns]
+    rows = []
+
+    def error(a) -> float:
+        return float(np.abs(a[:, tree.indep] - qdd).max() / scale)
+
+    prox = pin.ProximalSettings(C.ACCURACY, C.ACCURACY, C.PROXIMAL_MU, C.PROXIMAL_MAX_ITER)
+    cd = np.empty((n, model.nv))
+
+    def constraint_dynamics(k):
+        cd[k] = pin.constraintDynamics(model, tree.data, states.q[k], states.v[k], tau[k],
+                                       tree.cmodels, tree.cdatas, prox)
+
+    ref = per_call(constraint_dynamics, n, args.repeats)
+    rows.append(("constraintDynamics (mu = 0)", ref.sum(axis=1) / n, ref, error(cd)))
+
+    data = model.createData()                   # lcaba's own Data and constraint data
+    cmodels = pin.StdVec_RigidConstraintModel()
+    cdatas = pin.StdVec_RigidConstraintData()
+    for cm in tree.cmodels:
+        cmodels.append(pin.RigidConstraintModel(cm))
+        cdatas.append(cm.createData())
+    pin.computeJointMinimalOrdering(model, data, cmodels)
+    for mu in LCABA_MU:
+        lprox = pin.ProximalSettings(C.ACCURACY, C.ACCURACY, mu, C.PROXIMAL_MAX_ITER)
+        la = np.empty((n, model.nv))
+        passes = []
+
+        def lcaba(k, lprox=lprox, la=la, passes=passes):
+            la[k] = pin.lcaba(model, data, states.q[k], states.v[k], tau[k], cmodels, cdatas,
+                              lprox)
+            passes.append(lprox.iter)
+
+        d = per_call(lcaba, n, args.repeats)
+        rows.append((f"lcaba (mu = {mu:.0e}, {max(passes)} passes max)", d.sum(axis=1) / n, d,
+                     error(la)))
+    before = cd.copy()
+    per_call(constraint_dynamics, n, 1)           # unaffected by lcaba on its own Data?
+    assert np.array_equal(cd, before), "constraintDynamics changed after lcaba"
+
+    d = per_batch(lambda: C.tree_states(robot, q, qd), n, args.repeats)
+    rows.append(("tree_states (Newton loop closure)", d, None, float("nan")))
+    result = [None]
+
+    def whole():
+        result[0] = C.constrained_dynamics(robot, q, qd, X)
+
+    d = per_batch(whole, n, args.repeats)
+    rows.append(("constrained_dynamics (tree + FD + checks)", d, None, error(result[0].a)))
+    d = per_batch(lambda: oc.inverse_dynamics(robot, q, qd, qdd), n, args.repeats)
+    rows.append((f"Kane inverse_dynamics, batched N = {n}", d, None, float("nan")))
+
+    base = np.median(ref)
+    print(f"pin {pin.__version__}, {n} Table 1 states, {args.repeats} repeats; "
+          "times per sample [µs]")
+    print(f"{'path':<46}{'median':>9}{'min':>9}{'call med':>10}{'call min':>10}"
+          f"{'ratio':>8}{'error':>10}")
+    for name, batch, calls, err in rows:
+        cm = f"{np.median(calls) * 1e6:10.1f}{calls.min() * 1e6:10.1f}" if calls is not None \
+            else " " * 20
+        ratio = (np.median(calls) if calls is not None else np.median(batch)) / base
+        print(f"{name:<46}{np.median(batch) * 1e6:9.1f}{batch.min() * 1e6:9.1f}{cm}"
+              f"{ratio:8.2f}{err:10.1e}")
+    print("median/min: per-sample time of a whole pass (median, minimum over repeats);"
+          " call med/min: single calls; ratio: median against constraintDynamics' call; "
+          "error: max |Δq̈| / max |q̈ with X = 0| against the Kane accelerations")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
