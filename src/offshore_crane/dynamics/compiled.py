@@ -161,7 +161,14 @@ def _kappa(health, kind, k, value, warn, error):
 
 @njit(**JIT)
 def _finite_inputs(q, qd, qdd, k, health):
-    """False (and the first one recorded) if sample k has a non-finite input."""
+    """False (and the first one recorded) if sample k has a non-finite input. A finite
+    sum of the 27 values (one pass, no branch) proves them all finite; only otherwise
+    are they looked at one by one."""
+    total = 0.0
+    for j in range(9):
+        total += q[k, j] + qd[k, j] + qdd[k, j]
+    if total - total == 0.0:
+        return True
     for which in range(3):
         arr = q if which == 0 else (qd if which == 1 else qdd)
         for j in range(9):
@@ -169,7 +176,7 @@ def _finite_inputs(q, qd, qdd, k, health):
                 if health[_BAD_INPUT] < 0.0:
                     _first(health, _BAD_INPUT, k, j, which)
                 return False
-    return True
+    return True          # finite values whose sum overflowed
 
 
 @njit(**JIT)
@@ -201,27 +208,18 @@ def _ujoint_inside(diag, l, tb):
 
 
 @njit(**JIT)
-def _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error, lim_arm,
-          lim_stroke, lim_ujoint, tb, X, kappa, health, x, M):
-    """Sample k after the formulas: solve the legs, measure κ, check the limits and the
-    result's finiteness (the arm columns of X are filled)."""
-    for b in range(na, 3):
-        X[k, b] = np.nan
-    cond = 0.0
-    if want_legs:
-        cond = solve6(A, rhs, x, M, want_cond)
-        for j in range(6):
-            X[k, 3 + j] = x[j]
-    else:
-        for j in range(6):
-            X[k, 3 + j] = np.nan
+def _check(k, q, na, diag, cond, want_legs, want_cond, want_limits, warn, error, lim_arm,
+           lim_stroke, lim_ujoint, tb, kappa, health):
+    """Sample k's condition numbers (``cond``: the leg-force system's, NaN when none was
+    solved) and workspace limits, into ``kappa`` and the health record."""
     if want_cond:
         att = 1.0 / abs(np.cos(q[k, 4]))
         kappa[2, k] = att
         _kappa(health, 2, k, att, warn, error)
+        kappa[0, k] = cond
         if want_legs:
-            kappa[0, k] = cond
-            _kappa(health, 0, k, cond, warn, error)
+            if cond == cond:
+                _kappa(health, 0, k, cond, warn, error)
             worst = diag[_COS, 0]
             for l in range(1, 6):
                 worst = min(worst, diag[_COS, l])
@@ -229,7 +227,6 @@ def _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error
             kappa[1, k] = gim
             _kappa(health, 1, k, gim, warn, error)
         else:
-            kappa[0, k] = np.nan
             kappa[1, k] = np.nan
     if want_limits:
         s = _VIOLATION
@@ -265,12 +262,70 @@ def _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error
                             break
                     if hit:
                         break
+
+
+@njit(**JIT)
+def _finite_outputs(k, out, columns_a, columns_b, health):
+    """Record the first non-finite value of ``out[k]`` in columns [0, a) ∪ [3, b)."""
     if health[_BAD_OUTPUT] < 0.0:
-        for j in range(9 if want_legs else na):
-            if (j < na or j >= 3) and not np.isfinite(X[k, j]):
+        for j in range(columns_b):
+            if (j < columns_a or j >= 3) and not np.isfinite(out[k, j]):
                 health[_BAD_OUTPUT] = k
                 health[_BAD_OUTPUT + 1] = j
                 break
+
+
+@njit(**JIT)
+def _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error, lim_arm,
+          lim_stroke, lim_ujoint, tb, X, kappa, health, x, M):
+    """Sample k after the formulas: solve the legs, measure κ, check the limits and the
+    result's finiteness (the arm columns of X are filled)."""
+    for b in range(na, 3):
+        X[k, b] = np.nan
+    cond = 0.0
+    if want_legs:
+        cond = solve6(A, rhs, x, M, want_cond)
+        for j in range(6):
+            X[k, 3 + j] = x[j]
+    else:
+        for j in range(6):
+            X[k, 3 + j] = np.nan
+    _check(k, q, na, diag, cond, want_legs, want_cond, want_limits, warn, error, lim_arm,
+           lim_stroke, lim_ujoint, tb, kappa, health)
+    _finite_outputs(k, X, na, 9 if want_legs else na, health)
+
+
+@njit(**JIT)
+def cholesky_solve(Mm, b, n, x, L):
+    """``x = M⁻¹ b`` for the symmetric positive definite leading ``n x n`` block of
+    ``Mm`` (lower triangle read) by Cholesky factorisation into ``L``; False (and NaN
+    ``x``) when a pivot is not positive: M singular (the attitude coordinates at
+    q5 = ±π/2) or not finite."""
+    for j in range(n):
+        d = Mm[j, j]
+        for k in range(j):
+            d -= L[j, k] * L[j, k]
+        if not d > 0.0:
+            for i in range(n):
+                x[i] = np.nan
+            return False
+        L[j, j] = np.sqrt(d)
+        for i in range(j + 1, n):
+            s_ = Mm[i, j]
+            for k in range(j):
+                s_ -= L[i, k] * L[j, k]
+            L[i, j] = s_ / L[j, j]
+    for i in range(n):
+        s_ = b[i]
+        for k in range(i):
+            s_ -= L[i, k] * x[k]
+        x[i] = s_ / L[i, i]
+    for i in range(n - 1, -1, -1):
+        s_ = x[i]
+        for k in range(i + 1, n):
+            s_ -= L[k, i] * x[k]
+        x[i] = s_ / L[i, i]
+    return True
 
 
 def _make(stamp):
@@ -347,7 +402,78 @@ def _make(stamp):
             _post(k, q, na, A, rhs, diag, True, want_cond, want_limits, warn, error,
                   lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 
-    return kane, explicit
+    @njit(**JIT)
+    def forward(flat, lay, prism, q, qd, X, g, want_qdd, want_M, want_h, want_A, want_cond,
+                want_limits, warn, error, start, stop, qdd, Mout, hout, Aout, kappa, health):
+        """Samples ``start..stop-1`` of the equations of motion ``M q̈ + h = A X`` in the
+        independent coordinates (explicit partials, q̈ = 0 gives h): fills the requested
+        of ``qdd`` (N, 9) (solved by Cholesky), ``Mout`` (N, 9, 9), ``hout`` (N, 9) and
+        ``Aout`` (N, 9, 9); coordinates beyond 6 + n_arm are NaN in qdd, zero rows/columns
+        in M, h, A."""
+        if len(stamp) == 0:
+            return
+        C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
+        tb = tangent_bounds(lim_ujoint)
+        na = C.n_arm
+        n = 6 + na
+        B = np.zeros(9)
+        J = np.empty((6, 6))
+        Mm = np.zeros((9, 9))
+        L = np.zeros((9, 9))
+        diag = np.zeros((7, 6))
+        store = np.empty((max(na, 1), 27))
+        Vw = np.empty((9, 3))
+        Ww = np.empty((9, 3))
+        Vs = np.empty((9, 3))
+        rhs = np.empty(9)
+        x = np.empty(9)
+        zero = np.zeros(9)
+        gt = (g[0], g[1], g[2])
+        for k in range(start, stop):
+            if not _finite_inputs(q, qd, X, k, health):
+                if want_qdd:
+                    for j in range(9):
+                        qdd[k, j] = np.nan
+                continue
+            B[:] = 0.0
+            Mm[:] = 0.0
+            _explicit_sample(C, q[k], qd[k], zero, gt, want_M or want_qdd, B, J, Mm, store,
+                             Vw, Ww, Vs, diag)
+            if want_h:
+                for r in range(9):
+                    hout[k, r] = B[r]
+            if want_M:
+                for r in range(9):
+                    for c_ in range(r + 1):
+                        Mout[k, r, c_] = Mm[r, c_]
+                        Mout[k, c_, r] = Mm[r, c_]
+            if want_A:
+                for r in range(9):
+                    for c_ in range(9):
+                        Aout[k, r, c_] = 0.0
+                for b in range(na):
+                    Aout[k, 6 + b, b] = 1.0
+                for r in range(6):
+                    for l in range(6):
+                        Aout[k, r, 3 + l] = J[l, r]
+            if want_qdd:
+                for r in range(6):
+                    f = -B[r]
+                    for l in range(6):
+                        f += J[l, r] * X[k, 3 + l]
+                    rhs[r] = f
+                for b in range(na):
+                    rhs[6 + b] = X[k, b] - B[6 + b]
+                ok = cholesky_solve(Mm, rhs, n, x, L)
+                for j in range(9):
+                    qdd[k, j] = x[j] if j < n else np.nan
+                if not ok and health[_KAPPA + 11] < 0.0:   # attitude: M singular
+                    health[_KAPPA + 11] = k
+                _finite_outputs(k, qdd, 3, n, health)
+            _check(k, q, na, diag, np.nan, True, want_cond, want_limits, warn, error,
+                   lim_arm, lim_stroke, lim_ujoint, tb, kappa, health)
+
+    return kane, explicit, forward
 
 
-kane, explicit = _make(STAMP)
+kane, explicit, forward = _make(STAMP)

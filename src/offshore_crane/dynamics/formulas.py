@@ -90,10 +90,11 @@ def platform_wrench(C, R, omega, alpha, a, g):
     return F, add(body_torque(R, C.plat_I, omega, alpha), cross(rho, F))
 
 
-def arm_forward(C, R, omega, alpha, a, q, qd, qdd, first, g, store):
+def arm_forward(C, R, omega, alpha, a, q, qd, qdd, first, g, store, keep_attitude):
     """Forward recursion over the arm bodies on a base of attitude ``R``, angular velocity
     ``omega``, acceleration ``alpha``, origin acceleration ``a``: fills ``store`` (see the
-    ``*_`` columns). Joint b's coordinate is ``q[first + b]`` (6 for the hybrid robot)."""
+    ``*_`` columns; the bodies' attitudes only with ``keep_attitude``). Joint b's
+    coordinate is ``q[first + b]`` (6 for the hybrid robot)."""
     for b in range(C.n_arm):
         axis = row3(C.arm_axis, b)
         r, Rj, z = arm_joint(R, mat3(C.arm_Ro, b), row3(C.arm_t, b), axis)
@@ -107,9 +108,10 @@ def arm_forward(C, R, omega, alpha, a, q, qd, qdd, first, g, store):
         put(store, b, RC_, rc)
         put(store, b, F_, rigid_force(C.arm_m[b], point_acceleration(a, omega, alpha, rc), g))
         put(store, b, T_, body_torque(R, mat3(C.arm_I, b), omega, alpha))
-        put(store, b, ATT_, R[0])
-        put(store, b, ATT_ + 3, R[1])
-        put(store, b, ATT_ + 6, R[2])
+        if keep_attitude:
+            put(store, b, ATT_, R[0])
+            put(store, b, ATT_ + 3, R[1])
+            put(store, b, ATT_ + 6, R[2])
 
 
 def arm_backward(C, store, rows):
@@ -227,7 +229,7 @@ def kane_sample(C, q, qd, qdd, g, static, leg_model, want_legs, rows, A, rhs, di
         omega, alpha = platform_rates(w4, w5, qd, qdd)
         v = (qd[0], qd[1], qd[2])
         a = (qdd[0], qdd[1], qdd[2])
-    arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store)
+    arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store, False)
     F, M = arm_backward(C, store, rows)
     if want_legs:
         Fp, Mp = platform_wrench(C, R, omega, alpha, a, g)
@@ -325,7 +327,7 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
             put(Ww, k, 0, zero)
         accumulate(B, Mm, Vw, Ww, C.up_m[l], Iw, F_up, zero, want_mass)
     # arm: positions from O2 of the joint origins o_j and the bodies' CoMs c_b
-    arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store)
+    arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store, True)
     origin = scale(p, 0.0)
     for b in range(C.n_arm):
         o_b = add(origin, take(store, b, R_))

@@ -245,7 +245,7 @@ def _solve(chain: SerialChain, q, qd, qdd, g, R_b, load) -> np.ndarray:
     R = tuple(tuple(R_b[:, i, j] for j in range(3)) for i in range(3))
     zero = (np.zeros(N),) * 3
     store = np.empty((n, STORE_WIDTH), dtype=object)
-    B.arm_forward(C, R, zero, zero, zero, q.T, qd.T, qdd.T, 0, tuple(g), store)
+    B.arm_forward(C, R, zero, zero, zero, q.T, qd.T, qdd.T, 0, tuple(g), store, True)
     if load is not None:
         name, F, M = load
         k, p_frame, _ = chain.frames[name]

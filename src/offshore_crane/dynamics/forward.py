@@ -1,0 +1,167 @@
+"""Equations of motion of the closed-loop robot in its independent coordinates.
+
+``M(q) q̈ + h(q, q̇) = A(q) X`` with q the 9 coordinates of ``docs/conventions.md`` (no
+constraint drift: the loops are closed by construction), where
+
+- ``M`` ``(N, 9, 9)`` [kg, kg·m, kg·m²] is Kane's generalized inertia, formed directly from
+  every body's partial velocities (:func:`.formulas.explicit_sample`):
+  ``M_rs = Σ_bodies m v_r · v_s + ω_r · I ω_s``; symmetric positive definite away from the
+  attitude-coordinate singularity ``q5 = ±π/2``;
+- ``h`` ``(N, 9)`` [N, N·m] gathers the velocity and gravity terms: Kane's ``B`` of the
+  inverse dynamics evaluated at ``q̈ = 0`` (so ``M q̈ + h = B``, the right-hand side of the
+  paper's ``A X = B``);
+- ``A`` ``(N, 9, 9)`` maps the actuator forces X to generalized forces:
+  ``A = [[0, Jᵀ], [I3, 0]]`` with ``J`` the leg-length Jacobian (``l̇ = J q̇[:6]``).
+
+Forward dynamics solves ``M q̈ = A X − h`` by Cholesky. For a robot without arm only the
+first six coordinates move (q̈7..q̈9 NaN). ``method="pinocchio"`` gives the same
+accelerations from Pinocchio's constraint dynamics on the equivalent tree
+(:mod:`offshore_crane.reference.constrained`), an independent check.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..conventions import COORDINATES, GRAVITY
+from ..errors import InputError, SingularConfigurationError
+from ..kinematics import workspace as ws
+from ..validation import as_gravity, as_samples
+from .constants import robot_arrays
+
+FORWARD_METHODS = ("kane", "pinocchio")
+
+
+@dataclass
+class EquationsOfMotion:
+    """``M q̈ + h = A X`` at N samples (unrequested parts None).
+
+    Attributes:
+        M: ``(N, 9, 9)`` generalized inertia [kg, kg·m, kg·m²].
+        h: ``(N, 9)`` velocity and gravity terms [N, N·m].
+        A: ``(N, 9, 9)`` actuation matrix (generalized forces per unit X).
+        qdd: ``(N, 9)`` accelerations [m/s², rad/s²] for the given X.
+        attitude, gimbal: ``(N,)`` condition numbers ``1/|cos q5|`` and worst
+            ``1/cos θ2`` (with ``checks``).
+    """
+
+    M: np.ndarray | None = None
+    h: np.ndarray | None = None
+    A: np.ndarray | None = None
+    qdd: np.ndarray | None = None
+    attitude: np.ndarray | None = None
+    gimbal: np.ndarray | None = None
+
+
+def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, checks=True,
+         limits=True, thresholds=ws.Thresholds(), t=None, threads=1) -> EquationsOfMotion:
+    from . import _compiled, _threaded, _threads
+
+    c = _compiled()
+    q, single = as_samples("q", q, finite=False)
+    N = q.shape[0]
+    qd = np.zeros_like(q) if qd is None else as_samples("qd", qd, finite=False)[0]
+    Xa = np.zeros_like(q) if X is None else as_samples("X", X, finite=False)[0]
+    for name, arr in (("qd", qd), ("X", Xa)):
+        if arr.shape[0] != N:
+            raise InputError(f"{name} has {arr.shape[0]} samples, q has {N}", name=name)
+    g = as_gravity(gravity)
+    arrays = robot_arrays(robot)
+    na = robot.hybrid.arm.n
+    if X is not None and na < 3:
+        Xa = Xa.copy()
+        Xa[:, na:3] = 0.0                     # actuators that do not exist
+    out = dict(qdd=np.empty((N, 9)) if qdd else np.empty((1, 9)),
+               M=np.zeros((N, 9, 9)) if M else np.empty((1, 9, 9)),
+               h=np.zeros((N, 9)) if h else np.empty((1, 9)),
+               A=np.zeros((N, 9, 9)) if A else np.empty((1, 9, 9)))
+    kappa = np.empty((3, N)) if checks else np.empty((3, 1))
+
+    def run(start, stop, health):
+        c.forward(arrays.flat, arrays.layout, arrays.prismatic, q, qd, Xa, g, qdd, M, h, A,
+                  checks, limits, thresholds.warn, thresholds.error, start, stop, out["qdd"],
+                  out["M"], out["h"], out["A"], kappa, health)
+
+    health = _threaded(run, N, _threads(threads))
+    ws.check_inputs(health, (q, qd, Xa))
+    if limits:
+        ws.check_workspace(health, arrays.limits, q, t)
+    att_error = health[ws.KAPPA + 4 * ws.ATTITUDE + 3]
+    if att_error >= 0 and not checks:           # M singular (Cholesky) without κ measured
+        k = int(att_error)
+        value = float(1.0 / abs(np.cos(q[k, 4])))
+        raise SingularConfigurationError(
+            f"attitude singularity: the mass matrix is singular at sample {k} (q5 = "
+            f"{q[k, 4]:.6g} rad, 1/|cos q5| = {value:.3g}); the roll and yaw rates are not "
+            "defined there: keep |q5| away from π/2", index=k, condition=value,
+            kind="attitude")
+    if checks:
+        ws.check_singularities(health, kappa, thresholds, t, (ws.GIMBAL, ws.ATTITUDE))
+    ws.check_outputs(health, [f"q̈{c_[1:]}" for c_ in COORDINATES], (q, qd, Xa), t)
+    res = EquationsOfMotion(**{k: (v if flag else None) for (k, v), flag in zip(
+        out.items(), (qdd, M, h, A))})
+    if checks:
+        res.attitude, res.gimbal = kappa[2], kappa[1]
+    return res
+
+
+def mass_matrix(robot, q, **options) -> np.ndarray:
+    """Generalized inertia ``M`` ``(N, 9, 9)`` [kg, kg·m, kg·m²] at ``q`` ``(N, 9)``
+    (symmetric positive definite; a ``(9,)`` q gives ``(9, 9)``)."""
+    single = np.ndim(q) == 1
+    M = _run(robot, q, None, None, GRAVITY, M=True, **options).M
+    return M[0] if single else M
+
+
+def bias_forces(robot, q, qd, gravity=GRAVITY, **options) -> np.ndarray:
+    """Velocity and gravity terms ``h`` ``(N, 9)`` [N, N·m]: ``M q̈ + h = A X``."""
+    single = np.ndim(q) == 1
+    h = _run(robot, q, qd, None, gravity, h=True, **options).h
+    return h[0] if single else h
+
+
+def actuation_matrix(robot, q, **options) -> np.ndarray:
+    """``A`` ``(N, 9, 9)``: generalized forces per unit actuator force, ``[[0, Jᵀ], [I3,
+    0]]`` (rows q1..q9, columns T1, T2, Fs, Fl1..Fl6)."""
+    single = np.ndim(q) == 1
+    A = _run(robot, q, None, None, GRAVITY, A=True, **options).A
+    return A[0] if single else A
+
+
+def equations_of_motion(robot, q, qd, gravity=GRAVITY, **options) -> EquationsOfMotion:
+    """``M``, ``h`` and ``A`` in one pass (see the module docstring)."""
+    return _run(robot, q, qd, None, gravity, M=True, h=True, A=True, **options)
+
+
+def forward_dynamics(robot, q, qd, X, gravity=GRAVITY, method: str = "kane",
+                     **options) -> np.ndarray:
+    """Accelerations ``q̈`` ``(N, 9)`` [m/s², rad/s²] under actuator forces X.
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot`.
+        q, qd: ``(N, 9)`` (or ``(9,)``) coordinates [m, rad] and rates.
+        X: ``(N, 9)`` actuator forces ``[T1, T2 [N·m], Fs, Fl1..Fl6 [N]]``.
+        gravity: ``(3,)`` [m/s²] in the base frame.
+        method: ``"kane"`` (the equations above) or ``"pinocchio"`` (Pinocchio's
+            constraint dynamics on the equivalent tree, an independent check).
+        **options: ``checks``, ``limits``, ``thresholds``, ``t``, ``threads`` (kane).
+
+    Returns:
+        ``(N, 9)`` (``(9,)`` for one sample); ``inverse_dynamics(q, qd, q̈) = X``.
+
+    Raises:
+        InputError, WorkspaceError, SingularConfigurationError, NumericalError.
+    """
+    if method not in FORWARD_METHODS:
+        raise InputError(f"unknown method {method!r}: use one of {', '.join(FORWARD_METHODS)}",
+                         name="method")
+    single = np.ndim(q) == 1
+    if method == "pinocchio":
+        from ..reference.constrained import forward_dynamics as pin_fd
+
+        out = pin_fd(robot, q, qd, X, gravity=gravity)
+        return out
+    qdd = _run(robot, q, qd, X, gravity, qdd=True, **options).qdd
+    return qdd[0] if single else qdd
