@@ -135,6 +135,24 @@ class ConstraintResidualError(OffshoreCraneError, ArithmeticError):
         self.bound = bound
 
 
+class SimulationError(OffshoreCraneError, RuntimeError):
+    """A simulation stopped early: it left the workspace, reached a singular configuration
+    or diverged.
+
+    Attributes:
+        time: Simulated time of the stop [s].
+        cause: What happened, in words.
+        result: The run up to that point (every sample computed is kept).
+    """
+
+    def __init__(self, message: str, time: float | None = None, cause: str | None = None,
+                 result=None):
+        super().__init__(message)
+        self.time = time
+        self.cause = cause
+        self.result = result
+
+
 class BackendMissingError(OffshoreCraneError, ImportError):
     """An optional dependency (pinocchio, matplotlib, xacro, yourdfpy) is not installed.
 

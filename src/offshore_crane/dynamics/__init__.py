@@ -380,4 +380,9 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
         t0 = time.perf_counter()
         solve(robot, q, 0 * q, 0 * q, method=method, backend="numba", limits=False)
         out.append((f"{method} kernels", time.perf_counter() - t0))
+    from .forward import forward_dynamics
+
+    t0 = time.perf_counter()
+    forward_dynamics(robot, q, 0 * q, 0 * q, limits=False)
+    out.append(("forward dynamics", time.perf_counter() - t0))
     return out

@@ -272,7 +272,7 @@ def world_inertia(R, I):
             (dot(RI[2], R[0]), dot(RI[2], R[1]), dot(RI[2], R[2])))
 
 
-def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, diag):
+def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, diag, mc):
     """Kane's equations with every body's partial velocities formed (module docstring).
 
     Fills ``B`` (9,) [N or N·m per generalized speed], the leg-length Jacobian ``J``
@@ -280,7 +280,8 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
     matrix ``Mm`` (9, 9) [kg, kg·m, kg·m²] (the caller zeroes ``B`` and ``Mm``).
     ``store`` is the arm workspace, ``Vw, Ww`` (9, 3) a body's partials, ``Vs`` (9, 3)
     the sphere centre's; ``diag`` receives the legs' diagnostics (as
-    :func:`kane_sample`'s, angles included).
+    :func:`kane_sample`'s); ``mc`` (3,) the first moment ``Σ m c`` [kg·m] of all bodies
+    about the base origin (the potential energy is ``−g · Σ m c``).
     """
     R, w4, w5, w6 = attitude(q)
     p = (q[0], q[1], q[2])
@@ -289,6 +290,7 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
     a = (qdd[0], qdd[1], qdd[2])
     # platform body
     rho = mv(R, C.plat_c)
+    first = scale(add(p, rho), C.plat_m)
     platform_partials(w4, w5, w6, rho, Vw, Ww)
     accumulate(B, Mm, Vw, Ww, C.plat_m, world_inertia(R, C.plat_I),
                rigid_force(C.plat_m, point_acceleration(a, omega, alpha, rho), g),
@@ -308,6 +310,8 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
         a_S = point_acceleration(a, omega, alpha, r)
         w, al = leg_motion(v_S, a_S, u, length, il, Y, a2, n, l_h, True)[2:4]
         zero = scale(r, 0.0)
+        first = add(first, add(scale(add(row3(C.leg_P, l), rho_lo), C.lo_m[l]),
+                               scale(add(add(p, r), rho_up), C.up_m[l])))
         F_lo = rigid_force(C.lo_m[l], point_acceleration(zero, w, al, rho_lo), g)
         F_up = rigid_force(C.up_m[l], point_acceleration(a_S, w, al, rho_up), g)
         platform_partials(w4, w5, w6, r, Vs, Ww)           # v_S,r; Ww: scratch
@@ -333,6 +337,7 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
         o_b = add(origin, take(store, b, R_))
         origin = add(o_b, take(store, b, OFF_))
         c_b = add(origin, take(store, b, RC_))
+        first = add(first, scale(add(p, c_b), C.arm_m[b]))
         platform_partials(w4, w5, w6, c_b, Vw, Ww)
         o_j = scale(p, 0.0)
         orig_j = scale(p, 0.0)
@@ -348,3 +353,23 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
         Rb = (take(store, b, ATT_), take(store, b, ATT_ + 3), take(store, b, ATT_ + 6))
         accumulate(B, Mm, Vw, Ww, C.arm_m[b], world_inertia(Rb, mat3(C.arm_I, b)),
                    take(store, b, F_), take(store, b, T_), want_mass)
+    put(mc, 0, 0, first)
+
+
+def actuator_coordinates(C, q, qd, pos, rate):
+    """The actuated joints' positions ``pos`` (9,) and rates ``rate`` (9,): the arm joints
+    q7..q9 [rad, m] (NaN-free zeros without arm) and the leg lengths [m], ``l̇ = u · v_S``
+    [m/s], in the order of X."""
+    R, w4, w5, w6 = attitude(q)
+    p = (q[0], q[1], q[2])
+    omega = platform_rates(w4, w5, qd, qd)[0]          # (the acceleration is not used)
+    v = (qd[0], qd[1], qd[2])
+    for b in range(3):
+        pos[b] = q[6 + b] if b < C.n_arm else 0.0 * q[0]
+        rate[b] = qd[6 + b] if b < C.n_arm else 0.0 * q[0]
+    for l in range(6):
+        s, P, X, Y, Z = row3(C.leg_s, l), row3(C.leg_P, l), row3(C.leg_X, l), row3(C.leg_Y, l), \
+            row3(C.leg_Z, l)
+        r, d, length, il, u, dx, dy, dz, h = leg_geometry(p, R, s, P, X, Y, Z)
+        pos[3 + l] = length
+        rate[3 + l] = dot(u, point_velocity(v, omega, r))

@@ -272,7 +272,7 @@ def run_explicit_numpy(arrays, q, qd, qdd, g, opts: Options, X, kappa, health,
         store = np.empty((C.n_arm, STORE_WIDTH), dtype=object)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             backends.NUMPY.explicit_sample(C, qc.T, qdc.T, qddc.T, gt, False, B, Jw, None,
-                                           store, Vw, Ww, Vs, dw)
+                                           store, Vw, Ww, Vs, dw, np.empty((1, 3), object))
         Xc = X[sl]
         for b in range(C.n_arm):
             Xc[:, b] = B[6 + b]

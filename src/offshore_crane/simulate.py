@@ -1,0 +1,493 @@
+"""Time simulation of the closed-loop robot under a controller.
+
+The state ``(q, q̇)`` lives in the 9 independent coordinates of ``docs/conventions.md``:
+the loops are closed by construction, there is no constraint drift. The accelerations come
+from the equations of motion ``M q̈ + h = A X`` (:mod:`offshore_crane.dynamics.forward`),
+the actuator forces X from a controller (:mod:`offshore_crane.control`) tracking a
+reference motion.
+
+Integrators:
+
+- ``"rk4"`` (default): classical fixed-step Runge–Kutta at ``step`` [s], compiled whole
+  (the built-in laws included): the reference is evaluated analytically at every stage time
+  (t, t + h/2, t + h) beforehand; with a control rate the law is evaluated at the control
+  instants and X held in between (sample-and-hold), otherwise at every stage.
+- ``"dop853"``: SciPy's adaptive ``solve_ivp`` (DOP853, ``rtol``/``atol`` stated in the
+  result), driven from Python: the accuracy reference for RK4 (and the only integrator for
+  a Python controller callable).
+
+The simulation stops at the first sample that leaves the workspace, reaches a singular
+configuration (the mass matrix at the attitude singularity) or diverges (a non-finite
+state): :class:`~offshore_crane.errors.SimulationError` names the time and the cause and
+carries the :class:`SimulationResult` up to that sample (``error.result``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .control import LAW_CODES, Controller
+from .conventions import GRAVITY
+from .errors import InputError, SimulationError
+from .validation import as_gravity
+
+INTEGRATORS = ("rk4", "dop853")
+#: Stop codes of the compiled loop.
+OK, WORKSPACE, SINGULAR, DIVERGED = 0, 1, 2, 3
+
+
+@dataclass
+class SimulationResult:
+    """A simulated run, sampled at the output times (every sample kept on a stop).
+
+    Attributes:
+        t: ``(N,)`` [s].
+        q, qd, qdd: ``(N, 9)`` state and accelerations [m, rad, /s, /s²].
+        q_ref, qd_ref: ``(N, 9)`` the reference.
+        X_cmd, X: ``(N, 9)`` commanded and applied (saturated) actuator forces [N·m, N]
+            at the start of each output interval.
+        saturated: ``(N, 9)`` True where the command exceeded a limit.
+        energy: ``(N,)`` mechanical energy T + V [J] (V of gravity, zero at the base).
+        power: ``(N,)`` actuators' power Σ X_k · (rate of joint k) [W].
+        integrator, step: What integrated it and its step [s] (RK4) or tolerances.
+        stop: None, or the reason the run stopped early.
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    q_ref: np.ndarray
+    qd_ref: np.ndarray
+    X_cmd: np.ndarray
+    X: np.ndarray
+    saturated: np.ndarray
+    energy: np.ndarray
+    power: np.ndarray
+    integrator: str = "rk4"
+    step: float = 0.0
+    stop: str | None = None
+    info: dict = field(default_factory=dict)
+
+    @property
+    def error(self) -> np.ndarray:
+        """Tracking error ``q − q_ref`` ``(N, 9)``."""
+        return self.q - self.q_ref
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def truncated(self, n: int) -> "SimulationResult":
+        """The first ``n`` samples."""
+        arrays = {k: getattr(self, k)[:n] for k in ("t", "q", "qd", "qdd", "q_ref", "qd_ref",
+                                                     "X_cmd", "X", "saturated", "energy",
+                                                     "power")}
+        return SimulationResult(**arrays, integrator=self.integrator, step=self.step,
+                                stop=self.stop, info=self.info)
+
+
+# --------------------------------------------------------------------------- compiled
+_LOOP: list = []
+
+
+def _loop():
+    """The compiled RK4 loop (built on first use, cached on disk)."""
+    if _LOOP:
+        return _LOOP[0]
+    from numba import njit
+
+    from .dynamics import compiled as c
+
+    explicit_sample, actuator_coordinates = c.KE.explicit_sample, c.KE.actuator_coordinates
+    solve6, cholesky_solve, unpack, check = c.solve6, c.cholesky_solve, c.unpack, c._check
+    tangent_bounds = c.tangent_bounds
+    stamp = c.STAMP
+    jit = njit(**c.JIT)
+
+    @jit
+    def law(Cc, g, kind, kp, kd, q, qd, qr, qdr, qddr, Xout, w):
+        """The control law at one state, with the controller's model ``Cc`` (``w``: the
+        workspace tuple). The model's inverse dynamics comes from its equations of motion:
+        ``B = M q̈_cmd + h``, ``(T1, T2, Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]``."""
+        B, J, Mm, store, Vw, Ww, Vs, diag, mc, A, rhs, x, M13, zero, qdd_c, pos, rate, posr, \
+            rater = w
+        if kind == 3:
+            for j in range(9):
+                Xout[j] = 0.0
+            return
+        for j in range(9):
+            Xout[j] = 0.0
+        if kind <= 1:
+            B[:] = 0.0
+            Mm[:] = 0.0
+            for j in range(9):
+                qdd_c[j] = (qddr[j] + kd[j] * (qdr[j] - qd[j]) + kp[j] * (qr[j] - q[j])
+                            if kind == 0 else 0.0)
+            if kind == 0:
+                explicit_sample(Cc, q, qd, qdd_c, g, False, B, J, Mm, store, Vw, Ww, Vs,
+                                diag, mc)
+            else:
+                explicit_sample(Cc, q, zero, zero, g, False, B, J, Mm, store, Vw, Ww, Vs,
+                                diag, mc)
+            for b in range(Cc.n_arm):
+                Xout[b] = B[6 + b]
+            for r in range(6):
+                rhs[r] = B[r]
+                for l in range(6):
+                    A[r, l] = J[l, r]
+            solve6(A, rhs, x, M13, False)
+            for l in range(6):
+                Xout[3 + l] = x[l]
+        if kind >= 1:
+            actuator_coordinates(Cc, q, qd, pos, rate)
+            actuator_coordinates(Cc, qr, qdr, posr, rater)
+            for j in range(9):
+                Xout[j] += kp[j] * (posr[j] - pos[j]) + kd[j] * (rater[j] - rate[j])
+
+    @jit
+    def accel(C, g, n, q, qd, X, qdd, ws):
+        """q̈ from the equations of motion; returns (ok, T, V·(−1)... packed in ws)."""
+        B, J, Mm, L, store, Vw, Ww, Vs, diag, mc, rhs, x, zero = ws
+        B[:] = 0.0
+        Mm[:] = 0.0
+        explicit_sample(C, q, qd, zero, g, True, B, J, Mm, store, Vw, Ww, Vs, diag, mc)
+        for r in range(6):
+            f = -B[r]
+            for l in range(6):
+                f += J[l, r] * X[3 + l]
+            rhs[r] = f
+        for b in range(n - 6):
+            rhs[6 + b] = X[b] - B[6 + b]
+        ok = cholesky_solve(Mm, rhs, n, x, L)
+        for j in range(9):
+            qdd[j] = x[j] if j < n else 0.0
+        return ok
+
+    @jit
+    def run(fp, lp, pp, fc, lc, pc, g, h, n_steps, out_every, qr, qdr, qddr, kind, kp, kd,
+            hold, nq, nqd, lo, hi, want_limits, q0, qd0, Q, QD, QDD, QR, QDR, XC, XA, SAT,
+            E, P, health, status):
+        """RK4 from (q0, qd0); outputs every ``out_every`` steps; ``status`` receives
+        (code, step) of a stop."""
+        if len(stamp) == 0:
+            return
+        C, lim_arm, lim_stroke, lim_ujoint = unpack(fp, lp, pp)
+        Cc = unpack(fc, lc, pc)[0]
+        tb = tangent_bounds(lim_ujoint)
+        na = C.n_arm
+        n = 6 + na
+        gt = (g[0], g[1], g[2])
+        ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
+              np.empty((max(na, 1), 27)), np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)),
+              np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9), np.zeros(9))
+        wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
+              np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
+              np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
+              np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
+        kap = np.empty((3, 1))
+        q = q0.copy()
+        qd = qd0.copy()
+        Xc = np.zeros(9)
+        Xa = np.zeros(9)
+        qm = np.empty(9)
+        qdm = np.empty(9)
+        k1q = np.empty(9)
+        k1v = np.empty(9)
+        k2q = np.empty(9)
+        k2v = np.empty(9)
+        k3q = np.empty(9)
+        k3v = np.empty(9)
+        k4v = np.empty(9)
+        qs = np.empty(9)
+        qds = np.empty(9)
+        sat = np.zeros(9, dtype=np.bool_)
+        ctrl = 0
+        for step in range(n_steps + 1):
+            i0 = 2 * step
+            # control at the step start (sample-and-hold) or at every stage
+            if hold == 0 or step % hold == 0:
+                for j in range(9):
+                    qm[j] = q[j] + (nq[ctrl, j] if hold > 0 else 0.0)
+                    qdm[j] = qd[j] + (nqd[ctrl, j] if hold > 0 else 0.0)
+                if hold > 0:
+                    ctrl += 1
+                law(Cc, gt, kind, kp, kd, qm, qdm, qr[i0], qdr[i0], qddr[i0], Xc, wl)
+                for j in range(9):
+                    sat[j] = Xc[j] < lo[j] or Xc[j] > hi[j]
+                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
+            ok = accel(C, gt, n, q, qd, Xa, k1v, ws)
+            diag, mc, Mm, J = ws[8], ws[9], ws[2], ws[1]
+            finite = ok
+            for j in range(9):
+                finite = finite and np.isfinite(q[j]) and np.isfinite(qd[j])
+            if want_limits:
+                check(0, q.reshape((1, 9)), na, diag, np.nan, True, False, True, np.inf,
+                      np.inf, lim_arm, lim_stroke, lim_ujoint, tb, kap, health)
+            stop = OK if finite else (SINGULAR if not ok else DIVERGED)
+            if want_limits and stop == OK:
+                for s in range(4):
+                    if health[_VIOLATION + 3 * s] >= 0.0:
+                        stop = WORKSPACE
+            if step % out_every == 0 or stop != OK:
+                o = step // out_every if stop == OK else (step + out_every - 1) // out_every
+                if o < Q.shape[0]:
+                    T = 0.0
+                    for r in range(n):
+                        for c_ in range(n):
+                            T += 0.5 * qd[r] * (Mm[r, c_] if c_ <= r else Mm[c_, r]) * qd[c_]
+                    pw = 0.0
+                    for b in range(na):
+                        pw += Xa[b] * qd[6 + b]
+                    for l in range(6):
+                        ldot = 0.0
+                        for r in range(6):
+                            ldot += J[l, r] * qd[r]
+                        pw += Xa[3 + l] * ldot
+                    for j in range(9):
+                        Q[o, j] = q[j]
+                        QD[o, j] = qd[j]
+                        QDD[o, j] = k1v[j]
+                        QR[o, j] = qr[i0, j]
+                        QDR[o, j] = qdr[i0, j]
+                        XC[o, j] = Xc[j]
+                        XA[o, j] = Xa[j]
+                        SAT[o, j] = sat[j]
+                    E[o] = T - (gt[0] * mc[0, 0] + gt[1] * mc[0, 1] + gt[2] * mc[0, 2])
+                    P[o] = pw
+                    status[2] = o + 1
+            if stop != OK:
+                status[0] = stop
+                status[1] = step
+                return
+            if step == n_steps:
+                break
+            # RK4 stages
+            for j in range(9):
+                k1q[j] = qd[j]
+                qs[j] = q[j] + 0.5 * h * qd[j]
+                qds[j] = qd[j] + 0.5 * h * k1v[j]
+            if hold == 0:
+                law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], Xc,
+                    wl)
+                for j in range(9):
+                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
+            accel(C, gt, n, qs, qds, Xa, k2v, ws)
+            for j in range(9):
+                k2q[j] = qds[j]
+                qs[j] = q[j] + 0.5 * h * qds[j]
+                qds[j] = qd[j] + 0.5 * h * k2v[j]
+            if hold == 0:
+                law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], Xc,
+                    wl)
+                for j in range(9):
+                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
+            accel(C, gt, n, qs, qds, Xa, k3v, ws)
+            for j in range(9):
+                k3q[j] = qds[j]
+                qs[j] = q[j] + h * qds[j]
+                qds[j] = qd[j] + h * k3v[j]
+            if hold == 0:
+                law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 2], qdr[i0 + 2], qddr[i0 + 2], Xc,
+                    wl)
+                for j in range(9):
+                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
+            accel(C, gt, n, qs, qds, Xa, k4v, ws)
+            for j in range(9):
+                q[j] += h / 6.0 * (k1q[j] + 2.0 * k2q[j] + 2.0 * k3q[j] + qds[j])
+                qd[j] += h / 6.0 * (k1v[j] + 2.0 * k2v[j] + 2.0 * k3v[j] + k4v[j])
+
+    _LOOP.append((run, law, accel))
+    return _LOOP[0]
+
+
+_VIOLATION = 3
+
+
+# --------------------------------------------------------------------------- public
+def _reference_grid(reference, t0: float, h: float, n_steps: int):
+    tt = t0 + np.arange(2 * n_steps + 1) * (0.5 * h)
+    q, qd, qdd = reference(tt)
+    return tt, np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd)
+
+
+def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=None, *,
+             gravity=GRAVITY, step: float = 1e-3, rate: float | None = None,
+             integrator: str = "rk4", limits: bool = True, rtol: float = 1e-10,
+             atol: float = 1e-12, t0: float = 0.0) -> SimulationResult:
+    """Simulate the robot from ``(q0, q̇0)`` for ``duration`` seconds.
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot` (the plant).
+        duration: [s] > 0.
+        reference: A callable ``reference(t (n,)) -> (q, qd, qdd)`` each ``(n, 9)``
+            (e.g. :func:`offshore_crane.trajectories.table1`), evaluated at every stage.
+        q0, qd0: ``(9,)`` initial state (default: the reference at ``t0``).
+        controller: :class:`~offshore_crane.control.Controller` (default computed torque).
+        gravity: ``(3,)`` [m/s²].
+        step: Integration step [s] (RK4).
+        rate: Output sampling rate [Hz] (default every step); 1/rate must be a multiple
+            of ``step``.
+        integrator: ``"rk4"`` or ``"dop853"``.
+        limits: Stop at the first sample outside the workspace.
+        rtol, atol: Tolerances of DOP853.
+        t0: Start time [s].
+
+    Returns:
+        :class:`SimulationResult`.
+
+    Raises:
+        InputError: bad arguments (one-line message).
+        SimulationError: the run stopped early (``error.result`` holds what was computed).
+    """
+    controller = controller or Controller()
+    if integrator not in INTEGRATORS:
+        raise InputError(f"unknown integrator {integrator!r}: use one of "
+                         f"{', '.join(INTEGRATORS)}", name="integrator")
+    for name, value in (("duration", duration), ("step", step)):
+        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
+            raise InputError(f"{name} = {value!r} s: must be positive and finite", name=name)
+    n_steps = int(round(duration / step))
+    if n_steps < 1:
+        raise InputError(f"duration {duration} s is shorter than one step {step} s",
+                         name="duration")
+    out_every = 1
+    if rate is not None:
+        ratio = 1.0 / (rate * step)
+        if not (np.isfinite(ratio) and abs(ratio - round(ratio)) < 1e-9 and round(ratio) >= 1):
+            raise InputError(f"output rate {rate} Hz: 1/rate must be a multiple of the step "
+                             f"{step} s", name="rate")
+        out_every = int(round(ratio))
+    hold = 0
+    if controller.rate is not None:
+        ratio = 1.0 / (controller.rate * step)
+        if ratio < 1.0 - 1e-9:
+            raise InputError(f"control rate {controller.rate} Hz is above the integration "
+                             f"rate {1.0 / step:g} Hz: lower it or shorten the step",
+                             name="control_rate")
+        if abs(ratio - round(ratio)) > 1e-9:
+            raise InputError(f"control rate {controller.rate} Hz: its period must be a "
+                             f"multiple of the step {step} s", name="control_rate")
+        hold = int(round(ratio))
+    g = as_gravity(gravity)
+    tt, qr, qdr, qddr = _reference_grid(reference, t0, step, n_steps)
+    q0 = qr[0].copy() if q0 is None else np.asarray(q0, dtype=float).reshape(9).copy()
+    qd0 = qdr[0].copy() if qd0 is None else np.asarray(qd0, dtype=float).reshape(9).copy()
+    if not (np.isfinite(q0).all() and np.isfinite(qd0).all()):
+        raise InputError("the initial state q0, qd0 must be finite", name="q0")
+    if integrator == "dop853":
+        return _dop853(robot, tt[::2], reference, q0, qd0, controller, g, limits, rtol, atol,
+                       out_every)
+    from .dynamics.constants import robot_arrays
+    from .kinematics import workspace as ws
+
+    run = _loop()[0]
+    plant = robot_arrays(robot)
+    model = robot_arrays(controller.model or robot)
+    kp, kd = controller.gains
+    lo, hi = controller.limits
+    n_ctrl = n_steps // hold + 2 if hold else 1
+    rng = np.random.default_rng(controller.seed)
+    sq, sqd = controller.noise
+    nq = rng.normal(size=(n_ctrl, 9)) * sq
+    nqd = rng.normal(size=(n_ctrl, 9)) * sqd
+    n_out = n_steps // out_every + 1
+    arrays = {k: np.zeros((n_out, 9)) for k in ("q", "qd", "qdd", "q_ref", "qd_ref", "X_cmd",
+                                                "X")}
+    sat = np.zeros((n_out, 9), dtype=bool)
+    E = np.zeros(n_out)
+    P = np.zeros(n_out)
+    health = ws.new_health()
+    status = np.zeros(3, dtype=np.int64)
+    run(plant.flat, plant.layout, plant.prismatic, model.flat, model.layout, model.prismatic,
+        g, step, n_steps, out_every, qr, qdr, qddr, LAW_CODES[controller.law], kp, kd, hold,
+        nq, nqd, lo, hi, limits, q0, qd0, arrays["q"], arrays["qd"], arrays["qdd"],
+        arrays["q_ref"], arrays["qd_ref"], arrays["X_cmd"], arrays["X"], sat, E, P, health,
+        status)
+    n_done = int(status[2])
+    t_out = tt[::2][::out_every][:n_out]
+    res = SimulationResult(t=t_out, **arrays, saturated=sat, energy=E, power=P,
+                           integrator="rk4", step=step)
+    if status[0] != OK:
+        k = int(status[1])
+        when = t0 + k * step
+        res = res.truncated(n_done)
+        if status[0] == WORKSPACE:
+            try:
+                ws.check_workspace(health, plant.limits, res.q[-1:], None)
+                cause = "left the workspace"
+            except Exception as exc:          # the WorkspaceError's text names the limit
+                cause = str(exc).split(" at sample")[0] + " (outside its limits)"
+        elif status[0] == SINGULAR:
+            cause = ("the mass matrix became singular (attitude singularity, "
+                     f"q5 = {res.q[-1, 4]:.4g} rad)")
+        else:
+            cause = "the state diverged (a non-finite value)"
+        res.stop = f"stopped at t = {when:.6g} s: {cause}"
+        raise SimulationError(f"simulation {res.stop}; the {n_done} samples computed before "
+                              "are kept", time=when, cause=cause, result=res)
+    return res
+
+
+def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol, out_every):
+    """The adaptive reference integrator (continuous controller, driven from Python)."""
+    from .errors import require
+
+    integrate = require("scipy.integrate", "scipy", "The DOP853 integrator")
+    _, law, accel = _loop()
+    from .dynamics.constants import robot_arrays
+
+    plant = robot_arrays(robot)
+    from .dynamics import compiled as c
+
+    C = plant.kane
+    Cc_arrays = robot_arrays(controller.model or robot)
+    Cc = Cc_arrays.kane
+    kp, kd = controller.gains
+    lo, hi = controller.limits
+    n = 6 + C.n_arm
+    ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
+          np.empty((max(C.n_arm, 1), 27)), np.empty((9, 3)), np.empty((9, 3)),
+          np.empty((9, 3)), np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9),
+          np.zeros(9))
+    na = C.n_arm
+    wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
+          np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
+          np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
+          np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
+    gt = tuple(float(x) for x in g)
+    X = np.empty(9)
+    qdd = np.empty(9)
+    kind = LAW_CODES[controller.law]
+    del c
+
+    def rhs(t, x):
+        q, qd = x[:9].copy(), x[9:].copy()
+        r = reference(np.array([t]))
+        law(Cc, gt, kind, kp, kd, q, qd, r[0][0], r[1][0], r[2][0], X, wl)
+        np.clip(X, lo, hi, out=X)
+        accel(C, gt, n, q, qd, X, qdd, ws)
+        return np.concatenate([qd, qdd])
+
+    sol = integrate.solve_ivp(rhs, (t_out[0], t_out[-1]), np.concatenate([q0, qd0]),
+                              method="DOP853", t_eval=t_out[::out_every], rtol=rtol, atol=atol)
+    N = sol.t.size
+    q, qd = sol.y[:9].T.copy(), sol.y[9:].T.copy()
+    rq, rqd, _ = reference(sol.t)
+    qdd_all = np.array([rhs(t, x)[9:] for t, x in zip(sol.t, sol.y.T)])
+    Xa = np.empty((N, 9))
+    for k in range(N):
+        rr = reference(sol.t[k:k + 1])
+        law(Cc, gt, kind, kp, kd, q[k], qd[k], rr[0][0], rr[1][0], rr[2][0], X, wl)
+        Xa[k] = X
+    Xapp = np.clip(Xa, lo, hi)
+    res = SimulationResult(t=sol.t, q=q, qd=qd, qdd=qdd_all, q_ref=rq, qd_ref=rqd, X_cmd=Xa,
+                           X=Xapp, saturated=(Xa < lo) | (Xa > hi), energy=np.full(N, np.nan),
+                           power=np.full(N, np.nan), integrator="dop853", step=0.0,
+                           info=dict(rtol=rtol, atol=atol, nfev=sol.nfev))
+    if not sol.success:
+        res.stop = f"DOP853 stopped: {sol.message}"
+        raise SimulationError(f"simulation {res.stop}", time=float(sol.t[-1]) if N else 0.0,
+                              cause=sol.message, result=res)
+    return res
