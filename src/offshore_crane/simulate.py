@@ -491,3 +491,15 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
         raise SimulationError(f"simulation {res.stop}", time=float(sol.t[-1]) if N else 0.0,
                               cause=sol.message, result=res)
     return res
+
+
+def warm_up(robot=None) -> list[tuple[str, float]]:
+    """Compile (or load from the cache) the simulation loop: ``[(name, seconds)]``."""
+    import time
+
+    from .model import load_robot
+    from .trajectories import table1
+
+    t0 = time.perf_counter()
+    simulate(robot or load_robot(), 2e-3, table1, step=1e-3)
+    return [("simulation loop", time.perf_counter() - t0)]

@@ -18,9 +18,10 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     from ..dynamics import warm_up
+    from ..simulate import warm_up as warm_up_simulation
 
     total = 0.0
-    for name, seconds in warm_up():
+    for name, seconds in warm_up() + warm_up_simulation():
         total += seconds
         print(f"{name}: {seconds:.1f} s")
     print(f"compiled kernels ready in {total:.1f} s")
