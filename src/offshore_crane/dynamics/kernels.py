@@ -55,26 +55,6 @@ def allocate(N: int, opts: Options):
     return X, kappa
 
 
-def _first(mask: np.ndarray):
-    """``(row, column)`` of the first True of a 2-D mask (row-major), or None."""
-    rows = mask.any(axis=1)
-    if not rows.any():
-        return None
-    k = int(np.argmax(rows))
-    return k, int(np.argmax(mask[k]))
-
-
-def _record(health, slot, offset, hit, values=None):
-    """Record the first hit of a 2-D mask in ``health[slot:]`` if none is there yet."""
-    if health[slot] >= 0 or hit is None:
-        return
-    k, j = hit
-    health[slot] = offset + k
-    health[slot + 1] = j
-    if values is not None:
-        health[slot + 2] = values[k, j]
-
-
 def _solve(A: np.ndarray, rhs: np.ndarray, conditioning: bool):
     """Leg forces of the stacked systems ``A Fl = rhs`` ``(n, 6, 6)``, and their 1-norm
     condition numbers (inf for an exactly singular matrix) when asked."""
@@ -93,18 +73,6 @@ def _solve(A: np.ndarray, rhs: np.ndarray, conditioning: bool):
     kappa = np.abs(A).sum(axis=1).max(axis=1) * np.abs(inv).sum(axis=1).max(axis=1)
     kappa[~finite] = np.inf
     return X, kappa
-
-
-def _policy(health, kind, kappa, offset, opts):
-    """Worst κ, its sample, first above warn and first above error (or not finite)."""
-    s = ws.KAPPA + 4 * kind
-    with np.errstate(invalid="ignore"):
-        k = int(np.argmax(np.where(np.isnan(kappa), np.inf, kappa)))
-        if not health[s] >= kappa[k] or np.isnan(kappa[k]):
-            health[s], health[s + 1] = kappa[k], offset + k
-        for slot, above in ((s + 2, kappa > opts.warn), (s + 3, ~(kappa <= opts.error))):
-            if health[slot] < 0 and above.any():
-                health[slot] = offset + int(np.argmax(above))
 
 
 def ujoint_angles(diag) -> np.ndarray:
@@ -129,6 +97,7 @@ def finish_chunk(X, A, rhs, length, cos2, height, theta, q, offset, opts, limits
     """
     na = limits.arm.shape[0]
     X[:, na:3] = np.nan
+    cond = None
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         if opts.legs and rhs is None:
             cond = A
@@ -136,42 +105,8 @@ def finish_chunk(X, A, rhs, length, cos2, height, theta, q, offset, opts, limits
             X[:, 3:], cond = _solve(A, rhs, opts.conditioning)
         else:
             X[:, 3:] = np.nan
-        if opts.conditioning:
-            kappa[2] = 1.0 / np.abs(np.cos(q[:, 4]))
-            _policy(health, ws.ATTITUDE, kappa[2], offset, opts)
-            if opts.legs:
-                kappa[0] = cond
-                kappa[1] = 1.0 / cos2.min(axis=1)
-                _policy(health, ws.LEG_JACOBIAN, kappa[0], offset, opts)
-                _policy(health, ws.GIMBAL, kappa[1], offset, opts)
-            else:
-                kappa[:2] = np.nan
-        if opts.limits:
-            x = q[:, 6:6 + na]
-            _record(health, ws.VIOLATION, offset,
-                    _first((x < limits.arm[:, 0]) | (x > limits.arm[:, 1])), x)
-            if opts.legs:
-                c = ws.VIOLATION + 3
-                _record(health, c, offset, _first(height <= 0.0), height)
-                _record(health, c + 3, offset, _first((length < limits.stroke[:, 0])
-                                                      | (length > limits.stroke[:, 1])), length)
-                th = theta.reshape(len(q), 12)
-                lo, hi = limits.ujoint[..., 0].reshape(12), limits.ujoint[..., 1].reshape(12)
-                _record(health, c + 6, offset, _first((th < lo) | (th > hi)), th)
-        cols = list(range(na)) + (list(range(3, 9)) if opts.legs else [])
-        hit = _first(~np.isfinite(X[:, cols]))
-        _record(health, ws.BAD_OUTPUT, offset, hit and (hit[0], cols[hit[1]]))
-
-
-def check_finite(arrays, offset, health):
-    """Record the first non-finite value of the ``(n, 9)`` ``arrays`` (q, qd, qdd)."""
-    if health[ws.BAD_INPUT] >= 0:
-        return
-    for which, x in enumerate(arrays):
-        hit = _first(~np.isfinite(x))
-        if hit is not None:
-            health[ws.BAD_INPUT:ws.BAD_INPUT + 3] = offset + hit[0], hit[1], which
-            return
+    ws.record_chunk(X, cond, length, cos2, height, theta, q, offset, opts, limits, kappa,
+                    health)
 
 
 def _finish_diag(X, A, rhs, diag, q, offset, opts, limits, kappa, health):
@@ -203,7 +138,7 @@ def run_numpy(arrays, q, qd, qdd, g, opts: Options, X, kappa, health, chunk: int
         sl = slice(start, min(start + chunk, N))
         qc, qdc, qddc = q[sl], qd[sl], qdd[sl]
         n = len(qc)
-        check_finite((qc, qdc, qddc), start, health)
+        ws.check_finite((qc, qdc, qddc), start, health)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             backends.NUMPY.kane_sample(C, qc.T, qdc.T, qddc.T, gt, opts.static, opts.leg_model,
                                        opts.legs, rows, Aw, rw, dw, store)
@@ -238,7 +173,7 @@ def run_python(arrays, q, qd, qdd, g, opts: Options, X, kappa, health) -> bool:
     diag = np.zeros((DIAG_ROWS, N, 6))
     rows = [0.0, 0.0, 0.0]
     store = np.empty((C.n_arm, STORE_WIDTH))
-    check_finite((q, qd, qdd), 0, health)
+    ws.check_finite((q, qd, qdd), 0, health)
     if health[ws.BAD_INPUT] >= 0:
         return True
     try:
@@ -264,7 +199,7 @@ def run_explicit_numpy(arrays, q, qd, qdd, g, opts: Options, X, kappa, health,
         sl = slice(start, min(start + chunk, N))
         qc, qdc, qddc = q[sl], qd[sl], qdd[sl]
         n = len(qc)
-        check_finite((qc, qdc, qddc), start, health)
+        ws.check_finite((qc, qdc, qddc), start, health)
         B = np.zeros(9, dtype=object)
         Jw = np.empty((6, 6), dtype=object)
         Vw, Ww, Vs = (np.empty((9, 3), dtype=object) for _ in range(3))

@@ -241,3 +241,92 @@ def check_outputs(health: np.ndarray, names, arrays, t=None) -> None:
         f"|q|, |qd|, |qdd| there {scale:.3g}); check the inputs' units and the robot's "
         "parameters", index=k, name=names[j])
 
+
+# ----------------------------------------------------------- recording, vectorised
+# The NumPy drivers (and the RNEA reference) record what a chunk of samples shows in the
+# health record with these; the compiled drivers do the same sample by sample.
+def _first_hit(mask: np.ndarray):
+    """``(row, column)`` of the first True of a 2-D mask (row-major), or None."""
+    rows = mask.any(axis=1)
+    if not rows.any():
+        return None
+    k = int(np.argmax(rows))
+    return k, int(np.argmax(mask[k]))
+
+
+def _record(health, slot, offset, hit, values=None):
+    """Record the first hit of a 2-D mask in ``health[slot:]`` if none is there yet."""
+    if health[slot] >= 0 or hit is None:
+        return
+    k, j = hit
+    health[slot] = offset + k
+    health[slot + 1] = j
+    if values is not None:
+        health[slot + 2] = values[k, j]
+
+
+def _policy(health, kind, kappa, offset, opts):
+    """Worst κ, its sample, first above warn and first above error (or not finite)."""
+    s = KAPPA + 4 * kind
+    with np.errstate(invalid="ignore"):
+        k = int(np.argmax(np.where(np.isnan(kappa), np.inf, kappa)))
+        if not health[s] >= kappa[k] or np.isnan(kappa[k]):
+            health[s], health[s + 1] = kappa[k], offset + k
+        for slot, above in ((s + 2, kappa > opts.warn), (s + 3, ~(kappa <= opts.error))):
+            if health[slot] < 0 and above.any():
+                health[slot] = offset + int(np.argmax(above))
+
+
+def check_finite(arrays, offset, health):
+    """Record the first non-finite value of the ``(n, 9)`` ``arrays`` (q, qd, qdd)."""
+    if health[BAD_INPUT] >= 0:
+        return
+    for which, x in enumerate(arrays):
+        hit = _first_hit(~np.isfinite(x))
+        if hit is not None:
+            health[BAD_INPUT:BAD_INPUT + 3] = offset + hit[0], hit[1], which
+            return
+
+
+def record_chunk(X, cond, length, cos2, height, theta, q, offset, opts, limits, kappa,
+                 health):
+    """Record a chunk's condition numbers, workspace violations and non-finite results.
+
+    Args:
+        X: ``(n, 9)`` its actuator forces (the absent arm columns NaN).
+        cond: ``(n,)`` the leg-force systems' condition numbers, or None.
+        length, cos2, height: ``(n, 6)`` leg lengths [m], cos θ2, heights of S above P [m].
+        theta: ``(n, 6, 2)`` U-joint angles [rad] (read with ``opts.limits``), or None.
+        q: ``(n, 9)`` the chunk's coordinates; ``offset``: index of its first sample.
+        opts: with ``legs``, ``conditioning``, ``limits``, ``warn``, ``error``.
+        limits: :class:`~offshore_crane.dynamics.constants.Limits`.
+        kappa: ``(3, n)`` view of the output condition numbers, or None.
+    """
+    na = limits.arm.shape[0]
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        if opts.conditioning:
+            kappa[2] = 1.0 / np.abs(np.cos(q[:, 4]))
+            _policy(health, ATTITUDE, kappa[2], offset, opts)
+            if opts.legs:
+                kappa[0] = cond
+                kappa[1] = 1.0 / cos2.min(axis=1)
+                _policy(health, LEG_JACOBIAN, kappa[0], offset, opts)
+                _policy(health, GIMBAL, kappa[1], offset, opts)
+            else:
+                kappa[:2] = np.nan
+        if opts.limits:
+            x = q[:, 6:6 + na]
+            _record(health, VIOLATION, offset,
+                    _first_hit((x < limits.arm[:, 0]) | (x > limits.arm[:, 1])), x)
+            if opts.legs:
+                c = VIOLATION + 3
+                _record(health, c, offset, _first_hit(height <= 0.0), height)
+                _record(health, c + 3, offset, _first_hit((length < limits.stroke[:, 0])
+                                                          | (length > limits.stroke[:, 1])),
+                        length)
+                th = theta.reshape(len(q), 12)
+                lo, hi = limits.ujoint[..., 0].reshape(12), limits.ujoint[..., 1].reshape(12)
+                _record(health, c + 6, offset, _first_hit((th < lo) | (th > hi)), th)
+        cols = list(range(na)) + (list(range(3, 9)) if opts.legs else [])
+        hit = _first_hit(~np.isfinite(X[:, cols]))
+        _record(health, BAD_OUTPUT, offset, hit and (hit[0], cols[hit[1]]))

@@ -633,14 +633,14 @@ def run(robot, limits, q, qd, qdd, g, opts, X, kappa, health, threads: int = 1) 
     """
     import pinocchio as pin
 
-    from ..dynamics import kernels
+    from ..kinematics import workspace as ws
 
     T = tree(robot)
     pool = _pool(robot, g, threads)
     N = q.shape[0]
     for start in range(0, N, BLOCK):
         sl = slice(start, min(start + BLOCK, N))
-        kernels.check_finite((q[sl], qd[sl], qdd[sl]), start, health)
+        ws.check_finite((q[sl], qd[sl], qdd[sl]), start, health)
         if health[0] >= 0:
             return
         Q, V, A, G, diag = tree_state(robot, q[sl], qd[sl], qdd[sl])
@@ -649,9 +649,10 @@ def run(robot, limits, q, qd, qdd, g, opts, X, kappa, health, threads: int = 1) 
         cond = np.empty(Q.shape[1])
         project(tau, G, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, opts.conditioning,
                 X[sl], cond)
-        kernels.finish_chunk(X[sl], cond, None, diag[0], diag[1], diag[2],
-                             np.stack([diag[3], diag[4]], -1), q[sl], start, opts, limits,
-                             None if kappa is None else kappa[:, sl], health)
+        X[sl, T.arm_v.size:3] = np.nan
+        ws.record_chunk(X[sl], cond, diag[0], diag[1], diag[2], np.stack([diag[3], diag[4]], -1),
+                        q[sl], start, opts, limits, None if kappa is None else kappa[:, sl],
+                        health)
 
 
 def tree_states(robot, q, qd, qdd):
