@@ -75,7 +75,7 @@ MIXED = """<?xml version="1.0"?>
   </joint>
   <link name="l2">
     <inertial><origin xyz="-0.03 0.02 0.1" rpy="0 0.3 0.2"/><mass value="1.5"/>
-      <inertia ixx="0.02" iyy="0.03" izz="0.01" ixy="-0.001" ixz="0.0005" iyz="0.001"/>
+      <inertia ixx="0.02" iyy="0.03" izz="0.015" ixy="-0.001" ixz="0.0005" iyz="0.001"/>
     </inertial>
   </link>
   <joint name="l2_weld" type="fixed">

@@ -143,7 +143,7 @@ def _attr_float(el, key: str, where: str, default: float | None = None) -> float
         value = float(text)
     except ValueError:
         raise ModelError(f"{where}: {key}='{text}' is not a number", element=where) from None
-    return value
+    return value                        # finiteness: model.validate names the element
 
 
 def parse_urdf(text: str) -> URDF:
@@ -164,6 +164,9 @@ def parse_urdf(text: str) -> URDF:
         name = link.get("name")
         if name is None:
             raise ModelError("a <link> has no name")
+        if name in inertials:
+            raise ModelError(f"the URDF defines link '{name}' twice: give each link a "
+                             "unique name", element=name)
         inertials[name] = _parse_inertial(link.find("inertial"), name)
     joints: dict[str, Joint] = {}
     child_joints: dict[str, list[str]] = {}
@@ -174,6 +177,9 @@ def parse_urdf(text: str) -> URDF:
             if link not in inertials:
                 raise ModelError(f"joint '{j.name}' refers to link '{link}', which the URDF "
                                  "does not define", element=j.name)
+        if j.name in joints:
+            raise ModelError(f"the URDF defines joint '{j.name}' twice: give each joint a "
+                             "unique name", element=j.name)
         if j.child in parent_joint:
             raise ModelError(f"link '{j.child}' is the child of two joints "
                              f"('{parent_joint[j.child]}' and '{j.name}'): URDF is a tree",
@@ -228,6 +234,10 @@ def _parse_joint(el) -> Joint:
         axis = axis / norm
     lower, upper = -np.inf, np.inf
     limit = el.find("limit")
+    if limit is None and jtype in ("revolute", "prismatic"):
+        raise ModelError(f"joint '{name}' is {jtype} but has no <limit> (the URDF format "
+                         "requires one; use type 'continuous' for an unlimited revolute "
+                         "joint)", element=name)
     if limit is not None and jtype in ("revolute", "prismatic"):
         lower = _attr_float(limit, "lower", where, default=0.0)
         upper = _attr_float(limit, "upper", where, default=0.0)

@@ -20,6 +20,9 @@ from ..model.chain import SerialChain, chain_from_urdf
 from ..model.urdf import URDF, parse_urdf
 from ..validation import as_gravity, as_samples, same_length
 
+#: Most random states one call draws (3 x 8 bytes x n joints each: 10 M states of a
+#: 7-joint arm take 1.7 GB).
+MAX_RANDOM = 10_000_000
 # A rotation given as base pose must be orthonormal to this (absolute, per entry). Any
 # matrix built from angles in float64 is so to ~1e-15; 1e-9 rejects hand-typed rounded
 # matrices, which would silently scale the gravity and the wrench.
@@ -51,6 +54,9 @@ def read_urdf(urdf) -> tuple[URDF, str | None]:
         except OSError as exc:
             raise InputError(f"cannot read the URDF file '{os.fspath(urdf)}': "
                              f"{exc.strerror or exc}", name="urdf") from None
+        except UnicodeDecodeError as exc:
+            raise InputError(f"{os.fspath(urdf)}: byte {exc.start} is not UTF-8 text: a URDF "
+                             "is an XML file in UTF-8", name="urdf") from None
     else:
         raise InputError(f"urdf must be a path, URDF text or a parsed URDF, got "
                          f"{type(urdf).__name__}", name="urdf")
@@ -95,6 +101,9 @@ def load_chain(urdf, tip: str | None = None, base: str | None = None) -> SerialC
     if base_link not in desc.inertials:
         raise ModelError(f"the URDF has no link '{base_link}' (the base asked for)",
                          element=base_link)
+    from ..model.validate import validate
+
+    validate(desc)                        # masses, inertias, joint ranges (every link)
     chain = chain_from_urdf(desc, base_link, tip=tip)
     if chain.n == 0:
         where = f"between '{base_link}' and the tip '{tip}'" if tip else f"below '{base_link}'"
@@ -118,9 +127,12 @@ def random_states(chain: SerialChain, n_samples: int, seed=0):
     Returns:
         ``(q, qd, qdd)``, each ``(N, n)``.
     """
-    if int(n_samples) < 1:
-        raise InputError(f"the number of random states must be at least 1, got {n_samples}",
-                         name="n_samples")
+    if not 1 <= int(n_samples) <= MAX_RANDOM:
+        raise InputError(f"the number of random states must be at least 1 and at most "
+                         f"{MAX_RANDOM:,}, got {n_samples}", name="n_samples")
+    if not isinstance(seed, np.random.Generator) and not (isinstance(seed, (int, np.integer))
+                                                          and seed >= 0):
+        raise InputError(f"the seed must be an integer ≥ 0, got {seed!r}", name="seed")
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     N, n = int(n_samples), chain.n
     finite = np.isfinite(chain.lower) & np.isfinite(chain.upper)
