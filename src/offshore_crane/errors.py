@@ -153,6 +153,24 @@ class SimulationError(OffshoreCraneError, RuntimeError):
         self.result = result
 
 
+class OutputError(OffshoreCraneError, OSError):
+    """An output file cannot be written where asked (checked before computing) or its
+    write failed; nothing was left behind.
+
+    Attributes:
+        path: The path as given.
+        reason: Why, in words.
+    """
+
+    def __init__(self, message: str, path: str | None = None, reason: str | None = None):
+        super().__init__(message)
+        self.path = path
+        self.reason = reason
+
+    def __str__(self) -> str:                  # OSError's own formatting would add errno
+        return self.args[0]
+
+
 class BackendMissingError(OffshoreCraneError, ImportError):
     """An optional dependency (pinocchio, matplotlib, xacro, yourdfpy) is not installed.
 

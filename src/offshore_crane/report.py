@@ -1,18 +1,18 @@
 """Outputs of an inverse-dynamics run: summary table, CSV (docs/conventions.md columns), figure.
 
-Files are written atomically (temporary file, then rename), so a failed run never leaves
-a partial output behind.
+Files are written through :mod:`offshore_crane.io` (checked before computing, atomic,
+safe with symlinks, FIFOs and devices).
 """
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from .errors import InputError, require
+from . import io
+from .errors import require
+from .io import FIGURE_FORMATS
 from .conventions import ACTUATOR_UNITS, ACTUATORS
 
 CSV_HEADER = "t_s," + ",".join(f"{a}_{u.replace('·', '')}"
@@ -43,48 +43,13 @@ def format_summary(rows) -> str:
     return "\n".join(lines)
 
 
-#: Figure formats offered by --plot (all written by matplotlib's Agg-based backends).
-PLOT_FORMATS = ("png", "pdf", "svg", "svgz", "eps", "ps", "jpg", "jpeg", "tif", "tiff", "webp")
+PLOT_FORMATS = FIGURE_FORMATS
 
 
-def check_output(path, plot: bool = False) -> None:
-    """Fail early (before any computation) on an output path that cannot be written.
-
-    Raises:
-        InputError: the directory does not exist, or (``plot``) the suffix is not one of
-            :data:`PLOT_FORMATS`.
-    """
-    path = Path(path)
-    directory = path.parent if str(path.parent) else Path(".")
-    if not directory.is_dir():
-        raise InputError(f"cannot write {path}: directory {directory} does not exist",
-                         name=str(path))
-    if plot and path.suffix.lstrip(".").lower() not in PLOT_FORMATS:
-        raise InputError(f"cannot plot to {path}: the file type '{path.suffix}' is not one "
-                         f"of {', '.join('.' + f for f in PLOT_FORMATS)}", name=str(path))
-
-
-def _atomic_write(path: Path, write) -> None:
-    path = Path(path)
-    directory = path.parent if str(path.parent) else Path(".")
-    if not directory.is_dir():
-        raise InputError(f"cannot write {path}: directory {directory} does not exist",
-                         name=str(path))
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=directory)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            write(fh)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def write_csv(path, t: np.ndarray, X: np.ndarray) -> None:
-    """Write ``t_s,T1_Nm,T2_Nm,Fs_N,Fl1_N,...,Fl6_N`` with 17 significant digits."""
-    data = np.column_stack([t, X])
-    _atomic_write(path, lambda fh: np.savetxt(fh, data, delimiter=",", fmt="%.17g",
-                                              header=CSV_HEADER, comments=""))
+def write_csv(target, t: np.ndarray, X: np.ndarray) -> None:
+    """Write ``t_s,T1_Nm,T2_Nm,Fs_N,Fl1_N,...,Fl6_N`` with 17 significant digits
+    (``target``: a path or a :class:`~offshore_crane.io.Target`)."""
+    io.write_csv(target, CSV_HEADER, np.column_stack([t, X]))
 
 
 def plot(path, t: np.ndarray, X: np.ndarray, title: str = "") -> None:
@@ -108,6 +73,17 @@ def plot(path, t: np.ndarray, X: np.ndarray, title: str = "") -> None:
         ax.legend(loc="upper right", ncol=6, fontsize=8)
     if title:
         axes[0].set_title(title)
-    suffix = Path(path).suffix.lstrip(".") or "png"
-    _atomic_write(path, lambda fh: fig.savefig(fh, format=suffix, dpi=110))
-    plt.close(fig)
+    save_figure(fig, path)
+
+
+def save_figure(fig, target) -> None:
+    """Save a matplotlib figure through :mod:`offshore_crane.io` (format from the
+    suffix) and close it."""
+    import matplotlib.pyplot as plt
+
+    suffix = Path(str(target)).suffix.lstrip(".").lower() or "png"
+    try:
+        with io.open_output(target, "wb") as fh:
+            fig.savefig(fh, format=suffix, dpi=110)
+    finally:
+        plt.close(fig)

@@ -46,23 +46,72 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: Exit statuses (docs/outputs.md): a check failed (e.g. Kane against RNEA), bad input or
+#: output, interrupted by SIGINT / SIGTERM, standard output closed by the reader.
+CHECK_FAILED, BAD_INPUT, INTERRUPTED, TERMINATED, BROKEN_PIPE = 1, 2, 130, 143, 141
+
+
 def main(argv=None) -> int:
-    """Run the command line with ``argv`` (default ``sys.argv[1:]``); return exit status."""
+    """Run the command line with ``argv`` (default ``sys.argv[1:]``); return exit status.
+
+    Every failure is one line on stderr, never a traceback: library errors exit 2, SIGINT
+    130, SIGTERM 143 (temporary files removed), a closed standard output (``| head``) 141.
+    NumPy's floating-point warnings are silenced: the kernels check their results and
+    raise a named error instead.
+    """
     import warnings
 
+    from ..io import Terminated, signals_as_exceptions
     from ..kinematics.workspace import OffshoreCraneWarning
 
     def one_line(message, category, filename, lineno, file=None, line=None):
         print(f"offshore-crane: warning: {message}", file=sys.stderr)
 
     try:
-        args = build_parser().parse_args(argv)
-        with warnings.catch_warnings():
+        with signals_as_exceptions(), warnings.catch_warnings():
             warnings.simplefilter("always", OffshoreCraneWarning)
+            warnings.filterwarnings("ignore", category=RuntimeWarning)
             warnings.showwarning = one_line
+            args = build_parser().parse_args(_negative_numbers(argv))
             return args.run(args)
     except OffshoreCraneError as exc:
         print(f"offshore-crane: error: {exc}", file=sys.stderr)
-        return 2
+        return BAD_INPUT
+    except KeyboardInterrupt:
+        print("offshore-crane: interrupted (SIGINT); nothing half-written was left",
+              file=sys.stderr)
+        return INTERRUPTED
+    except Terminated:
+        print("offshore-crane: terminated (SIGTERM); nothing half-written was left",
+              file=sys.stderr)
+        return TERMINATED
+    except BrokenPipeError:
+        _quiet_stdout()
+        return BROKEN_PIPE
+
+
+def _quiet_stdout() -> None:
+    """After a BrokenPipeError: point stdout at /dev/null so that the interpreter's final
+    flush does not fail again (the Python documentation's recipe)."""
+    import os
+
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
+    finally:
+        os.close(devnull)
+
+
+def _negative_numbers(argv):
+    """argparse takes ``-9.81e0`` for an option (its negative-number test misses the
+    exponent form): join such values to their option with ``=`` is not possible for
+    ``nargs=3``, so mark them with a leading space, which ``float()`` ignores."""
+    import re
+
+    argv = list(sys.argv[1:] if argv is None else argv)
+    number = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+    return [f" {a}" if number.match(a) else a for a in argv]
 
 

@@ -103,13 +103,19 @@ def _scene(args):
 
 
 def run(args) -> int:
-    from .. import scenes
-    from ..report import check_output, format_summary, plot, summary_rows, write_csv
+    import sys
 
-    for path, is_plot in ((args.out, False), (args.plot, True)):
-        if path:
-            check_output(path, plot=is_plot)
+    from .. import scenes
+    from ..io import FIGURE_FORMATS, plan_outputs
+    from ..report import format_summary, plot, summary_rows, write_csv
+
     scene = _scene(args)
+    inputs = [args.scene, scene.trajectory if scene.trajectory != "table1" else None]
+    outputs = plan_outputs({"--out": args.out, "--plot": args.plot}, inputs,
+                           {"--plot": FIGURE_FORMATS})
+    # with an output on standard output, the report goes to standard error
+    say = (lambda *a: print(*a, file=sys.stderr)) if any(
+        o.kind == "stdout" for o in outputs.values()) else print
     robot = scenes.load_robot(scene, **_parse_set(args.set))
     traj = scenes.load_trajectory(scene, robot)
     backend = args.backend or ("numba" if len(traj.t) >= NUMBA_MIN else "numpy")
@@ -119,37 +125,35 @@ def run(args) -> int:
     res, t = done.result, traj.t
     X = res.X
     if args.scene:
-        print(f"scene {scene.name} ({args.scene}): {scene.describe()}")
-    print(f"offshore-crane id: trajectory {traj.name}, {len(t)} samples, "
-          f"t = {t[0]:.2f}..{t[-1]:.2f} s, method "
-          f"{'both' if scene.methods == ('kane', 'rnea') else ' + '.join(scene.methods)} "
-          f"({', '.join(f'{m} {s * 1e3:.1f} ms' for m, s in done.seconds.items())})")
-    print(f"model: {'exact' if not res.approximations else 'APPROXIMATE: ' + '; '.join(res.approximations)}"
-          + (f"; skipped: {'; '.join(res.pruned)}" if res.pruned else ""))
+        say(f"scene {scene.name} ({args.scene}): {scene.describe()}")
+    say(f"offshore-crane id: trajectory {traj.name}, {len(t)} samples, "
+        f"t = {t[0]:.2f}..{t[-1]:.2f} s, method "
+        f"{'both' if scene.methods == ('kane', 'rnea') else ' + '.join(scene.methods)} "
+        f"({', '.join(f'{m} {s * 1e3:.1f} ms' for m, s in done.seconds.items())})")
+    say(f"model: {'exact' if not res.approximations else 'APPROXIMATE: ' + '; '.join(res.approximations)}"
+        + (f"; skipped: {'; '.join(res.pruned)}" if res.pruned else ""))
     cols = [k for k, name in enumerate(ACTUATORS) if name in res.outputs]
-    print(format_summary(summary_rows(t, X[:, cols], [ACTUATORS[k] for k in cols],
-                                      [ACTUATOR_UNITS[k] for k in cols])))
+    say(format_summary(summary_rows(t, X[:, cols], [ACTUATORS[k] for k in cols],
+                                    [ACTUATOR_UNITS[k] for k in cols])))
     for kind, kappa, k in res.worst():
-        print(f"worst {kind} condition number: {kappa:.4g} at t = {t[k]:.2f} s (sample {k})")
+        say(f"worst {kind} condition number: {kappa:.4g} at t = {t[k]:.2f} s (sample {k})")
     status = 0
     first = _METHOD_LABELS[scene.methods[0]]
     for m, diff, scale, rel, i, j in scenes.compare_methods(done):
         ok = rel <= RELATIVE_LIMIT
-        print(f"{first} vs {_METHOD_LABELS[m]}: max |ΔX| = {diff:.3e} (sample {i}, "
-              f"t = {t[i]:.2f} s, column {j + 1}); relative to max |X| = {scale:.4g}: "
-              f"{rel:.3e} "
-              f"({'OK' if ok else 'FAIL'}, limit {RELATIVE_LIMIT:g})")
+        say(f"{first} vs {_METHOD_LABELS[m]}: max |ΔX| = {diff:.3e} (sample {i}, "
+            f"t = {t[i]:.2f} s, column {j + 1}); relative to max |X| = {scale:.4g}: "
+            f"{rel:.3e} "
+            f"({'OK' if ok else 'FAIL'}, limit {RELATIVE_LIMIT:g})")
         status = status if ok else 1
     if args.compare_fidelity:
         names, scale, rows = scenes.compare_fidelity(scene, robot, traj, **options)
-        print()
-        print(scenes.format_fidelity(names, scale, rows, len(t)))
-    if args.out:
-        write_csv(args.out, t, X)
-        print(f"wrote {args.out}")
-    if args.plot:
-        plot(args.plot, t, X, title=f"offshore-crane: {traj.name}, {scene.methods[0]}")
-        print(f"wrote {args.plot}")
+        say()
+        say(scenes.format_fidelity(names, scale, rows, len(t)))
+    if "--out" in outputs:
+        write_csv(outputs["--out"], t, X)
+        say(f"wrote {args.out}")
+    if "--plot" in outputs:
+        plot(outputs["--plot"], t, X, title=f"offshore-crane: {traj.name}, {scene.methods[0]}")
+        say(f"wrote {args.plot}")
     return status
-
-

@@ -1,0 +1,173 @@
+"""Outputs that never destroy, and interrupted runs that leave nothing behind (issue 10,
+families 1-3). Each case would fail with a plain "write a temporary file, then
+os.replace it onto the path" implementation."""
+
+import os
+import signal
+import stat
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from offshore_crane import io
+from offshore_crane.cli import main
+from offshore_crane.errors import InputError, OutputError
+
+CLI = [sys.executable, "-m", "offshore_crane"]
+
+
+# ----------------------------------------------------------- family 1: nothing replaced
+def test_symlink_is_written_through(tmp_path):
+    target = tmp_path / "real.csv"
+    target.write_text("old")
+    link = tmp_path / "link.csv"
+    link.symlink_to(target)
+    io.write_text(io.plan_outputs({"--out": link})["--out"], "new")
+    assert link.is_symlink() and os.readlink(link) == str(target)
+    assert target.read_text() == "new"
+
+
+def test_dangling_symlink_creates_its_target(tmp_path):
+    link = tmp_path / "link.csv"
+    link.symlink_to(tmp_path / "later.csv")
+    io.write_text(link, "x")
+    assert link.is_symlink() and (tmp_path / "later.csv").read_text() == "x"
+
+
+def test_fifo_is_written_not_replaced(tmp_path):
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    got = []
+    reader = threading.Thread(target=lambda: got.append(Path(fifo).read_text()))
+    reader.start()
+    io.write_text(fifo, "through the pipe")
+    reader.join(5)
+    assert got == ["through the pipe"]
+    assert stat.S_ISFIFO(os.stat(fifo).st_mode)
+
+
+def test_dev_null_stays_a_device(capsys):
+    assert main(["id", "--duration", "0.5", "--out", "/dev/null"]) == 0
+    assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
+
+
+def test_umask_is_honoured_and_modes_kept(tmp_path):
+    old = os.umask(0o027)
+    try:
+        io.write_text(tmp_path / "new.txt", "x")
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE(os.stat(tmp_path / "new.txt").st_mode) == 0o640
+    existing = tmp_path / "exists.txt"
+    existing.write_text("x")
+    os.chmod(existing, 0o604)
+    io.write_text(existing, "y")
+    assert stat.S_IMODE(os.stat(existing).st_mode) == 0o604
+
+
+@pytest.mark.parametrize("make, match", [
+    (lambda d: "", "the file name is empty"),
+    (lambda d: str(d), "is a directory"),
+    (lambda d: str(d / "missing" / "x.csv"), "does not exist: create it first"),
+    (lambda d: str(d / ("x" * 300 + ".csv")), "longer than 255 bytes"),
+    (lambda d: "/proc/x.csv", "cannot write in /proc"),
+])
+def test_bad_output_paths_are_refused_before_computing(tmp_path, make, match):
+    with pytest.raises(OutputError, match=match):
+        io.plan_outputs({"--out": make(tmp_path)})
+
+
+def test_output_equal_to_an_input_or_another_output(tmp_path):
+    traj = tmp_path / "traj.csv"
+    traj.write_text("t_s,q1\n")
+    with pytest.raises(OutputError, match="is also an input"):
+        io.plan_outputs({"--out": traj}, inputs=[traj])
+    link = tmp_path / "alias.csv"
+    link.symlink_to(traj)
+    with pytest.raises(OutputError, match="is also an input"):
+        io.plan_outputs({"--out": link}, inputs=[traj])
+    with pytest.raises(OutputError, match="--plot: cannot write .*a.png: is the same file as "
+                       "--out"):
+        io.plan_outputs({"--out": tmp_path / "a.png", "--plot": tmp_path / "a.png"})
+
+
+def test_cli_refuses_to_overwrite_its_input(tmp_path, capsys):
+    from offshore_crane import trajectories
+
+    t = np.arange(0, 1.0, 0.01)
+    path = tmp_path / "traj.csv"
+    trajectories.write_csv(path, t, trajectories.table1(t)[0])
+    before = path.read_bytes()
+    assert main(["id", "--trajectory", str(path), "--out", str(path)]) == 2
+    assert "is also an input" in capsys.readouterr().err
+    assert path.read_bytes() == before
+
+
+# ----------------------------------------------------------- family 2: late failures
+def test_full_disk_is_an_output_error_and_leaves_nothing(tmp_path):
+    with pytest.raises(OutputError, match="cannot write /dev/full"):
+        io.write_text("/dev/full", "x" * 100000)
+    assert stat.S_ISCHR(os.stat("/dev/full").st_mode)
+
+
+def test_failed_write_removes_the_temporary_file(tmp_path):
+    target = tmp_path / "out.csv"
+    with pytest.raises(RuntimeError):
+        with io.open_output(target) as fh:
+            fh.write("half")
+            raise RuntimeError("the computation broke mid-write")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_plot_failure_is_checked_before_the_csv_is_written(tmp_path, capsys):
+    csv = tmp_path / "x.csv"
+    assert main(["id", "--duration", "0.5", "--out", str(csv), "--plot",
+                 str(tmp_path / "x.xyz")]) == 2
+    assert not csv.exists()
+    assert "file type '.xyz'" in capsys.readouterr().err
+
+
+def test_closed_stdout_is_quiet():
+    proc = subprocess.run(" ".join(CLI) + " id --duration 200 | head -1", shell=True,
+                          capture_output=True, text=True, timeout=120,
+                          executable="/bin/bash")
+    assert proc.stdout.startswith("offshore-crane id:")
+    assert "Traceback" not in proc.stderr and "BrokenPipe" not in proc.stderr
+
+
+def test_read_text_names_a_bad_byte(tmp_path):
+    path = tmp_path / "x.toml"
+    path.write_bytes(b"name = 'a'\nb = '\xff'\n")
+    with pytest.raises(InputError, match=r"line 2, column 6: byte 0xff is not UTF-8"):
+        io.read_text(path, "scene")
+
+
+# ----------------------------------------------------------- family 3: signals
+def _run_and_signal(tmp_path, sig):
+    """Start a long CSV write, send ``sig`` once its temporary file exists."""
+    out = tmp_path / "big.csv"
+    proc = subprocess.Popen(CLI + ["id", "--duration", "20000", "--backend", "numpy",
+                                   "--no-limits", "--out", str(out)],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 120
+    while time.time() < deadline and not list(tmp_path.glob(".oc-*.tmp")):
+        time.sleep(0.05)
+    assert list(tmp_path.glob(".oc-*.tmp")), "the write never started"
+    time.sleep(0.3)
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=60)
+    return proc.returncode, err, out
+
+
+@pytest.mark.parametrize("sig, status, word", [(signal.SIGTERM, 143, "SIGTERM"),
+                                                (signal.SIGINT, 130, "SIGINT")])
+def test_signal_mid_write_leaves_nothing(tmp_path, sig, status, word):
+    code, err, out = _run_and_signal(tmp_path, sig)
+    assert code == status
+    assert err.count("\n") == 1 and word in err and "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []          # no target, no temporary file
