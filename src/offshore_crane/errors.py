@@ -28,7 +28,16 @@ class InputError(OffshoreCraneError, ValueError):
 
 
 class TrajectoryError(InputError):
-    """A trajectory cannot be built or read (unknown name, bad CSV, bad time axis)."""
+    """A trajectory cannot be built or read (unknown name, bad CSV, bad time axis).
+
+    Attributes:
+        path: The file concerned, or None.
+    """
+
+    def __init__(self, message: str, name: str | None = None, index: int | None = None,
+                 path: str | None = None):
+        super().__init__(message, name=name, index=index)
+        self.path = path
 
 
 class SceneError(InputError):

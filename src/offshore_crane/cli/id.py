@@ -96,10 +96,15 @@ def _scene(args):
         raise InputError(f"--outputs: unknown {', '.join(map(repr, unknown))}: choose among "
                          f"{', '.join(ACTUATORS)}", name="--outputs")
     where = f"{args.scene} with the command-line options" if args.scene else "command line"
-    return with_overrides(scene, where, trajectory=args.trajectory, duration=args.duration,
-                          rate=args.rate, fd_order=args.fd_order, methods=methods,
-                          leg_model=args.leg_model, outputs=outputs,
-                          gravity=None if args.gravity is None else tuple(args.gravity))
+    scene = with_overrides(scene, where, trajectory=args.trajectory, duration=args.duration,
+                           rate=args.rate, fd_order=args.fd_order, methods=methods,
+                           leg_model=args.leg_model, outputs=outputs,
+                           gravity=None if args.gravity is None else tuple(args.gravity))
+    table1 = scene.trajectory == "table1"
+    if table1 and args.fd_order is not None:
+        raise InputError("--fd-order applies to a CSV trajectory only (table1 has analytic "
+                         "derivatives): leave it out", name="--fd-order")
+    return scene                    # a CSV with --duration/--rate: trajectories.load says
 
 
 def run(args) -> int:
