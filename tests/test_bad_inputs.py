@@ -1,4 +1,5 @@
-"""Catalogue of bad inputs (issue 6): each gives one clear error, never a silent result.
+"""Catalogue of bad inputs (issues 6 and 10): each gives one clear error, never a silent
+result.
 
 Every case runs through the library (``pytest.raises(<OffshoreCraneError subclass>,
 match=...)``) and/or the command line (``main(argv)``: exit status 2, stderr exactly one
@@ -131,6 +132,20 @@ def _solve_csv(write, **kw):
 
 def _argv(write, *extra):
     return lambda tmp: ["id", "--trajectory", str(write(tmp)), *extra]
+
+
+def _bytes(tmp: Path, name: str, data: bytes) -> Path:
+    path = tmp / name
+    path.write_bytes(data)
+    return path
+
+
+#: A one-joint serial robot (edited by the serial-id cases).
+SERIAL = (b'<robot name="r"><link name="a"/><link name="b"><inertial><mass value="1"/>'
+          b'<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+          b'<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+          b'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+          b'</robot>')
 
 
 def _set(*items):
@@ -407,6 +422,81 @@ CASES = [
          r"U-joint gimbal singularity|leg-Jacobian singularity",
          lib=lambda tmp: solve(_robot(), EXACT_GIMBAL, np.eye(9)[0] * 0.1, np.zeros(9),
                                limits=False)),
+    # ---- issue 10: numbers beyond float64's reach give an error, never NaN/inf
+    Case("gravity-huge", "a gravity of 1e308 m/s²", oc.InputError,
+         r"gravity .* exceeds 1e\+06 m/s² in size",
+         lib=lambda tmp: _id(*_states(), gravity=(0.0, 0.0, -1e308)),
+         cli=lambda tmp: ["id", "--duration", "1", "--gravity", "0", "0", "-1e308"]),
+    Case("rates-overflow", "rates of 1e160 (the forces overflow)", oc.NumericalError,
+         r"T1 is not finite at sample 0: the dynamics overflowed",
+         lib=lambda tmp: _id(*_with((slice(None), slice(None)), 1e160, which=1),
+                             limits=False, checks=False)),
+    # ---- issue 10: foreign exceptions from odd library arguments
+    Case("gravity-text", "gravity given as a string", oc.InputError,
+         r"gravity must be 3 real numbers", lib=lambda tmp: _id(*_states(), gravity="down")),
+    Case("thresholds-number", "thresholds given as a number", oc.InputError,
+         r"thresholds must be a Thresholds", lib=lambda tmp: _id(*_states(), thresholds=5)),
+    Case("outputs-number", "outputs given as a number", oc.InputError,
+         r"outputs must be a list of actuator names", lib=lambda tmp: _id(*_states(), outputs=3)),
+    Case("complex-q", "complex coordinates", oc.InputError, r"q has complex values",
+         lib=lambda tmp: _id(_states()[0] + 0j, *_states()[1:])),
+    Case("masked-q", "a masked array", oc.InputError, r"q is a masked array",
+         lib=lambda tmp: _id(np.ma.masked_less(_states()[0], 0.0), *_states()[1:])),
+    Case("read-csv-none", "read_csv(None)", oc.TrajectoryError,
+         r"the trajectory file must be a path, got None",
+         lib=lambda tmp: trajectories.read_csv(None)),
+    Case("write-csv-directory", "write_csv to a directory", oc.OffshoreCraneError,
+         r"cannot write .*: is a directory",
+         lib=lambda tmp: trajectories.write_csv(tmp, [0.0, 1.0], np.zeros((2, 9)))),
+    # ---- issue 10: text that is not UTF-8
+    Case("scene-not-utf8", "a scene file with a non-UTF-8 byte", oc.SceneError,
+         r"x\.toml, line 1, column 9: byte 0xff is not UTF-8",
+         lib=lambda tmp: oc.scenes.load_scene(_bytes(tmp, "x.toml", b'name = "\xff"\n')),
+         cli=lambda tmp: ["id", "--scene", str(_bytes(tmp, "x.toml", b'name = "\xff"\n'))]),
+    Case("csv-not-utf8", "a trajectory CSV with a non-UTF-8 byte", oc.TrajectoryError,
+         r"x\.csv, line 2, column 3: byte 0xff is not UTF-8",
+         lib=lambda tmp: trajectories.load(_bytes(tmp, "x.csv", b"t_s\n0,\xff\n")),
+         cli=lambda tmp: ["id", "--trajectory", str(_bytes(tmp, "x.csv", b"t_s\n0,\xff\n"))]),
+    Case("fd-order-table1", "--fd-order with table1", oc.InputError,
+         r"--fd-order applies to a CSV trajectory only", cli=lambda tmp: ["id", "--fd-order", "2"]),
+    # ---- issue 10: serial-id validates its URDF
+    Case("serial-duplicate-link", "serial-id: a link defined twice", oc.ModelError,
+         r"defines link 'b' twice",
+         lib=lambda tmp: oc.serial.load_chain(_bytes(tmp, "r.urdf", SERIAL.replace(
+             b'<link name="b">', b'<link name="b"/><link name="b">'))),
+         cli=lambda tmp: ["serial-id", str(_bytes(tmp, "r.urdf", SERIAL.replace(
+             b'<link name="b">', b'<link name="b"/><link name="b">')))]),
+    Case("serial-no-limits", "serial-id: a revolute joint without <limit>", oc.ModelError,
+         r"joint 'j' is revolute but has no <limit>",
+         lib=lambda tmp: oc.serial.load_chain(_bytes(tmp, "r.urdf", SERIAL.replace(
+             b'<limit lower="-1" upper="1" effort="1" velocity="1"/>', b""))),
+         cli=lambda tmp: ["serial-id", str(_bytes(tmp, "r.urdf", SERIAL.replace(
+             b'<limit lower="-1" upper="1" effort="1" velocity="1"/>', b"")))]),
+    Case("serial-nan-mass", "serial-id: a NaN mass", oc.ModelError,
+         r"link 'b': mass nan kg is not finite",
+         lib=lambda tmp: oc.serial.load_chain(_bytes(tmp, "r.urdf", SERIAL.replace(
+             b'mass value="1"', b'mass value="nan"'))),
+         cli=lambda tmp: ["serial-id", str(_bytes(tmp, "r.urdf", SERIAL.replace(
+             b'mass value="1"', b'mass value="nan"')))]),
+    Case("serial-negative-mass", "serial-id: a negative mass", oc.ModelError,
+         r"link 'b': mass -1 kg is negative",
+         lib=lambda tmp: oc.serial.load_chain(_bytes(tmp, "r.urdf", SERIAL.replace(
+             b'mass value="1"', b'mass value="-1"')))),
+    Case("serial-inverted-limits", "serial-id: lower > upper", oc.ModelError,
+         r"joint 'j': limits \[1, -1\] rad is empty",
+         lib=lambda tmp: oc.serial.load_chain(_bytes(tmp, "r.urdf", SERIAL.replace(
+             b'lower="-1" upper="1"', b'lower="1" upper="-1"')))),
+    Case("serial-not-utf8", "serial-id: a URDF with a non-UTF-8 byte", oc.InputError,
+         r"r\.urdf: byte .* is not UTF-8",
+         cli=lambda tmp: ["serial-id", str(_bytes(tmp, "r.urdf", SERIAL.replace(
+             b'name="r"', b'name="\xff"')))]),
+    Case("serial-negative-seed", "serial-id --seed -1", oc.InputError,
+         r"the seed must be an integer ≥ 0, got -1",
+         cli=lambda tmp: ["serial-id", str(_bytes(tmp, "r.urdf", SERIAL)), "--seed", "-1"]),
+    Case("serial-too-many", "serial-id --random 1e11", oc.InputError,
+         r"random states must be at least 1 and at most 10,000,000",
+         cli=lambda tmp: ["serial-id", str(_bytes(tmp, "r.urdf", SERIAL)),
+                          "--random", "100000000000"]),
 ]
 
 
@@ -444,9 +534,9 @@ def run_cli(case, tmp: Path):
     out = tmp / "out"
     out.mkdir(exist_ok=True)
     argv = case.cli(tmp)
-    if "--out" not in argv:
+    if argv[0] == "id" and "--out" not in argv:
         argv += ["--out", str(out / "x.csv")]
-    if "--plot" not in argv:
+    if argv[0] == "id" and "--plot" not in argv:
         argv += ["--plot", str(out / "x.png")]
     err, stdout = io.StringIO(), io.StringIO()
     with contextlib.redirect_stderr(err), contextlib.redirect_stdout(stdout):

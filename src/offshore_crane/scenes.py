@@ -503,13 +503,14 @@ def load_scene(path) -> Scene:
     """
     import tomllib
 
+    from .errors import InputError
+    from .io import read_text
+
     where = os.fspath(path)
     try:
-        with open(where, "rb") as fh:
-            data = tomllib.load(fh)
-    except OSError as exc:
-        raise SceneError(f"{where}: cannot read the scene file: {exc.strerror}",
-                         path=where) from None
+        data = tomllib.loads(read_text(where, "scene file"))
+    except InputError as exc:
+        raise SceneError(str(exc), path=where) from None
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{where}: not valid TOML: {exc}", path=where) from None
     return scene_from_dict(data, where, Path(where).parent)

@@ -316,15 +316,20 @@ def read_csv(path, derivatives: bool = False):
         raise TrajectoryError(
             f"trajectory file '{path}' does not exist or is not a file: check the path.",
             path=str(path))
+    from .errors import InputError
+    from .io import read_text
+
     try:
-        with open(path, newline="", encoding="utf-8-sig") as f:
-            reader = csv.reader(f)
-            lines, rows = [], []
-            for row in reader:
-                if row and any(cell.strip() for cell in row):
-                    lines.append(reader.line_num)
-                    rows.append(row)
-    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        text = read_text(path, "trajectory CSV file").removeprefix("\ufeff")
+        reader = csv.reader(text.splitlines())
+        lines, rows = [], []
+        for row in reader:
+            if row and any(cell.strip() for cell in row):
+                lines.append(reader.line_num)
+                rows.append(row)
+    except InputError as exc:
+        raise TrajectoryError(str(exc), path=str(path)) from None
+    except csv.Error as exc:
         raise TrajectoryError(
             f"cannot read trajectory file '{path}': {exc}: give a readable UTF-8 CSV file.",
             path=str(path)) from None
