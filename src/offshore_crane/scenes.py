@@ -71,12 +71,14 @@ from .conventions import ARM_ACTUATORS, ACTUATOR_UNITS, ACTUATORS, GRAVITY, INER
 from .dynamics import LEG_MODELS, METHODS
 from .errors import SceneError
 
-SECTIONS = ("robot", "subsystems", "payload", "trajectory")
+SECTIONS = ("robot", "subsystems", "payload", "trajectory", "control")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
 PAYLOAD_KEYS = ("mass", "offset", "inertia")
 INERTIA_KEYS = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
 TRAJECTORY_KEYS = ("source", "duration", "rate", "fd_order")
+CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error", "noise_q",
+                "noise_qd", "seed", "model", "lower", "upper")
 #: xacro arguments a scene sets through its own keys, not through [robot].
 SCENE_ARGUMENTS = {"with_arm": "[subsystems] arm",
                    **{f"payload_{k}": "[payload]" for k in ("mass", "x", "y", "z")},
@@ -190,6 +192,7 @@ class Scene:
     fd_order: int = 4
     outputs: tuple | None = None
     methods: tuple = ("kane",)
+    control: dict = field(default_factory=dict)
     #: Where the scene comes from, for messages (the file, or the file with the
     #: command-line options applied).
     origin: str | None = field(default=None, compare=False, repr=False)
@@ -396,6 +399,71 @@ def _trajectory(where: str, data: dict, base: Path | None) -> dict:
     return out
 
 
+def _control(where: str, data: dict) -> dict:
+    """The ``[control]`` section of ``offshore-crane simulate``: checked values, as a dict
+    of :func:`controller`'s and :func:`offshore_crane.simulate.simulate`'s arguments."""
+    from .control import LAWS, Controller
+    from .errors import InputError
+    from .simulate import INTEGRATORS
+
+    r = _section(where, data, "control", CONTROL_KEYS)
+    out: dict = {}
+    if "law" in r.table:
+        out["law"] = r.string("law", choices=LAWS)
+    for key, unit in (("kp", "1/s² or N/m"), ("kd", "1/s or N·s/m"), ("noise_q", "m, rad"),
+                      ("noise_qd", "m/s, rad/s")):
+        if key in r.table:
+            v = r.get(key)
+            out[key] = r.vector(key, 9, unit=unit) if isinstance(v, list) else r.number(
+                key, unit=unit, minimum=0.0)
+    for key in ("lower", "upper", "initial_error"):
+        if key in r.table:
+            v = r.get(key)
+            if key != "initial_error" and isinstance(v, list) and len(v) == 9 and all(
+                    isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
+                out[key] = tuple(float(x) for x in v)   # may hold ±inf
+            else:
+                out[key] = r.vector(key, 9, unit="N·m, N" if key != "initial_error" else
+                                    "m, rad")
+    if "rate" in r.table:
+        out["rate"] = r.number("rate", unit="Hz", positive=True)
+    if "step" in r.table:
+        out["step"] = r.number("step", unit="s", positive=True)
+    if "integrator" in r.table:
+        out["integrator"] = r.string("integrator", choices=INTEGRATORS)
+    if "seed" in r.table:
+        seed = r.get("seed")
+        if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+            r.fail("seed", "must be an integer ≥ 0")
+        out["seed"] = seed
+    if "model" in r.table:
+        model = r.get("model")
+        if not isinstance(model, dict):
+            r.fail("model", "must be a table of robot parameters (the controller's model)")
+        out["model"] = dict(model)
+    try:                                # the law's own checks (gains, limits), named here
+        Controller(**{k: v for k, v in out.items() if k in ("law", "kp", "kd", "rate",
+                                                             "lower", "upper", "noise_q",
+                                                             "noise_qd", "seed")})
+    except InputError as exc:
+        raise SceneError(f"{where}: [control] {exc}", path=where, name="control") from None
+    return out
+
+
+def controller(scene: Scene, robot=None):
+    """The :class:`~offshore_crane.control.Controller` of the scene's ``[control]``
+    section (its ``model`` table overrides the scene's robot for the controller)."""
+    from .control import Controller
+
+    c = scene.control
+    model = None
+    if "model" in c:
+        model = load_robot(scene, **c["model"])
+    return Controller(**{k: v for k, v in c.items() if k in (
+        "law", "kp", "kd", "rate", "lower", "upper", "noise_q", "noise_qd", "seed")},
+        model=model)
+
+
 def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) -> Scene:
     """Build and check a :class:`Scene` from parsed TOML.
 
@@ -414,6 +482,7 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
     top = _Reader(where, None, {k: v for k, v in data.items() if k not in SECTIONS},
                   TOP_KEYS)
     sub = _section(where, data, "subsystems", SUBSYSTEM_KEYS)
+    control = _control(where, data)
     return Scene(                       # Scene checks how the parts fit (check_scene)
         name=top.string("name", Path(where).stem),
         description=top.string("description", ""),
@@ -423,7 +492,8 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
         deck_pose=sub.vector("deck_pose", 6, None, "m, rad"), payload=_payload(where, data),
         gravity=top.vector("gravity", 3, GRAVITY, "m/s²"),
         outputs=top.names("outputs", ACTUATORS),
-        methods=top.names("methods", METHODS) or ("kane",), **_trajectory(where, data, base))
+        methods=top.names("methods", METHODS) or ("kane",), control=control,
+        **_trajectory(where, data, base))
 
 
 def _check_values(scene: Scene) -> None:

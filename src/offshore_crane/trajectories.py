@@ -461,6 +461,8 @@ class Trajectory:
         q: ``(N, 9)`` generalized coordinates [m or rad].
         qd: ``(N, 9)`` first derivatives [m/s or rad/s].
         qdd: ``(N, 9)`` second derivatives [m/s² or rad/s²].
+        source: The analytic motion it samples, ``source(t (n,)) -> (q, qd, qdd)``, when
+            there is one (Table 1, sea states, crane operations), else None.
     """
 
     name: str
@@ -468,6 +470,17 @@ class Trajectory:
     q: np.ndarray
     qd: np.ndarray
     qdd: np.ndarray
+    source: object = None
+
+    def reference(self, t) -> tuple:
+        """The motion at any times ``t`` ``(n,)`` within the record: ``(q, qd, qdd)``
+        ``(n, 9)`` each. Analytic where the trajectory has a source; otherwise the cubic
+        Hermite interpolant of the samples' positions and rates (C¹; its acceleration is
+        the interpolant's second derivative, linear between samples), which a simulator
+        evaluates at its integration stages."""
+        if self.source is not None:
+            return self.source(np.asarray(t, dtype=float))
+        return hermite(self.t, self.q, self.qd, t)
 
     def __post_init__(self):
         n = np.shape(self.t)[0] if np.ndim(self.t) == 1 else None
@@ -483,6 +496,31 @@ class Trajectory:
     def __len__(self) -> int:
         """Number of time samples ``N``."""
         return int(self.t.shape[0])
+
+
+def hermite(tk, qk, qdk, t) -> tuple:
+    """Cubic Hermite interpolation of samples ``(tk (N,), qk (N, m), qdk (N, m))`` at
+    times ``t`` ``(n,)`` (within ``[tk[0], tk[-1]]``): ``(q, qd, qdd)`` ``(n, m)``.
+
+    Raises:
+        TrajectoryError: a time outside the samples' span.
+    """
+    t = np.asarray(t, dtype=float)
+    if t.size and (t.min() < tk[0] - 1e-12 * max(1.0, abs(tk[0]))
+                   or t.max() > tk[-1] + 1e-12 * max(1.0, abs(tk[-1]))):
+        raise TrajectoryError(f"times {t.min():.6g}..{t.max():.6g} s reach outside the "
+                              f"trajectory's {tk[0]:.6g}..{tk[-1]:.6g} s", name="t")
+    i = np.clip(np.searchsorted(tk, t, side="right") - 1, 0, len(tk) - 2)
+    h = (tk[i + 1] - tk[i])[:, None]
+    s = ((t - tk[i])[:, None]) / h
+    p0, p1, m0, m1 = qk[i], qk[i + 1], qdk[i] * h, qdk[i + 1] * h
+    s2, s3 = s * s, s * s * s
+    q = (2 * s3 - 3 * s2 + 1) * p0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * p1 + \
+        (s3 - s2) * m1
+    dq = ((6 * s2 - 6 * s) * p0 + (3 * s2 - 4 * s + 1) * m0 + (-6 * s2 + 6 * s) * p1
+          + (3 * s2 - 2 * s) * m1) / h
+    ddq = ((12 * s - 6) * p0 + (6 * s - 4) * m0 + (-12 * s + 6) * p1 + (6 * s - 2) * m1) / h**2
+    return q, dq, ddq
 
 
 def load(spec="table1", duration=None, rate=None, fd_order: int = 4) -> Trajectory:
@@ -508,7 +546,7 @@ def load(spec="table1", duration=None, rate=None, fd_order: int = 4) -> Trajecto
         t = time_grid(TABLE1_PERIOD if duration is None else duration,
                       DEFAULT_RATE if rate is None else rate)
         q, qd, qdd = table1(t)
-        return Trajectory("table1", t, q, qd, qdd)
+        return Trajectory("table1", t, q, qd, qdd, source=table1)
     try:
         path = Path(os.fspath(spec))
     except TypeError:

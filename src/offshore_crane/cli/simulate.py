@@ -1,0 +1,182 @@
+"""``offshore-crane simulate``: the robot under a controller, tracking a reference motion.
+
+The scene (``--scene``) sets the robot, the trajectory and the ``[control]`` section;
+explicit flags override them. The CSV holds ``t_s``, ``q1..q9``, ``q1_ref..q9_ref`` and the
+applied actuator forces; on an early stop (workspace, singularity, divergence) it holds
+every sample computed up to the stop, and the command exits with status 2 and one line.
+"""
+
+from __future__ import annotations
+
+from ..conventions import ACTUATOR_UNITS, ACTUATORS, COORDINATE_UNITS, COORDINATES
+from ..errors import InputError
+
+CSV_HEADER = ",".join(["t_s", *COORDINATES, *(f"{c}_ref" for c in COORDINATES),
+                       *(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS,
+                                                                       ACTUATOR_UNITS))])
+
+
+def add_parser(sub) -> None:
+    from ..control import LAWS
+
+    p = sub.add_parser("simulate", help="simulate the robot under a controller",
+                       description=__doc__.splitlines()[0].split(": ", 1)[1] + " "
+                       + " ".join(line.strip() for line in __doc__.splitlines()[2:6]))
+    p.add_argument("--scene", metavar="FILE.toml", help="scene file (robot, trajectory, "
+                   "[control])")
+    p.add_argument("--trajectory", help="reference: 'table1' or a CSV t_s,q1..q9 "
+                   "(interpolated between samples)")
+    p.add_argument("--controller", choices=LAWS, help="control law (default computed-torque)")
+    p.add_argument("--kp", type=float, nargs="+", metavar="KP",
+                   help="stiffness gains: one value or 9 (per coordinate for computed "
+                   "torque [1/s²]; per actuator for PD [N·m/rad, N/m])")
+    p.add_argument("--kd", type=float, nargs="+", metavar="KD", help="damping gains (as --kp)")
+    p.add_argument("--control-rate", type=float, metavar="HZ",
+                   help="control rate with sample-and-hold (default: continuous, the law at "
+                   "every integrator stage)")
+    p.add_argument("--step", type=float, metavar="S", help="integration step [s] "
+                   "(default 0.001)")
+    p.add_argument("--duration", type=float, metavar="S", help="simulated time [s] "
+                   "(default: the trajectory's span, 10π s for table1)")
+    p.add_argument("--rate", type=float, metavar="HZ", help="output sampling rate [Hz] "
+                   "(default: every step)")
+    p.add_argument("--integrator", choices=("rk4", "dop853"), help="default rk4")
+    p.add_argument("--initial-error", type=float, nargs=9, metavar="DQ",
+                   help="initial state minus the reference's, q1..q9 [m, rad]")
+    p.add_argument("--set", action="append", metavar="NAME=VALUE",
+                   help="override a robot parameter; repeatable")
+    p.add_argument("--gravity", type=float, nargs=3, metavar=("GX", "GY", "GZ"))
+    p.add_argument("--no-limits", action="store_true", help="do not stop at the workspace "
+                   "limits")
+    p.add_argument("--out", help="write the run to this CSV")
+    p.add_argument("--plot", help="write tracking errors and forces to this figure")
+    p.set_defaults(run=run)
+
+
+def _gains(values, name):
+    if values is None:
+        return None
+    if len(values) not in (1, 9):
+        raise InputError(f"{name} takes one value or 9, got {len(values)}", name=name)
+    return values[0] if len(values) == 1 else values
+
+
+def run(args) -> int:
+    import sys
+    from dataclasses import replace
+
+    import numpy as np
+
+    from .. import scenes
+    from ..errors import SimulationError
+    from ..io import FIGURE_FORMATS, plan_outputs
+    from ..simulate import simulate
+    from .id import _parse_set
+
+    scene = scenes.load_scene(args.scene) if args.scene else scenes.Scene()
+    if args.trajectory:
+        scene = scenes.with_overrides(scene, "command line", trajectory=args.trajectory)
+    if args.gravity is not None:
+        scene = scenes.with_overrides(scene, "command line", gravity=tuple(args.gravity))
+    inputs = [args.scene, scene.trajectory if scene.trajectory != "table1" else None]
+    outputs = plan_outputs({"--out": args.out, "--plot": args.plot}, inputs,
+                           {"--plot": FIGURE_FORMATS})
+    say = (lambda *a: print(*a, file=sys.stderr)) if any(
+        o.kind == "stdout" for o in outputs.values()) else print
+    robot = scenes.load_robot(scene, **_parse_set(args.set))
+    traj = scenes.load_trajectory(scene, robot)
+    controller = scenes.controller(scene, robot)
+    flags = {"law": args.controller, "kp": _gains(args.kp, "--kp"),
+             "kd": _gains(args.kd, "--kd"), "rate": args.control_rate}
+    flags = {k: v for k, v in flags.items() if v is not None}
+    if flags:
+        controller = replace(controller, _arrays={}, **flags)
+    c = scene.control
+    step = args.step or c.get("step", 1e-3)
+    span = float(traj.t[-1] - traj.t[0])
+    duration = args.duration if args.duration is not None else span
+    if duration > span + 1e-9:
+        raise InputError(f"--duration {duration:g} s is longer than the trajectory "
+                         f"({span:g} s)", name="--duration")
+    q0, qd0, _ = (x[0] for x in traj.reference(traj.t[:1]))
+    q0 = q0.copy()
+    error = args.initial_error if args.initial_error is not None else c.get("initial_error")
+    if error is not None:
+        q0 += np.asarray(error, dtype=float)
+    stopped = None
+    try:
+        res = simulate(robot, duration, traj.reference, q0=q0, qd0=qd0, controller=controller,
+                       gravity=scene.gravity, step=step, rate=args.rate,
+                       integrator=args.integrator or c.get("integrator", "rk4"),
+                       limits=not args.no_limits, t0=float(traj.t[0]))
+    except SimulationError as exc:
+        res, stopped = exc.result, exc
+    say(f"offshore-crane simulate: {controller.law} control"
+        + (f" at {controller.rate:g} Hz (sample-and-hold)" if controller.rate else
+           " (continuous)") + f", {res.integrator} step {step:g} s, reference {traj.name}, "
+        f"{len(res)} samples, t = {res.t[0]:.2f}..{res.t[-1]:.2f} s")
+    say(summary(res))
+    if "--out" in outputs:
+        from ..io import write_csv
+
+        write_csv(outputs["--out"], CSV_HEADER,
+                  np.column_stack([res.t, res.q, res.q_ref, res.X]))
+        say(f"wrote {args.out}" + (f" ({len(res)} samples, up to the stop)" if stopped else ""))
+    if "--plot" in outputs:
+        plot(outputs["--plot"], res, title=f"offshore-crane simulate: {traj.name}, "
+             f"{controller.law}")
+        say(f"wrote {args.plot}")
+    if stopped is not None:
+        raise stopped
+    return 0
+
+
+def summary(res) -> str:
+    """RMS and max tracking error per coordinate, peak forces, time saturated."""
+    import numpy as np
+
+    e = res.error
+    lines = [f"{'coord':<6}{'unit':<5}{'RMS error':>12}{'max |error|':>13}"]
+    for j, (name, unit) in enumerate(zip(COORDINATES, COORDINATE_UNITS)):
+        col = e[:, j]
+        if np.isnan(col).all():
+            continue
+        lines.append(f"{name:<6}{unit:<5}{np.sqrt(np.mean(col ** 2)):>12.3e}"
+                     f"{np.abs(col).max():>13.3e}")
+    dt = np.diff(res.t).mean() if len(res.t) > 1 else 0.0
+    lines.append(f"{'actuator':<9}{'unit':<5}{'peak |X|':>11}{'saturated [s]':>15}")
+    for k, (name, unit) in enumerate(zip(ACTUATORS, ACTUATOR_UNITS)):
+        lines.append(f"{name:<9}{unit:<5}{np.abs(res.X[:, k]).max():>11.2f}"
+                     f"{res.saturated[:, k].sum() * dt:>15.3f}")
+    return "\n".join(lines)
+
+
+def plot(target, res, title: str = "") -> None:
+    """Tracking errors (translations, rotations) and applied forces against time."""
+    from ..errors import require
+    from ..report import save_figure
+
+    matplotlib = require("matplotlib", "matplotlib", "--plot")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(4, 1, figsize=(8, 10), sharex=True, constrained_layout=True)
+    for j in (0, 1, 2, 8):
+        axes[0].plot(res.t, res.error[:, j] * 1e3, label=COORDINATES[j])
+    axes[0].set_ylabel("error [mm]")
+    for j in range(3, 8):
+        axes[1].plot(res.t, res.error[:, j] * 1e3, label=COORDINATES[j])
+    axes[1].set_ylabel("error [mrad]")
+    for k in range(3, 9):
+        axes[2].plot(res.t, res.X[:, k], label=ACTUATORS[k])
+    axes[2].set_ylabel("leg force [N]")
+    for k in range(3):
+        axes[3].plot(res.t, res.X[:, k], label=ACTUATORS[k])
+    axes[3].set_ylabel("arm [N·m, N]")
+    axes[3].set_xlabel("time [s]")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+        ax.legend(loc="upper right", ncol=6, fontsize=8)
+    if title:
+        axes[0].set_title(title)
+    save_figure(fig, target)
