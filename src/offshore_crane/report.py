@@ -67,13 +67,18 @@ def plot(path, t: np.ndarray, X: np.ndarray, title: str = "") -> None:
     axes[1].set_ylabel("arm torque [N·m]")
     axes[2].plot(t, X[:, 2], label="Fs", color="k")
     axes[2].set_ylabel("slider force [N]")
-    axes[2].set_xlabel("time [s]")
+    finish_figure(fig, axes, path, title)
+
+
+def finish_figure(fig, axes, target, title: str = "") -> None:
+    """Grid, legends, a time axis label and the title, then :func:`save_figure`."""
+    axes[-1].set_xlabel("time [s]")
     for ax in axes:
         ax.grid(True, alpha=0.3)
         ax.legend(loc="upper right", ncol=6, fontsize=8)
     if title:
         axes[0].set_title(title)
-    save_figure(fig, path)
+    save_figure(fig, target)
 
 
 def save_figure(fig, target) -> None:

@@ -91,6 +91,24 @@ def main(argv=None) -> int:
         return BROKEN_PIPE
 
 
+def plan(args, scene):
+    """Check ``--out`` and ``--plot`` of a scene-driven command before computing.
+
+    Returns:
+        ``(outputs, say)``: the :func:`~offshore_crane.io.plan_outputs` targets, and the
+        function that prints the command's report (to standard error when an output goes
+        to standard output).
+    """
+    from ..io import FIGURE_FORMATS, plan_outputs
+
+    inputs = [args.scene, scene.trajectory if scene.trajectory != "table1" else None]
+    outputs = plan_outputs({"--out": args.out, "--plot": args.plot}, inputs,
+                           {"--plot": FIGURE_FORMATS})
+    if any(o.kind == "stdout" for o in outputs.values()):
+        return outputs, lambda *a: print(*a, file=sys.stderr)
+    return outputs, print
+
+
 def _quiet_stdout() -> None:
     """After a BrokenPipeError: point stdout at /dev/null so that the interpreter's final
     flush does not fail again (the Python documentation's recipe)."""

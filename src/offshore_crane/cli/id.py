@@ -108,19 +108,12 @@ def _scene(args):
 
 
 def run(args) -> int:
-    import sys
-
     from .. import scenes
-    from ..io import FIGURE_FORMATS, plan_outputs
     from ..report import format_summary, plot, summary_rows, write_csv
+    from . import plan
 
     scene = _scene(args)
-    inputs = [args.scene, scene.trajectory if scene.trajectory != "table1" else None]
-    outputs = plan_outputs({"--out": args.out, "--plot": args.plot}, inputs,
-                           {"--plot": FIGURE_FORMATS})
-    # with an output on standard output, the report goes to standard error
-    say = (lambda *a: print(*a, file=sys.stderr)) if any(
-        o.kind == "stdout" for o in outputs.values()) else print
+    outputs, say = plan(args, scene)
     robot = scenes.load_robot(scene, **_parse_set(args.set))
     traj = scenes.load_trajectory(scene, robot)
     backend = args.backend or ("numba" if len(traj.t) >= NUMBA_MIN else "numpy")

@@ -62,15 +62,14 @@ def _gains(values, name):
 
 
 def run(args) -> int:
-    import sys
     from dataclasses import replace
 
     import numpy as np
 
     from .. import scenes
     from ..errors import SimulationError
-    from ..io import FIGURE_FORMATS, plan_outputs
     from ..simulate import simulate
+    from . import plan
     from .id import _parse_set
 
     scene = scenes.load_scene(args.scene) if args.scene else scenes.Scene()
@@ -78,11 +77,7 @@ def run(args) -> int:
         scene = scenes.with_overrides(scene, "command line", trajectory=args.trajectory)
     if args.gravity is not None:
         scene = scenes.with_overrides(scene, "command line", gravity=tuple(args.gravity))
-    inputs = [args.scene, scene.trajectory if scene.trajectory != "table1" else None]
-    outputs = plan_outputs({"--out": args.out, "--plot": args.plot}, inputs,
-                           {"--plot": FIGURE_FORMATS})
-    say = (lambda *a: print(*a, file=sys.stderr)) if any(
-        o.kind == "stdout" for o in outputs.values()) else print
+    outputs, say = plan(args, scene)
     robot = scenes.load_robot(scene, **_parse_set(args.set))
     traj = scenes.load_trajectory(scene, robot)
     controller = scenes.controller(scene, robot)
@@ -154,7 +149,7 @@ def summary(res) -> str:
 def plot(target, res, title: str = "") -> None:
     """Tracking errors (translations, rotations) and applied forces against time."""
     from ..errors import require
-    from ..report import save_figure
+    from ..report import finish_figure
 
     matplotlib = require("matplotlib", "matplotlib", "--plot")
     matplotlib.use("Agg")
@@ -173,10 +168,4 @@ def plot(target, res, title: str = "") -> None:
     for k in range(3):
         axes[3].plot(res.t, res.X[:, k], label=ACTUATORS[k])
     axes[3].set_ylabel("arm [N·m, N]")
-    axes[3].set_xlabel("time [s]")
-    for ax in axes:
-        ax.grid(True, alpha=0.3)
-        ax.legend(loc="upper right", ncol=6, fontsize=8)
-    if title:
-        axes[0].set_title(title)
-    save_figure(fig, target)
+    finish_figure(fig, axes, target, title)
