@@ -74,13 +74,18 @@ def test_every_number_is_an_argument():
 
 
 def test_cache_is_reused(tmp_path, monkeypatch):
+    """A cache hit returns the entry's text (not a new expansion): the entry's content is
+    the URDF after one stamp line, and an equal key (6 and 6.0) finds it."""
+    from offshore_crane.model import xacro_cache
     from offshore_crane.model.xacro_cache import expand
 
     monkeypatch.setenv("OFFSHORE_CRANE_CACHE", str(tmp_path))
     text, path = expand({"column_mass": 6})
-    assert path.parent == tmp_path and path.read_text() == text
-    path.write_text(text.replace('name="offshore_crane"', 'name="from_cache"'))
-    assert 'name="from_cache"' in expand({"column_mass": 6.0})[0]
+    assert path.parent == tmp_path and path.read_text().split("\n", 1)[1] == text
+    calls = []
+    with monkeypatch.context() as m:
+        m.setattr(xacro_cache, "require", lambda *a: calls.append(a))
+        assert expand({"column_mass": 6.0}) == (text, path) and calls == []
     assert expand({"column_mass": 7})[1] != path
 
 

@@ -66,7 +66,8 @@ def load_robot(**overrides) -> Robot:
         ModelError: unknown parameter name, non-numeric value, invalid structure.
     """
     key = tuple(normalise_overrides(overrides).items())
-    if key not in _ROBOTS:
+    robot = _ROBOTS.get(key)
+    if robot is None:
         urdf, path = expand(dict(key))
-        _ROBOTS[key] = Robot(urdf, path, dict(key))
-    return _ROBOTS[key]
+        robot = _ROBOTS.setdefault(key, Robot(urdf, path, dict(key)))   # one per key, even
+    return robot                                                        # across threads
