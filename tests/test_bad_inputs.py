@@ -23,6 +23,7 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
+from offshore_crane import scenes
 from offshore_crane import trajectories
 from offshore_crane.__main__ import main
 from offshore_crane.kinematics.workspace import Thresholds
@@ -55,6 +56,9 @@ class Case:
     cli: Callable[[Path], list] | None = None
     gap: str = ""
     cli_match: str | None = None
+
+
+_SCENES = Path(__file__).resolve().parents[1] / "scenes"
 
 
 # --------------------------------------------------------------------------- helpers
@@ -275,7 +279,7 @@ CASES = [
     Case("csv-empty", "empty CSV file", oc.TrajectoryError, r"empty.csv' is empty",
          lib=_load(_csv("empty.csv", text="")), cli=_argv(_csv("empty.csv", text=""))),
     Case("csv-with-duration", "--duration given with a CSV trajectory", oc.TrajectoryError,
-         r"duration and rate apply to table1 only",
+         r"duration and rate \(--duration, --rate\) apply to table1 only",
          lib=_load(_csv("ok.csv", GOOD), duration=5.0),
          cli=_argv(_csv("ok.csv", GOOD), "--duration", "5")),
     # ---- trajectory names and table1 options
@@ -338,21 +342,23 @@ CASES = [
          cli=_argv(_csv("sing.csv", _rows(21, _yaw_sweep)), "--no-limits")),
     # ---- robot parameters (--set / load_robot overrides)
     Case("set-unknown", "unknown --set name", oc.ModelError,
-         r"unknown robot parameter 'platfrom_mass'; known parameters: base_radius",
+         r"unknown robot parameter 'platfrom_mass'; did you mean platform_mass",
          lib=lambda tmp: oc.load_robot(platfrom_mass=3), cli=_set("platfrom_mass=3")),
     Case("set-no-value", "--set without '='", oc.InputError,
          r"--set expects name=value, got 'platform_mass'",
          cli=lambda tmp: ["id", "--set", "platform_mass"]),
     Case("set-text", "non-numeric parameter", oc.ModelError,
-         r"robot parameter platform_mass='heavy' is not a number",
+         r"robot parameter platform_mass \(platform\.mass\)='heavy' is not a number",
          lib=lambda tmp: oc.load_robot(platform_mass="heavy"), cli=_set("platform_mass=heavy")),
     Case("set-nan", "NaN parameter", oc.ModelError,
-         r"robot parameter link1_mass='nan' is not finite", cli=_set("link1_mass=nan")),
+         r"robot parameter link1_mass \(arm\.link1\.mass\)=nan is not finite",
+         cli=_set("link1_mass=nan")),
     Case("mass-negative", "negative mass", oc.ModelError,
-         r"link 'platform': mass -5 kg is negative \(xacro argument platform_mass = -5\.0\)",
+         r"lab\.toml \(the default description\) with override platform\.mass = -5: "
+         r"platform\.mass: -5 kg is negative; give a mass >= 0",
          lib=lambda tmp: oc.load_robot(platform_mass=-5), cli=_set("platform_mass=-5")),
     Case("leg-mass-negative", "negative leg mass", oc.ModelError,
-         r"link 'leg1_upper': mass -0\.8 kg is negative \(xacro argument leg_upper_mass",
+         r"with override legs\.upper\.mass = -0\.8: legs\.upper\.mass: -0\.8 kg is negative",
          cli=_set("leg_upper_mass=-0.8")),
     Case("inertia-not-pd", "inertia with a negative principal moment (URDF)", oc.ModelError,
          r"link 'platform': inertia is not positive definite, principal moments "
@@ -363,52 +369,73 @@ CASES = [
          r"kg·m² violate the triangle inequality \(1 > 0\.001 \+ 0\.001\)",
          lib=_validate("arm_link1", ixx="0.001", iyy="0.001", izz="1")),
     Case("payload-inertia-not-pd", "payload inertia with a negative moment", oc.ModelError,
-         r"link 'payload': inertia is not positive definite, principal moments \(-1, 0, 0\) "
-         r"kg·m² include a negative one \(xacro arguments payload_mass = 10\.0, "
-         r"payload_ixx = -1\.0",
+         r"with override payload\.mass = 10, payload\.inertia\.ixx = -1: payload\.inertia: "
+         r"not positive definite: principal moments \(-1, 0, 0\) kg·m² include a negative "
+         r"one",
          lib=lambda tmp: oc.load_robot(payload_mass=10, payload_ixx=-1),
          cli=_set("payload_mass=10", "payload_ixx=-1")),
     Case("payload-inertia-triangle", "payload inertia violating the triangle inequality",
-         oc.ModelError, r"link 'payload': principal moments of inertia \(0\.1, 0\.1, 1\) "
-         r"kg·m² violate the triangle inequality",
+         oc.ModelError, r"payload\.inertia: principal moments \(0\.1, 0\.1, 1\) kg·m² break the "
+         r"triangle inequality",
          cli=_set("payload_mass=10", "payload_ixx=0.1", "payload_iyy=0.1", "payload_izz=1")),
     Case("payload-mass-negative", "negative payload mass (which the xacro would drop)",
-         oc.ModelError, r"xacro argument payload_mass = -3\.0 kg is negative",
+         oc.ModelError, r"override payload\.mass = -3: payload\.mass: -3 kg is negative",
          cli=_set("payload_mass=-3")),
     Case("inertia-nan", "NaN in an inertia (URDF)", oc.ModelError,
          r"link 'arm_slider': inertia is not finite", lib=_validate("arm_slider", iyy="nan")),
     Case("link-zero-length", "zero-length arm link", oc.ModelError,
-         r"xacro argument link1_length = 0\.0 m must be positive: link 'arm_link1' would "
-         r"have zero length", lib=lambda tmp: oc.load_robot(link1_length=0),
+         r"override arm\.link1\.shape\.size\.x = 0: arm\.link2\.origin: arm_joint2 lies on "
+         r"arm_joint1's axis: link 'arm_link1' would have zero length",
+         lib=lambda tmp: oc.load_robot(link1_length=0),
          cli=_set("link1_length=0")),
     Case("leg-link-zero-length", "zero-length leg link", oc.ModelError,
-         r"leg_upper_length = 0\.0 m must be positive: links 'leg\{i\}_upper' would have "
+         r"legs\.upper\.length: 0 m must be positive: links 'leg\{i\}_upper' would have "
          r"zero length", cli=_set("leg_upper_length=0")),
     Case("radius-negative", "negative radius", oc.ModelError,
-         r"xacro argument column_radius = -0\.05 m must not be negative",
+         r"arm\.column\.shape\.radius: -0\.05 m must not be negative",
          cli=_set("column_radius=-0.05")),
     Case("stroke-empty", "leg stroke with lower >= upper", oc.ModelError,
-         r"joint 'leg1_slide': the leg stroke \[0\.9, 0\.82\] m is empty \(need lower < "
-         r"upper\) \(xacro arguments leg_min_length = 0\.9, leg_max_length = 0\.82\)",
+         r"with override legs\.stroke\.min = 0\.9: legs\.stroke: the stroke \[0\.9, 0\.82\] m "
+         r"of leg 1 is empty \(need min < max\)",
          lib=lambda tmp: oc.load_robot(leg_min_length=0.9), cli=_set("leg_min_length=0.9")),
     Case("ujoint-limit-zero", "U-joint range of zero width", oc.ModelError,
-         r"joint 'leg1_u1': limits \[0, 0\] rad is empty .*ujoint_limit = 0\.0",
+         r"legs\.ujoint\.limit: 0 rad: need 0 < limit <= pi/2",
          cli=_set("ujoint_limit=0")),
     Case("home-unreachable", "legs that cannot reach the home pose", oc.ModelError,
-         r"leg 1 cannot reach the home pose: \|P1S1\| = 0\.551062 m is outside the stroke "
-         r"\[0\.4, 0\.45\] m of joint 'leg1_slide'",
+         r"legs\.stroke: leg 1 cannot reach the home pose: \|P1S1\| = 0\.551062 m is outside "
+         r"the stroke \[0\.4, 0\.45\] m",
          lib=lambda tmp: oc.load_robot(leg_max_length=0.45), cli=_set("leg_max_length=0.45")),
     Case("home-below-base", "home pose with the platform below the U-joints", oc.ModelError,
-         r"at the home pose sphere centre S1 is 0\.04 m below its U-joint \(platform below "
-         r"the base\) \(xacro argument home_height = 0\.03\)", cli=_set("home_height=0.03")),
+         r"with override home\.height = 0\.03: home\.height: at the home pose sphere centre S1 "
+         r"is 0\.04 m below its U-joint \(platform below the base\)",
+         cli=_set("home_height=0.03")),
     Case("anchors-coincide", "base anchors on a circle of radius zero", oc.ModelError,
-         r"xacro argument base_radius = 0\.0 m must be positive: all U-joint centres P_i "
-         r"would coincide", cli=_set("base_radius=0")),
+         r"with override base\.joints\.radius = 0: base\.joints: P1 and P2 coincide",
+         cli=_set("base_radius=0")),
     Case("design-singular", "anchors making every leg vertical (singular design)",
-         oc.ModelError, r"the legs are singular at the home pose \(Stewart matrix condition "
-         r"number inf\): move the anchors \(xacro arguments base_radius = 0\.35",
+         oc.ModelError, r"with override base\.joints\.radius = 0\.35, "
+         r"base\.joints\.half_angle_deg = 45: platform\.joints: the legs are singular at the "
+         r"home pose \(Stewart matrix condition number inf\): move the anchors",
          lib=lambda tmp: oc.load_robot(base_radius=0.35, base_half_angle_deg=45),
          cli=_set("base_radius=0.35", "base_half_angle_deg=45")),
+    # ---- one override path (issue 10, family 7): scene fields and --set
+    Case("set-contradicts-scene", "--set with_arm=1 on a scene without arm", oc.SceneError,
+         r"--set arm\.enabled = true contradicts the scene's \[subsystems\] arm = false",
+         lib=lambda tmp: scenes.with_robot_overrides(
+             scenes.load_scene(_SCENES / "platform_only.toml"), {"arm.enabled": True}),
+         cli=lambda tmp: ["id", "--scene", str(_SCENES / "platform_only.toml"), "--set",
+                          "with_arm=1"]),
+    Case("set-payload-no-arm", "--set payload_mass on a scene without arm", oc.SceneError,
+         r"payload\.mass: 100 kg: the payload hangs from the arm tip, but the robot has no "
+         r"arm", cli=lambda tmp: ["id", "--scene", str(_SCENES / "platform_only.toml"),
+                                  "--set", "payload_mass=100"]),
+    Case("with-arm-number", "with_arm given a number other than 0/1", oc.ModelError,
+         r"with_arm \(arm\.enabled\)=0\.5 must be true or false \(1 or 0\)",
+         lib=lambda tmp: oc.load_robot(with_arm=0.5), cli=_set("with_arm=0.5")),
+    Case("mass-huge", "a mass beyond what float64 carries through the dynamics",
+         oc.ModelError, r"platform_mass \(platform\.mass\)=1e\+308 exceeds the magnitude "
+         r"limit 1e\+100", lib=lambda tmp: oc.load_robot(platform_mass=1e308),
+         cli=_set("platform_mass=1e308")),
     # ---- former gaps (fixed: argparse errors, early output checks, exact singularity)
     Case("argparse-choice", "unknown --method (argparse)", oc.InputError,
          r"argument --method: invalid choice: 'foo'",
@@ -575,9 +602,10 @@ def test_errors_carry_their_data(tmp_path):
     with pytest.raises(oc.WorkspaceError) as info:
         _solve_csv(_csv("arm.csv", _pose(q8=2.5)))(tmp_path)
     assert (info.value.joint, info.value.index, info.value.value) == ("arm_joint2", 0, 2.5)
-    with pytest.raises(oc.ModelError) as info:
+    with pytest.raises(oc.errors.DescriptionError) as info:
         oc.load_robot(platform_mass=-5)
-    assert info.value.element == "platform"
+    assert info.value.field == info.value.element == "platform.mass"
+    assert info.value.path.endswith("lab.toml")
     with pytest.raises(oc.TrajectoryError) as info:
         trajectories.load(_csv("text.csv", _cell(GOOD, 2, "q3", "abc"))(tmp_path))
     assert (info.value.name, info.value.index) == ("q3", 1)

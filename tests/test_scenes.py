@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
+from offshore_crane.model.overrides import normalise
 from conftest import relative_error
 from offshore_crane import scenes
 from offshore_crane.__main__ import main
@@ -99,10 +100,13 @@ def test_robot_without_arm():
         assert relative_error(Xv[:, 3:], res.X[:n, 3:]) < EXACT
 
 
-def test_with_arm_override_arrives_as_float():
-    robot = oc.load_robot(with_arm=1)                     # "1.0" in the xacro
-    assert robot.overrides == {"with_arm": "1.0"}
+def test_with_arm_override_is_a_boolean():
+    robot = oc.load_robot(with_arm=1)                     # 0/1 or true/false only
+    assert robot.overrides == {"arm.enabled": True}
     assert robot.urdf == oc.load_robot().urdf
+    with pytest.raises(oc.ModelError, match=r"with_arm \(arm.enabled\)=0.5 must be true "
+                       r"or false"):
+        oc.load_robot(with_arm=0.5)
 
 
 def test_payload_is_part_of_both_models():
@@ -234,11 +238,13 @@ def test_options_passed_to_the_kernel(robot, monkeypatch):
 def test_kane_scene_imports_nothing_heavy(name, tmp_path, monkeypatch):
     """Warm URDF cache, Kane only, no --plot: neither Pinocchio, matplotlib, yourdfpy nor
     xacro is imported."""
-    from offshore_crane.model.xacro_cache import expand
+    from offshore_crane.model import description, xacro_cache
 
     monkeypatch.setenv("OFFSHORE_CRANE_CACHE", str(tmp_path))
     path = SCENES / f"{name}.toml"
-    expand(scenes.load_scene(path).xacro_overrides())        # warm the cache
+    scene = scenes.load_scene(path)
+    xacro_cache.expand(description.resolve(scene.robot_description,
+                                           scene.robot_overrides()).xacro_data())
     code = ("import sys; from offshore_crane.__main__ import main; "
             f"assert main(['id', '--scene', {str(path)!r}, '--duration', '1']) == 0; "
             "bad = [m for m in ('pinocchio', 'matplotlib', 'yourdfpy', 'xacro') "
@@ -270,17 +276,18 @@ def test_fidelity_report(capsys):
 
 # --------------------------------------------------------------------------- bad scenes
 BAD = [
-    ("[payload]\nmass = -1\n", "payload.mass", "[payload] mass = -1: must be ≥ 0 kg"),
+    ("[payload]\nmass = -1\n", "payload.mass",
+     "override payload.mass = -1: payload.mass: -1 kg is negative"),
     ("[payload]\nmass = 1\ninertia = { ixx = 1, iyy = 1, izz = -1 }\n", "payload.inertia",
-     "[payload] inertia = { ixx = 1, iyy = 1, izz = -1 }: not positive definite"),
+     "payload.inertia: not positive definite"),
     ("[payload]\nmass = 1\ninertia = { ixx = 1, iyy = 1, izz = 3 }\n", "payload.inertia",
      "break the triangle inequality"),
     ("[payload]\ninertia = { ixx = 1, iyy = 1, izz = 1 }\n", "payload.inertia",
      "an inertia without mass"),
     ("[payload]\nmass = 1\ninertia = { ixx = 1, iyy = 1, izz = 1, iyx = 0 }\n",
      "payload.inertia.iyx", "[payload.inertia] unknown key 'iyx'"),
-    ("[payload]\nmass = 2\noffset = [0, 0]\n", "payload.offset",
-     "[payload] offset = [0, 0]: must be a list of 3 finite numbers [m]"),
+    ("[payload]\nmass = 2\noffset = [0, 0]\n", "payload.com",
+     "payload.com: [0, 0] must be a list of 3 numbers [m]"),
     ("[payload]\nmas = 2\n", "payload.mas", "[payload] unknown key 'mas'"),
     ("[payloads]\nmass = 2\n", "payloads", "unknown section [payloads]"),
     ("gravty = [0, 0, -9.81]\n", "gravty", "unknown key 'gravty'"),
@@ -300,7 +307,7 @@ BAD = [
     ("[subsystems]\ndeck_pose = [0, 0, 0.5, 0, 0, 0]\n", "subsystems.deck_pose",
      "applies to platform = false"),
     ("[subsystems]\narm = false\n[payload]\nmass = 2\n", "payload.mass",
-     "[payload] mass = 2: the payload hangs from the arm tip"),
+     "payload.mass: 2 kg: the payload hangs from the arm tip, but the robot has no arm"),
     ('outputs = ["Fl1"]\n[subsystems]\nplatform = false\n', "outputs",
      "Fl1 do not exist with [subsystems] platform = false"),
     ('outputs = ["T2"]\n[subsystems]\narm = false\n', "outputs",
@@ -309,11 +316,17 @@ BAD = [
      "subsystems.leg_model", "an approximation offered by method kane only"),
     ('[subsystems]\nplatform = false\nleg_model = "massless"\n', "subsystems.leg_model",
      "platform = false (no legs)"),
-    ("[robot]\nplatfrom_mass = 3\n", "robot.platfrom_mass", "[robot] unknown key 'platfrom_mass'"),
-    ("[robot]\nplatform_mass = -3\n", "robot.platform_mass", "must be ≥ 0 kg"),
-    ('[robot]\nplatform_mass = "heavy"\n', "robot.platform_mass", "must be a finite number"),
-    ("[robot]\npayload_mass = 3\n", "robot.payload_mass", "set by the scene: use [payload]"),
-    ("[robot]\nwith_arm = 0\n", "robot.with_arm", "use [subsystems] arm"),
+    ("[robot]\nplatfrom_mass = 3\n", "platfrom_mass",
+     "[robot] unknown robot parameter 'platfrom_mass'; did you mean platform_mass"),
+    ("[robot]\nplatform_mass = -3\n", "platform.mass", "platform.mass: -3 kg is negative"),
+    ('[robot]\nplatform_mass = "heavy"\n', "platform.mass",
+     "[robot] robot parameter platform_mass (platform.mass)='heavy' is not a number"),
+    ("[robot]\npayload_mass = 3\n[payload]\nmass = 2\n", "payload.mass",
+     "[payload] mass = 2 contradicts [robot] payload.mass = 3: give it once"),
+    ("[robot]\nwith_arm = 0.5\n", "arm.enabled", "=0.5 must be true or false (1 or 0)"),
+    ("[robot]\nwith_arm = 1\n[subsystems]\narm = false\n", "arm.enabled",
+     "[subsystems] arm = false contradicts [robot] arm.enabled = true"),
+    ('[robot]\ndescription = "nowhere.toml"\n', "robot.description", "no such file"),
     ("robot = 3\n", "robot", "robot = 3: must be a table [robot]"),
     ('[trajectory]\nsource = "nope.csv"\n', "trajectory.source", "no such file"),
     ("[trajectory]\nduration = -2\n", "trajectory.duration",
@@ -335,13 +348,15 @@ def test_bad_scene_names_file_and_key(tmp_path, text, key, match):
 
 
 @pytest.mark.parametrize("build, key, match", [
-    (lambda: scenes.Payload(mass=-1.0), "payload.mass", "mass = -1.0: must be ≥ 0 kg"),
-    (lambda: scenes.Payload(1.0, inertia=(1.0, 1.0, 3.0, 0.0, 0.0, 0.0)), "payload.inertia",
-     "triangle inequality"),
+    (lambda: scenes.Scene(payload=scenes.Payload(mass=-1.0)), "payload.mass",
+     "payload.mass: -1 kg is negative"),
+    (lambda: scenes.Scene(payload=scenes.Payload(1.0, inertia=(1.0, 1.0, 3.0, 0.0, 0.0, 0.0))),
+     "payload.inertia", "triangle inequality"),
     (lambda: scenes.Scene(platform=False, outputs=("Fl1",)), "outputs",
      "scene 'default': outputs = [\"Fl1\"]: Fl1 do not exist"),
     (lambda: scenes.Scene(methods=("newton",)), "methods", "must be names out of"),
-    (lambda: scenes.Scene(robot={"with_arm": 0}), "robot.with_arm", "use [subsystems] arm"),
+    (lambda: scenes.Scene(robot={"with_arm": 1}, arm=False), "arm.enabled",
+     "arm.enabled = false contradicts robot arm.enabled = true"),
     (lambda: scenes.with_overrides(scenes.Scene(), "the CLI", leg_model="thin-rod",
                                    methods=("rnea",)),
      "subsystems.leg_model", "the CLI: [subsystems] leg_model = \"thin-rod\""),
@@ -381,7 +396,7 @@ def test_unreadable_scene_files(tmp_path):
 
 # --------------------------------------------------------------------------- command line
 @pytest.mark.parametrize("extra, text, match", [
-    ([], "[payload]\nmass = -1\n", "[payload] mass = -1: must be ≥ 0 kg"),
+    ([], "[payload]\nmass = -1\n", "payload.mass: -1 kg is negative"),
     ([], "[payload\n", "not valid TOML"),
     (["--outputs", "Fl1"], "[subsystems]\nplatform = false\n",
      "with the command-line options: outputs = [\"Fl1\"]: Fl1 do not exist"),

@@ -69,6 +69,25 @@ class ModelError(OffshoreCraneError, ValueError):
         self.element = element
 
 
+class DescriptionError(ModelError):
+    """A robot description file (TOML) or an override of it is invalid.
+
+    The message is one line that starts with the file (or ``override``) and names the
+    field with its dotted name, e.g.
+    ``lab.toml: legs.lower.com: z = 0.5 m lies outside the part (0 to 0.42 m)``.
+
+    Attributes:
+        path: The description file as given, ``"override"`` for a value set by
+            ``load_robot(overrides=...)``, ``--set`` or a scene, or None.
+        field: Dotted name of the field (``"legs.lower.com"``), or None for the file.
+    """
+
+    def __init__(self, message: str, path: str | None = None, field: str | None = None):
+        super().__init__(message, element=field)
+        self.path = path
+        self.field = field
+
+
 class WorkspaceError(OffshoreCraneError, ValueError):
     """A pose lies outside the workspace (leg stroke, joint limit, unreachable pose).
 

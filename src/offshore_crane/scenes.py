@@ -16,8 +16,11 @@ Schema (every key optional; SI units; unknown keys or sections are errors)::
     methods = ["kane"]                 # kane | kane-explicit | rnea; two or more are
                                        # compared (max |ΔX| ≤ 1e-9 max |X|)
 
-    [robot]                            # xacro arguments (numbers), e.g.
-    platform_mass = 55.0               # see models/offshore_crane.urdf.xacro
+    [robot]                            # the robot (docs/robot-description.md)
+    description = "my_platform.toml"   # its description file (relative to this file;
+                                       # default: the shipped lab design)
+    "legs.lower.mass" = 3.1            # any field, by its dotted name or its alias
+    platform_mass = 55.0               # (platform_mass = platform.mass)
 
     [subsystems]
     platform = true                    # false: the arm on a fixed deck (no legs; only
@@ -43,13 +46,16 @@ Schema (every key optional; SI units; unknown keys or sections are errors)::
 
 How a scene maps onto the robot and the solver:
 
-- ``arm = false`` sets the xacro argument ``with_arm = 0`` (no column, links, slider);
-  q7..q9 of the trajectory are then ignored.
+- ``[robot]``, ``[payload]`` and ``[subsystems] arm`` are overrides of the robot
+  description, all checked by one path (:func:`offshore_crane.model.overrides.normalise`
+  and the description's own checks, as if written in the description file): ``arm =
+  false`` is ``arm.enabled = false`` (no column, links, slider; q7..q9 of the trajectory
+  are then ignored); ``[payload]`` ``mass``, ``offset``, ``inertia`` are ``payload.mass``,
+  ``payload.com``, ``payload.inertia`` (a link ``payload`` welded to ``arm_tip``, which
+  the Kane and the Pinocchio paths both read). A field given two different values (in
+  ``[robot]`` and ``[payload]``, or by the scene and ``--set``) is an error.
 - ``platform = false``: the legs are not evaluated and q1..q6 of the trajectory are
   replaced by ``deck_pose`` with zero rates, so the static-platform pruning applies.
-- ``[payload]`` sets the xacro arguments ``payload_mass``, ``payload_x/y/z``,
-  ``payload_ixx`` ... ``payload_iyz`` (a link ``payload`` welded to ``arm_tip``), which
-  the Kane and the Pinocchio paths both read.
 
 Errors are :class:`~offshore_crane.errors.SceneError` with a one-line message naming the
 file and the key, e.g. ``scenes/x.toml: [payload] mass = -1: must be ≥ 0 kg``.
@@ -79,10 +85,9 @@ INERTIA_KEYS = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
 TRAJECTORY_KEYS = ("source", "duration", "rate", "fd_order")
 CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error", "noise_q",
                 "noise_qd", "seed", "model", "lower", "upper")
-#: xacro arguments a scene sets through its own keys, not through [robot].
-SCENE_ARGUMENTS = {"with_arm": "[subsystems] arm",
-                   **{f"payload_{k}": "[payload]" for k in ("mass", "x", "y", "z")},
-                   **{f"payload_{k}": "[payload] inertia" for k in INERTIA_KEYS}}
+#: Where a scene file sets the robot fields it owns besides [robot] (for messages).
+SCENE_FIELDS = {"arm.enabled": "[subsystems] arm", "payload.mass": "[payload] mass",
+                "payload.com": "[payload] offset", "payload.inertia": "[payload] inertia"}
 #: Run time of the fidelity report: median of this many runs per leg model.
 FIDELITY_REPEAT = 5
 
@@ -95,27 +100,15 @@ def _finite_vector(v, n: int) -> bool:
     return isinstance(v, (tuple, list)) and len(v) == n and all(_finite(x) for x in v)
 
 
-def _inertia_problem(inertia) -> str | None:
-    """Why ``(ixx, iyy, izz, ixy, ixz, iyz)`` is no rigid body's inertia, or None."""
-    ixx, iyy, izz, ixy, ixz, iyz = inertia
-    moments = np.linalg.eigvalsh(np.array([[ixx, ixy, ixz], [ixy, iyy, iyz],
-                                           [ixz, iyz, izz]]))   # ascending
-    shown = ", ".join(f"{m:.6g}" for m in moments)
-    if moments[0] <= 0.0:
-        return f"not positive definite (principal moments {shown} kg·m²)"
-    if moments[0] + moments[1] < moments[2] - INERTIA_RTOL * moments.sum():
-        return (f"principal moments {shown} kg·m² break the triangle inequality "
-                "(no rigid body has them)")
-    return None
-
-
 @dataclass(frozen=True)
 class Payload:
-    """A rigid body welded to the frame ``arm_tip`` (the slider's outer end).
+    """A rigid body welded to the frame ``arm_tip`` (the slider's outer end): the robot
+    description's ``payload`` fields. Checked with the rest of the robot when a
+    :class:`Scene` holds it (mass ≥ 0, a physical inertia, ...).
 
     Attributes:
-        mass: [kg], ≥ 0; 0 means no payload.
-        offset: ``(3,)`` centre of mass in the ``arm_tip`` frame [m].
+        mass: [kg]; 0 means no payload.
+        offset: ``(3,)`` centre of mass in the ``arm_tip`` frame [m] (``payload.com``).
         inertia: ``(ixx, iyy, izz, ixy, ixz, iyz)`` about the centre of mass, ``arm_tip``
             axes [kg·m²] (URDF convention); all zero for a point mass.
     """
@@ -124,32 +117,10 @@ class Payload:
     offset: tuple = (0.0, 0.0, 0.0)
     inertia: tuple = (0.0,) * 6
 
-    def __post_init__(self):
-        where = "payload"
-        if not (_finite(self.mass) and self.mass >= 0.0):
-            raise SceneError(f"{where}: mass = {self.mass!r}: must be ≥ 0 kg",
-                             name="payload.mass")
-        if not _finite_vector(self.offset, 3):
-            raise SceneError(f"{where}: offset = {self.offset!r}: must be 3 finite numbers "
-                             "[m]", name="payload.offset")
-        if not _finite_vector(self.inertia, 6):
-            raise SceneError(f"{where}: inertia = {self.inertia!r}: must be 6 finite numbers "
-                             "(ixx, iyy, izz, ixy, ixz, iyz) [kg·m²]", name="payload.inertia")
-        if any(self.inertia):
-            problem = _inertia_problem(self.inertia) or (
-                None if self.mass > 0 else "an inertia without mass: give mass > 0")
-            if problem:
-                raise SceneError(f"{where}: inertia = {self.inertia!r}: {problem}",
-                                 name="payload.inertia")
-
-    def xacro_overrides(self) -> dict:
-        """The xacro arguments ``payload_*`` that differ from their default 0."""
-        if self.mass == 0.0:
-            return {}
-        values = {"payload_mass": self.mass, **dict(zip(("payload_x", "payload_y", "payload_z"),
-                                                          self.offset)),
-                  **{f"payload_{k}": v for k, v in zip(INERTIA_KEYS, self.inertia)}}
-        return {k: v for k, v in values.items() if v != 0.0}
+    def overrides(self) -> dict:
+        """The dotted robot fields this payload sets."""
+        return {"payload.mass": self.mass, "payload.com": list(self.offset),
+                "payload.inertia": dict(zip(INERTIA_KEYS, self.inertia))}
 
 
 @dataclass(frozen=True)
@@ -160,13 +131,18 @@ class Scene:
         name: Label.
         description: Free text.
         path: The file it was read from, or None.
-        robot: ``{xacro argument: number}`` overrides (not ``with_arm``, ``payload_*``).
+        robot: ``{dotted name or alias: value}`` overrides of the robot description;
+            after creation: checked, dotted, and holding ``arm.enabled`` and ``payload.*``
+            when ``arm`` or ``payload`` were given.
+        robot_description: The robot description file (TOML), or None for the default.
         platform: False: the arm on a fixed deck at ``deck_pose`` (legs not evaluated).
-        arm: False: the Stewart platform alone (xacro ``with_arm = 0``).
+        arm: False: the Stewart platform alone (``arm.enabled = false``); None (the
+            default): as ``robot`` says, else true. A bool after creation.
         leg_model: ``"full"``, ``"thin-rod"`` or ``"massless"``.
         deck_pose: ``(6,)`` q1..q6 of the fixed deck [m, rad], or None for the home
             pose ``(0, 0, home_height, 0, 0, 0)``.
-        payload: :class:`Payload` at the arm tip.
+        payload: :class:`Payload` at the arm tip, or None (the default): as ``robot`` and
+            the description say. After creation: the payload of the resolved robot.
         gravity: ``(3,)`` base frame [m/s²].
         trajectory: ``"table1"`` or the path of a CSV file.
         duration, rate: Table 1 span [s] and sampling rate [Hz] (None: defaults).
@@ -180,11 +156,12 @@ class Scene:
     description: str = ""
     path: str | None = None
     robot: dict = field(default_factory=dict)
+    robot_description: str | None = None
     platform: bool = True
-    arm: bool = True
+    arm: bool | None = None
     leg_model: str = "full"
     deck_pose: tuple | None = None
-    payload: Payload = Payload()
+    payload: Payload | None = None
     gravity: tuple = GRAVITY
     trajectory: str = "table1"
     duration: float | None = None
@@ -198,6 +175,7 @@ class Scene:
     origin: str | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
+        _check_robot(self)
         _check_values(self)
         check_scene(self)
 
@@ -213,13 +191,9 @@ class Scene:
         """Actuators to compute: ``outputs``, or all that exist."""
         return self.actuators() if self.outputs is None else self.outputs
 
-    def xacro_overrides(self) -> dict:
-        """xacro arguments of the robot: ``robot``, ``with_arm`` and the payload's."""
-        out = dict(self.robot)
-        if not self.arm:
-            out["with_arm"] = 0
-        out.update(self.payload.xacro_overrides())
-        return out
+    def robot_overrides(self) -> dict:
+        """``{dotted name: value}``: every robot field the scene sets (checked)."""
+        return dict(self.robot)
 
     def describe(self) -> str:
         """One line: sub-systems, leg model, payload."""
@@ -336,38 +310,136 @@ def _section(where: str, data: dict, name: str, known: tuple) -> _Reader:
     return _Reader(where, name, table, known)
 
 
-def _robot_overrides(where: str, data: dict) -> dict:
-    from .model.xacro_cache import xacro_arguments
-
-    known = xacro_arguments()
-    r = _section(where, data, "robot", tuple(known))
-    for key, owner in SCENE_ARGUMENTS.items():
-        if key in r.table:
-            r.fail(key, f"set by the scene: use {owner}")
-    out = {}
-    for key in r.table:
-        out[key] = r.number(key, minimum=0.0 if key.endswith("_mass") else None,
-                            unit="kg" if key.endswith("_mass") else "")
-    return out
-
-
-def _payload(where: str, data: dict) -> Payload:
+def _robot(where: str, data: dict, base: Path | None) -> dict:
+    """``[robot]``, ``[payload]`` and ``[subsystems] arm`` as the Scene's ``robot``,
+    ``robot_description`` (checked by :func:`_check_robot` when the Scene is made)."""
+    robot = data.get("robot", {})
+    if not isinstance(robot, dict):
+        raise SceneError(f"{where}: robot = {_show(robot)}: must be a table [robot]",
+                         path=where, name="robot")
+    robot = dict(robot)
+    description = robot.pop("description", None)
+    if description is not None:
+        if not isinstance(description, str) or not description:
+            raise SceneError(f"{where}: [robot] description = {_show(description)}: must be "
+                             "the path of a robot description file (TOML)", path=where,
+                             name="robot.description")
+        p = Path(description)
+        if not p.is_absolute() and base is not None:
+            p = base / p
+        if not p.is_file():
+            raise SceneError(f"{where}: [robot] description = {_show(description)}: no such "
+                             f"file {p} (relative paths start at the scene file's folder)",
+                             path=where, name="robot.description")
+        description = str(p)
+    overrides = _normalised(where, robot, "[robot]", flatten=True)
     r = _section(where, data, "payload", PAYLOAD_KEYS)
-    mass = r.number("mass", 0.0, "kg", minimum=0.0)
-    offset = r.vector("offset", 3, (0.0, 0.0, 0.0), "m")
-    inertia = (0.0,) * 6
+    payload = {}
+    if "inertia" in r.table and not isinstance(r.get("inertia"), dict):
+        r.fail("inertia", f"must be a table of {', '.join(INERTIA_KEYS)} [kg·m²]")
     if "inertia" in r.table:
-        table = r.get("inertia")
-        if not isinstance(table, dict):
-            r.fail("inertia", f"must be a table of {', '.join(INERTIA_KEYS)} [kg·m²]")
-        ri = _Reader(where, "payload.inertia", table, INERTIA_KEYS)
-        inertia = tuple(ri.number(k, 0.0, "kg·m²") for k in INERTIA_KEYS)
-        problem = _inertia_problem(inertia)
-        if problem:
-            r.fail("inertia", problem)
-        if mass == 0.0:
-            r.fail("inertia", "an inertia without mass: give [payload] mass > 0")
-    return Payload(mass=mass, offset=offset, inertia=inertia)
+        _Reader(where, "payload.inertia", r.get("inertia"), INERTIA_KEYS)  # known keys
+    for key, name in (("mass", "payload.mass"), ("offset", "payload.com"),
+                      ("inertia", "payload.inertia")):
+        if key in r.table:
+            payload[name] = r.get(key)
+    sub = data.get("subsystems", {})
+    if isinstance(sub, dict) and "arm" in sub:
+        payload["arm.enabled"] = sub["arm"]
+    for name, value in _normalised(where, payload, None).items():
+        if name in overrides and not _same_value(overrides[name], value):
+            raise SceneError(f"{where}: {SCENE_FIELDS[name]} = {_plain(value)} contradicts "
+                             f"[robot] {name} = {_plain(overrides[name])}: give it once",
+                             path=where, name=name)
+        overrides[name] = value
+    return dict(robot=overrides, robot_description=description)
+
+
+def _plain(value) -> str:
+    """``value`` as TOML, floats in their shortest form (2, not 2.0)."""
+    if isinstance(value, float) and math.isfinite(value):
+        return f"{value:g}" if float(f"{value:g}") == value else repr(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_plain(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{k} = {_plain(v)}" for k, v in value.items()) + " }"
+    return _show(value)
+
+
+def _same_value(a, b) -> bool:
+    from .model.overrides import conflicts
+
+    return not conflicts({"x": a}, {"x": b})
+
+
+def _normalised(where: str, raw: dict, section: str | None, flatten: bool = False) -> dict:
+    """:func:`offshore_crane.model.overrides.normalise` (of the flattened nested tables
+    with ``flatten``), its errors as SceneErrors naming the scene (and the section)."""
+    from .errors import DescriptionError
+    from .model.overrides import flatten_table, normalise
+
+    try:
+        return normalise(flatten_table(raw, where) if flatten else raw, where)
+    except DescriptionError as exc:
+        text = str(exc)
+        if section and text.startswith(f"{where}: "):
+            text = f"{where}: {section} {text[len(where) + 2:]}"
+        raise SceneError(text, path=where, name=exc.field) from None
+
+
+def _check_robot(scene: "Scene") -> None:
+    """Fold ``arm`` and ``payload`` into ``scene.robot``, check every override as the
+    description's own fields (one path: :mod:`offshore_crane.model.overrides`, then
+    :func:`offshore_crane.model.description.resolve`), and set ``arm`` and ``payload``
+    from the resolved robot.
+
+    Raises:
+        SceneError: a bad or contradictory override, naming the scene and the field.
+    """
+    where = scene.where()
+    if not isinstance(scene.robot, dict):
+        raise SceneError(f"{where}: robot = {scene.robot!r}: must be a dict {{name: value}}",
+                         path=scene.path, name="robot")
+    robot = _normalised(where, scene.robot, None)
+    spec = _resolve(scene, robot)
+    own = {}                            # arm and payload where they differ from the robot
+    if scene.arm is not None and bool(scene.arm) != spec.has_arm:
+        own["arm.enabled"] = scene.arm
+    if scene.payload is not None:
+        if not isinstance(scene.payload, Payload):
+            raise SceneError(f"{where}: payload = {scene.payload!r}: must be a Payload",
+                             path=scene.path, name="payload")
+        if scene.payload != _payload_of(spec):
+            own.update(scene.payload.overrides())
+    if own:
+        for name, value in _normalised(where, own, None).items():
+            if name in robot and not _same_value(robot[name], value):
+                raise SceneError(f"{where}: {name} = {_plain(value)} contradicts robot "
+                                 f"{name} = {_plain(robot[name])}: give it once",
+                                 path=scene.path, name=name)
+            robot[name] = value
+        spec = _resolve(scene, robot)
+    object.__setattr__(scene, "robot", robot)
+    object.__setattr__(scene, "arm", bool(spec.has_arm))
+    object.__setattr__(scene, "payload", _payload_of(spec))
+
+
+def _resolve(scene: "Scene", robot: dict):
+    from .errors import DescriptionError
+    from .model.description import resolve
+
+    try:
+        return resolve(scene.robot_description, robot)
+    except DescriptionError as exc:
+        raise SceneError(f"{scene.where()}: {exc}", path=scene.path, name=exc.field) from None
+
+
+def _payload_of(spec) -> Payload:
+    """The :class:`Payload` of a resolved description."""
+    p = spec.payload
+    return Payload(float(p.mass), tuple(float(x) for x in p.com),
+                   tuple(float(p.inertia[i, j]) for i, j in
+                         ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))))
 
 
 def _trajectory(where: str, data: dict, base: Path | None) -> dict:
@@ -440,7 +512,7 @@ def _control(where: str, data: dict) -> dict:
         model = r.get("model")
         if not isinstance(model, dict):
             r.fail("model", "must be a table of robot parameters (the controller's model)")
-        out["model"] = dict(model)
+        out["model"] = _normalised(where, model, "[control] model", flatten=True)
     try:                                # the law's own checks (gains, limits), named here
         Controller(**{k: v for k, v in out.items() if k in ("law", "kp", "kd", "rate",
                                                              "lower", "upper", "noise_q",
@@ -458,7 +530,7 @@ def controller(scene: Scene, robot=None):
     c = scene.control
     model = None
     if "model" in c:
-        model = load_robot(scene, **c["model"])
+        model = load_robot(scene, c["model"])
     return Controller(**{k: v for k, v in c.items() if k in (
         "law", "kp", "kd", "rate", "lower", "upper", "noise_q", "noise_qd", "seed")},
         model=model)
@@ -486,10 +558,9 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
     return Scene(                       # Scene checks how the parts fit (check_scene)
         name=top.string("name", Path(where).stem),
         description=top.string("description", ""),
-        path=where, robot=_robot_overrides(where, data),
-        platform=sub.boolean("platform", True), arm=sub.boolean("arm", True),
+        path=where, platform=sub.boolean("platform", True),
         leg_model=sub.string("leg_model", "full", LEG_MODELS),
-        deck_pose=sub.vector("deck_pose", 6, None, "m, rad"), payload=_payload(where, data),
+        deck_pose=sub.vector("deck_pose", 6, None, "m, rad"), **_robot(where, data, base),
         gravity=top.vector("gravity", 3, GRAVITY, "m/s²"),
         outputs=top.names("outputs", ACTUATORS),
         methods=top.names("methods", METHODS) or ("kane",), control=control,
@@ -514,12 +585,6 @@ def _check_values(scene: Scene) -> None:
         fail("gravity", scene.gravity, "must be 3 finite numbers [m/s²]")
     if scene.deck_pose is not None and not _finite_vector(scene.deck_pose, 6):
         fail("subsystems.deck_pose", scene.deck_pose, "must be 6 finite numbers [m, rad]")
-    if not isinstance(scene.payload, Payload):
-        fail("payload", scene.payload, "must be a Payload")
-    reserved = [k for k in scene.robot if k in SCENE_ARGUMENTS]
-    if reserved:
-        fail(f"robot.{reserved[0]}", scene.robot[reserved[0]],
-             f"set by the scene: use {SCENE_ARGUMENTS[reserved[0]]}")
 
 
 def check_scene(scene: Scene) -> None:
@@ -594,11 +659,44 @@ def deck_pose(scene: Scene, robot) -> np.ndarray:
     return np.array([0.0, 0.0, float(robot.parameters["home_height"]), 0.0, 0.0, 0.0])
 
 
-def load_robot(scene: Scene, **extra):
-    """The scene's robot; ``extra`` xacro arguments (e.g. ``--set``) override it."""
+def load_robot(scene: Scene, overrides: dict | None = None):
+    """The scene's robot; ``overrides`` (dotted names or aliases) are applied on top, for
+    a model that differs from the scene's on purpose (a controller's model). Command-line
+    ``--set`` goes through :func:`with_robot_overrides` instead, which refuses
+    contradictions."""
     from .model import load_robot as _load
+    from .model.overrides import normalise
 
-    return _load(**{**scene.xacro_overrides(), **extra})
+    return _load(scene.robot_description,
+                 {**scene.robot_overrides(), **normalise(overrides, "robot overrides")})
+
+
+def with_robot_overrides(scene: Scene, overrides: dict, source: str = "--set") -> Scene:
+    """``scene`` with robot overrides (e.g. ``--set``) added, re-checked.
+
+    Args:
+        overrides: Checked overrides (:func:`offshore_crane.model.overrides.parse_set`).
+
+    Raises:
+        SceneError: an override contradicts a field the scene sets (its ``[robot]``,
+            ``[payload]`` or ``[subsystems] arm``), or the result does not fit together
+            (a payload without arm, ...).
+    """
+    from .model.overrides import conflicts
+
+    if not overrides:
+        return scene
+    where = scene.where()
+    clash = conflicts(scene.robot, overrides)
+    if clash:
+        c = clash[0]
+        raise SceneError(f"{where}: {source} {c.field} = {_plain(c.cli)} contradicts the "
+                         f"scene's {SCENE_FIELDS.get(c.field, f'[robot] {c.field}')} = "
+                         f"{_plain(c.scene)}: change the scene or drop the {source}",
+                         path=scene.path, name=c.field)
+    robot = {**scene.robot, **overrides}
+    return replace(scene, robot=robot, arm=None, payload=None,
+                   origin=f"{where} with {source}")
 
 
 def load_trajectory(scene: Scene, robot):

@@ -557,8 +557,8 @@ def load(spec="table1", duration=None, rate=None, fd_order: int = 4) -> Trajecto
             "columns t_s,q1..q9", name="spec")
     if duration is not None or rate is not None:
         raise TrajectoryError(
-            f"duration and rate apply to table1 only, not to the CSV file '{path}', whose "
-            "samples set the time axis: leave them as None.",
+            f"duration and rate (--duration, --rate) apply to table1 only, not to the CSV "
+            f"file '{path}', whose samples set the time axis: leave them out",
             name="duration" if duration is not None else "rate")
     t, q, qd, qdd = read_csv(path, derivatives=True)
     if qd is None:

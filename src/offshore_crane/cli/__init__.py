@@ -101,12 +101,54 @@ def plan(args, scene):
     """
     from ..io import FIGURE_FORMATS, plan_outputs
 
-    inputs = [args.scene, scene.trajectory if scene.trajectory != "table1" else None]
+    inputs = [args.scene, scene.trajectory if scene.trajectory != "table1" else None,
+              scene.robot_description]
     outputs = plan_outputs({"--out": args.out, "--plot": args.plot}, inputs,
                            {"--plot": FIGURE_FORMATS})
     if any(o.kind == "stdout" for o in outputs.values()):
         return outputs, lambda *a: print(*a, file=sys.stderr)
     return outputs, print
+
+
+def add_robot_options(p) -> None:
+    """``--robot PATH`` and ``--set NAME=VALUE`` (one path: :func:`robot_scene`)."""
+    p.add_argument("--robot", metavar="FILE.toml",
+                   help="robot description file (default: the scene's, else the shipped "
+                   "lab design; see docs/robot-description.md)")
+    p.add_argument("--set", action="append", metavar="NAME=VALUE",
+                   help="override a robot field by its dotted name or alias, e.g. "
+                   "legs.lower.mass=3.1, payload.com=[0,0,-0.05], with_arm=0; repeatable; "
+                   "an override that contradicts the scene is an error")
+
+
+def robot_scene(args, scene):
+    """``scene`` with ``--robot`` and ``--set`` applied, both checked like the scene's
+    own robot fields (:func:`offshore_crane.scenes.with_robot_overrides`).
+
+    Raises:
+        SceneError: ``--robot`` names another description than the scene's, or a
+            ``--set`` contradicts the scene.
+        DescriptionError: a bad ``--set`` (unknown name, not a number, ...).
+    """
+    import os
+    from dataclasses import replace
+
+    from ..errors import SceneError
+    from ..model.overrides import parse_set
+    from ..scenes import with_robot_overrides
+
+    if args.robot is not None:
+        given = os.path.abspath(args.robot)
+        if not os.path.isfile(given):
+            raise InputError(f"--robot {args.robot}: no such file (a robot description, "
+                             "TOML)", name="--robot")
+        own = scene.robot_description
+        if own is not None and os.path.abspath(own) != given:
+            raise SceneError(f"{scene.where()}: --robot {args.robot} contradicts the "
+                             f"scene's [robot] description = {own}: give one",
+                             path=scene.path, name="robot.description")
+        scene = replace(scene, robot_description=args.robot, arm=None, payload=None)
+    return with_robot_overrides(scene, parse_set(args.set))
 
 
 def _quiet_stdout() -> None:

@@ -4,21 +4,12 @@ from __future__ import annotations
 
 from ..conventions import ACTUATOR_UNITS, ACTUATORS, AGREEMENT_RTOL
 from ..errors import InputError
+from . import add_robot_options
 
 RELATIVE_LIMIT = AGREEMENT_RTOL
 #: From this many samples the command uses the compiled kernels by default: loading Numba
 #: and the cached kernels costs ~1.2 s, the NumPy kernels ~2 µs a sample more.
 NUMBA_MIN = 500_000
-
-
-def _parse_set(items) -> dict:
-    out = {}
-    for item in items or []:
-        name, sep, value = item.partition("=")
-        if not sep or not name:
-            raise InputError(f"--set expects name=value, got '{item}'", name="--set")
-        out[name.strip()] = value.strip()
-    return out
 
 
 def add_parser(sub) -> None:
@@ -54,8 +45,7 @@ def add_parser(sub) -> None:
                    help="order of the central differences for a CSV trajectory (default 4)")
     p.add_argument("--out", help="write the actuator forces to this CSV")
     p.add_argument("--plot", help="write a figure like the paper's Fig. 3 (PNG, PDF, SVG)")
-    p.add_argument("--set", action="append", metavar="NAME=VALUE",
-                   help="override a robot parameter (xacro argument); repeatable")
+    add_robot_options(p)
     p.add_argument("--gravity", type=float, nargs=3, metavar=("GX", "GY", "GZ"),
                    help="gravity in the base frame [m/s²] (default 0 0 -9.81)")
     p.add_argument("--no-limits", action="store_true",
@@ -86,7 +76,9 @@ def _scene(args):
     """The scene to run: ``--scene`` (or the default one) with the explicit flags applied."""
     from ..scenes import Scene, load_scene, with_overrides
 
-    scene = load_scene(args.scene) if args.scene else Scene()
+    from . import robot_scene
+
+    scene = robot_scene(args, load_scene(args.scene) if args.scene else Scene())
     methods = None
     if args.method:
         methods = ("kane", "rnea") if args.method == "both" else (args.method,)
@@ -114,7 +106,7 @@ def run(args) -> int:
 
     scene = _scene(args)
     outputs, say = plan(args, scene)
-    robot = scenes.load_robot(scene, **_parse_set(args.set))
+    robot = scenes.load_robot(scene)
     traj = scenes.load_trajectory(scene, robot)
     backend = args.backend or ("numba" if len(traj.t) >= NUMBA_MIN else "numpy")
     options = dict(limits=not args.no_limits, thresholds=_thresholds(args),
@@ -124,6 +116,9 @@ def run(args) -> int:
     X = res.X
     if args.scene:
         say(f"scene {scene.name} ({args.scene}): {scene.describe()}")
+    elif args.robot or args.set:
+        say(f"robot {robot.spec.name if robot.spec else 'urdf'}"
+            f"{', --set ' + ' '.join(args.set) if args.set else ''}: {scene.describe()}")
     say(f"offshore-crane id: trajectory {traj.name}, {len(t)} samples, "
         f"t = {t[0]:.2f}..{t[-1]:.2f} s, method "
         f"{'both' if scene.methods == ('kane', 'rnea') else ' + '.join(scene.methods)} "

@@ -18,6 +18,7 @@ CSV_HEADER = ",".join(["t_s", *COORDINATES, *(f"{c}_ref" for c in COORDINATES),
 
 def add_parser(sub) -> None:
     from ..control import LAWS
+    from . import add_robot_options
 
     p = sub.add_parser("simulate", help="simulate the robot under a controller",
                        description=__doc__.splitlines()[0].split(": ", 1)[1] + " "
@@ -43,8 +44,7 @@ def add_parser(sub) -> None:
     p.add_argument("--integrator", choices=("rk4", "dop853"), help="default rk4")
     p.add_argument("--initial-error", type=float, nargs=9, metavar="DQ",
                    help="initial state minus the reference's, q1..q9 [m, rad]")
-    p.add_argument("--set", action="append", metavar="NAME=VALUE",
-                   help="override a robot parameter; repeatable")
+    add_robot_options(p)
     p.add_argument("--gravity", type=float, nargs=3, metavar=("GX", "GY", "GZ"))
     p.add_argument("--no-limits", action="store_true", help="do not stop at the workspace "
                    "limits")
@@ -69,16 +69,15 @@ def run(args) -> int:
     from .. import scenes
     from ..errors import SimulationError
     from ..simulate import simulate
-    from . import plan
-    from .id import _parse_set
+    from . import plan, robot_scene
 
-    scene = scenes.load_scene(args.scene) if args.scene else scenes.Scene()
+    scene = robot_scene(args, scenes.load_scene(args.scene) if args.scene else scenes.Scene())
     if args.trajectory:
         scene = scenes.with_overrides(scene, "command line", trajectory=args.trajectory)
     if args.gravity is not None:
         scene = scenes.with_overrides(scene, "command line", gravity=tuple(args.gravity))
     outputs, say = plan(args, scene)
-    robot = scenes.load_robot(scene, **_parse_set(args.set))
+    robot = scenes.load_robot(scene)
     traj = scenes.load_trajectory(scene, robot)
     controller = scenes.controller(scene, robot)
     flags = {"law": args.controller, "kp": _gains(args.kp, "--kp"),

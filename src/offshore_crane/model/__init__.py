@@ -1,7 +1,22 @@
-"""The robot: its xacro, the expanded URDF and the arrays the solvers read from it."""
+"""The robot: its description file, the URDF expanded from the xacro, and the arrays the
+solvers read from it.
+
+Loading (:func:`load_robot`) runs one path for every robot:
+
+1. :func:`offshore_crane.model.description.resolve` reads the description file (TOML,
+   default ``models/descriptions/lab.toml``), applies the overrides (checked by
+   :func:`offshore_crane.model.overrides.normalise`), evaluates and checks everything;
+2. :func:`offshore_crane.model.xacro_cache.expand` expands the xacro with the resolved
+   numbers (cached, verified, thread-safe);
+3. the URDF is parsed, validated (:func:`offshore_crane.model.validate.validate`) and
+   read into the solvers' arrays (:func:`offshore_crane.model.hybrid.hybrid_from_urdf`).
+"""
 
 from __future__ import annotations
 
+import hashlib
+import os
+import threading
 from functools import cached_property
 from pathlib import Path
 
@@ -9,40 +24,75 @@ from ..conventions import (ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, ARM_JOINT
                            PLATFORM_JOINTS)
 from .hybrid import HybridModel
 from .urdf import URDF, parse_urdf
-from .xacro_cache import expand, normalise_overrides, xacro_arguments, xacro_path
+from .xacro_cache import expand, xacro_arguments, xacro_path
 
 __all__ = ["Robot", "load_robot", "ACTUATORS", "ACTUATOR_UNITS", "ACTUATED_JOINTS",
            "ARM_JOINTS", "PLATFORM_JOINTS", "xacro_arguments"]
 
 _ROBOTS: dict = {}
+#: Guards :data:`_ROBOTS`: one thread builds a robot, the others wait for it and share it.
+_ROBOTS_LOCK = threading.RLock()
 
 
 class Robot:
-    """The hybrid robot built from one expansion of the xacro.
+    """The hybrid robot built from one description (or from a URDF alone).
 
     Attributes:
-        overrides: ``{xacro argument: value text}`` applied to the defaults.
         urdf: The expanded URDF text (the equivalent tree).
-        urdf_path: Cached file holding ``urdf`` (None if the cache is not writable).
-        description: The parsed URDF.
+        urdf_path: Cached file holding ``urdf`` (None if the cache is not writable, or for
+            a robot built from URDF text).
+        description: The parsed URDF (:class:`~offshore_crane.model.urdf.URDF`).
         hybrid: Arrays the solvers read (:class:`HybridModel`).
+        spec: The resolved robot description
+            (:class:`~offshore_crane.model.description.Description`), or None for a
+            robot built from URDF text.
+        overrides: ``{dotted name: value}`` applied to the description file.
+        description_path: The description file, or None.
     """
 
-    def __init__(self, urdf: str, urdf_path: Path | None = None, overrides: dict | None = None):
+    def __init__(self, urdf: str, urdf_path: Path | None = None, spec=None):
         from .hybrid import hybrid_from_urdf
+        from .validate import validate
 
-        self.overrides = dict(overrides or {})
+        self.spec = spec
+        self.overrides = dict(spec.overrides) if spec is not None else {}
+        self.description_path = spec.path if spec is not None else None
         self.urdf = urdf
         self.urdf_path = urdf_path
         self.description: URDF = parse_urdf(urdf)
-        from .validate import validate
-        validate(self.description, self.parameters)      # masses, inertias, lengths, home
+        validate(self.description, home_height=None if spec is None else spec.home_height)
         self.hybrid: HybridModel = hybrid_from_urdf(self.description)
 
     @property
     def parameters(self) -> dict[str, str]:
-        """All xacro arguments with the values used (defaults overridden)."""
-        return {**xacro_arguments(), **self.overrides}
+        """The flat parameters of earlier versions (aliases) with their values as text,
+        for the aliases whose field the description gives (``home_height`` always)."""
+        from .overrides import legacy_parameters
+
+        if self.spec is None:
+            from .validate import home_height
+
+            h = home_height(self.description)
+            return {} if h is None else {"home_height": repr(float(h))}
+        return legacy_parameters(self.spec.values, self.spec.has_arm)
+
+    @property
+    def capacities(self):
+        """The actuators' capacities (:class:`~offshore_crane.model.description.Capacities`,
+        in the order of X; ``inf`` where the description gives none)."""
+        if self.spec is None:
+            from .description import ACTUATORS as names, Capacities
+            import numpy as np
+
+            inf = np.full(len(names), np.inf)
+            return Capacities(names, inf, inf.copy(), inf.copy(), inf.copy())
+        return self.spec.capacities
+
+    @property
+    def home_height(self) -> float | None:
+        """q3 of the home pose [m] (None when unknown)."""
+        h = self.parameters.get("home_height")
+        return None if h is None else float(h)
 
     @cached_property
     def pinocchio_model(self):
@@ -53,21 +103,72 @@ class Robot:
         return pin.buildModelFromXML(self.urdf)
 
     def __repr__(self) -> str:
-        return f"Robot(overrides={self.overrides}, total_mass={self.hybrid.total_mass:.3f} kg)"
+        name = self.spec.name if self.spec is not None else "urdf"
+        return (f"Robot({name!r}, overrides={self.overrides}, "
+                f"total_mass={self.hybrid.total_mass:.3f} kg)")
 
 
-def load_robot(**overrides) -> Robot:
-    """Expand the robot's xacro with ``overrides`` (xacro arguments) and load it.
+def _frozen(value):
+    if isinstance(value, dict):
+        return tuple(sorted((k, _frozen(v)) for k, v in value.items()))
+    if isinstance(value, (list, tuple)):
+        return tuple(_frozen(v) for v in value)
+    return (type(value).__name__, value)
 
-    Example: ``load_robot(platform_mass=55.0, leg_max_length=0.8)``. Robots are memoised
-    per process under their normalised overrides; expanded URDFs are cached on disk.
+
+def load_robot(description=None, overrides: dict | None = None, **aliases) -> Robot:
+    """Load a robot from its description file, with overrides.
+
+    Examples: ``load_robot()`` (the lab design), ``load_robot("my_platform.toml")``,
+    ``load_robot(overrides={"legs.lower.mass": 3.1, "payload.mass": 2.0})``,
+    ``load_robot(platform_mass=55.0)`` (flat names of earlier versions, aliases of the
+    dotted ones; see :mod:`offshore_crane.model.overrides`).
+
+    Robots are memoised per process under (file, its content, overrides); expanded URDFs
+    are cached on disk. Safe to call from several threads at once.
+
+    Args:
+        description: Path of a description file (TOML); None for the shipped default.
+        overrides: ``{dotted name or alias: value}``.
+        **aliases: More overrides given as keywords (flat names, or dotted names through
+            ``**{"legs.lower.mass": 3}``).
 
     Raises:
-        ModelError: unknown parameter name, non-numeric value, invalid structure.
+        DescriptionError: a bad file, field or override (names the file and the field).
+        ModelError: the expanded URDF is invalid (should not happen for a valid
+            description).
     """
-    key = tuple(normalise_overrides(overrides).items())
+    from .description import default_description, read_toml, resolve_data
+    from .overrides import normalise
+
+    merged = dict(overrides or {})
+    for name, value in aliases.items():
+        if name in merged:
+            from ..errors import DescriptionError
+
+            raise DescriptionError(f"override: {name} given twice (in overrides and as a "
+                                   "keyword)", path="override", field=name)
+        merged[name] = value
+    canonical = normalise(merged)
+    path = os.fspath(description) if description is not None else os.fspath(
+        default_description())
+    if not isinstance(path, str):
+        from ..errors import InputError
+
+        raise InputError(f"description must be a file path, got {description!r}",
+                         name="description")
+    try:
+        content = Path(path).read_bytes()
+    except OSError:
+        content = b""                       # read_toml names the problem below
+    key = (os.path.abspath(path), hashlib.sha256(content).hexdigest(), _frozen(canonical))
     robot = _ROBOTS.get(key)
-    if robot is None:
-        urdf, path = expand(dict(key))
-        robot = _ROBOTS.setdefault(key, Robot(urdf, path, dict(key)))   # one per key, even
-    return robot                                                        # across threads
+    if robot is not None:
+        return robot
+    with _ROBOTS_LOCK:
+        robot = _ROBOTS.get(key)
+        if robot is None:
+            spec = resolve_data(read_toml(path), path, canonical)
+            urdf, cached = expand(spec.xacro_data())
+            robot = _ROBOTS[key] = Robot(urdf, cached, spec)
+    return robot

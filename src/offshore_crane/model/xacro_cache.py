@@ -1,24 +1,32 @@
-"""Locate the robot's xacro, list its arguments, expand it and cache the URDF.
+"""Expand the robot's xacro with a resolved description, and cache the URDF.
 
-The expanded URDF is cached under a SHA-256 of (xacro text, arguments, xacro's version),
-in ``$OFFSHORE_CRANE_CACHE`` or ``$XDG_CACHE_HOME/offshore-crane`` or
-``~/.cache/offshore-crane``. A cache hit costs a file read; xacro is imported only on a
-miss. An unwritable cache directory only costs speed.
+The xacro (``models/offshore_crane.urdf.xacro``) takes one argument, ``description``: the
+path of a YAML file holding the resolved description
+(:meth:`offshore_crane.model.description.Description.xacro_data`), which it reads with
+``xacro.load_yaml``. :func:`expand` writes that YAML to a temporary file (unique name,
+removed whatever happens), runs xacro and caches the URDF.
 
-The cache does not trust what it finds: each entry's first line holds the SHA-256 of the
-URDF that follows; an entry whose content does not match (truncated, edited, damaged) is
-named in one :class:`CacheWarning`, rebuilt and rewritten. Entries are written to a
-unique temporary file and renamed (removed on any failure), so concurrent processes never
-see a partial entry. xacro keeps global state while it expands, so expansions in one
-process are serialised by a lock (threads loading robots at once all succeed).
+Thread safety: xacro keeps its state in module globals (substitution arguments, file
+and macro stacks, included files), so two expansions in one process must not overlap:
+:data:`_EXPAND_LOCK` serialises them (processes are independent).
+
+Cache: ``$OFFSHORE_CRANE_CACHE``, else ``$XDG_CACHE_HOME/offshore-crane``, else
+``~/.cache/offshore-crane``; one file per key, the SHA-256 of everything that decides
+the URDF: the xacro's text, the versions of xacro and PyYAML, and the resolved
+description. Each entry ends with a trailer ``<!-- offshore-crane-cache sha256=... -->`` holding the hash of
+the URDF before it; an entry whose content does not match (truncated, edited, random
+bytes, not UTF-8) is named in one :class:`CacheWarning` per file and process, rebuilt
+and rewritten. Entries are written atomically (a temporary file beside it, then a
+rename); the temporary file is removed on any failure. An unwritable cache directory
+only costs speed (every load expands).
 """
 
 from __future__ import annotations
 
 import hashlib
-import math
+import json
 import os
-import re
+import tempfile
 import threading
 import warnings
 from functools import lru_cache
@@ -26,27 +34,16 @@ from pathlib import Path
 
 from ..errors import ModelError, require
 
-#: First line of a cache entry: the SHA-256 of the URDF text that follows it.
-_STAMP = "<!-- offshore-crane cache sha256="
-_LOCK = threading.Lock()
+XACRO_FILE = "offshore_crane.urdf.xacro"
+#: Serialises xacro expansions within the process (xacro's state is global).
+_EXPAND_LOCK = threading.Lock()
+_TRAILER = "<!-- offshore-crane-cache sha256="
+_WARNED: set = set()
+_WARNED_LOCK = threading.Lock()
 
 
 class CacheWarning(UserWarning):
-    """A cache entry was damaged or edited: it was rebuilt."""
-
-
-@lru_cache(maxsize=1)
-def _xacro_version() -> str:
-    """The installed xacro's version (part of the cache key), or "" without xacro."""
-    from importlib import metadata
-
-    try:
-        return metadata.version("xacro")
-    except metadata.PackageNotFoundError:
-        return ""
-
-XACRO_FILE = "offshore_crane.urdf.xacro"
-_ARG_RE = re.compile(r'<xacro:arg\s+name="([^"]+)"\s+default="([^"]*)"\s*/>')
+    """A damaged URDF cache entry was found and rebuilt (reported once per file)."""
 
 
 def xacro_path() -> Path:
@@ -65,16 +62,17 @@ def _xacro_text(path: Path) -> str:
 
 
 @lru_cache(maxsize=None)
-def _arguments(path: Path) -> tuple:
-    return tuple(_ARG_RE.findall(_xacro_text(path)))
+def _versions() -> str:
+    """Versions of the tools that turn the YAML into a URDF (part of the cache key)."""
+    from importlib import metadata
 
-
-def xacro_arguments(path: Path | None = None) -> dict[str, str]:
-    """The xacro's arguments and their default values (as text), in file order.
-
-    The file is read and scanned once per process.
-    """
-    return dict(_arguments(path or xacro_path()))
+    out = []
+    for dist in ("xacro", "PyYAML"):
+        try:
+            out.append(f"{dist}={metadata.version(dist)}")
+        except metadata.PackageNotFoundError:
+            out.append(f"{dist}=absent")
+    return ";".join(out)
 
 
 def cache_dir() -> Path:
@@ -85,101 +83,155 @@ def cache_dir() -> Path:
     return Path(base) / "offshore-crane"
 
 
-def normalise_overrides(overrides: dict, path: Path | None = None) -> dict[str, str]:
-    """Check override names against the xacro's arguments and format values.
-
-    Args:
-        overrides: ``{argument: number}``; numbers given as text are accepted.
-
-    Returns:
-        ``{argument: text}`` with values written with full precision, sorted by name.
-
-    Raises:
-        ModelError: unknown argument (the message lists the known ones), non-numeric or
-            non-finite value.
-    """
-    known = xacro_arguments(path)
-    out = {}
-    for name, value in overrides.items():
-        if name not in known:
-            raise ModelError(f"unknown robot parameter '{name}'; known parameters: "
-                             f"{', '.join(known)}", element=name)
-        try:
-            number = float(value)
-        except (TypeError, ValueError):
-            raise ModelError(f"robot parameter {name}={value!r} is not a number",
-                             element=name) from None
-        if not math.isfinite(number):
-            raise ModelError(f"robot parameter {name}={value!r} is not finite", element=name)
-        out[name] = repr(number)
-    return dict(sorted(out.items()))
+def description_yaml(data: dict) -> str:
+    """The YAML text the xacro reads (floats written with ``repr``: they round-trip)."""
+    yaml = require("yaml", "PyYAML", "Expanding the robot's xacro")
+    return yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
 
 
-def expand(overrides: dict | None = None, path: Path | None = None) -> tuple[str, Path | None]:
-    """Expand the xacro with ``overrides`` and return ``(urdf_text, cache_file)``.
-
-    ``cache_file`` is None when the cache directory cannot be written.
-    """
+def cache_key(data: dict, path: Path | None = None) -> str:
+    """SHA-256 (hex) of the xacro (its text and its resolved path, which xacro writes
+    into the URDF's header), the tools' versions and the resolved description (as JSON:
+    floats written with ``repr``, so equal keys mean equal numbers)."""
     path = path or xacro_path()
-    args = normalise_overrides(overrides or {}, path)
-    text = _xacro_text(path)
-    key = hashlib.sha256((text + "\0" + repr(sorted(args.items())) + "\0"
-                          + _xacro_version()).encode()).hexdigest()[:20]
-    cached = cache_dir() / f"offshore_crane-{key}.urdf"
-    urdf = _read_entry(cached)
-    if urdf is not None:
-        return urdf, cached
-    xacro = require("xacro", "xacro", "Expanding the robot's xacro")
-    with _LOCK:                           # xacro's expansion keeps global state
-        try:
-            urdf = xacro.process_file(str(path), mappings=args).toprettyxml(indent="  ")
-        except Exception as exc:  # xacro raises bare Exceptions with useful text
-            raise ModelError(f"expanding {path.name} failed: {exc}") from None
-    return urdf, _write_entry(cached, urdf)
+    h = hashlib.sha256()
+    for part in (_xacro_text(path), str(Path(path).resolve()), _versions(),
+                 json.dumps(data, allow_nan=True)):
+        h.update(part.encode("utf-8"))
+        h.update(b"\0")
+    return h.hexdigest()
 
 
-def _read_entry(cached: Path) -> str | None:
-    """The URDF of a cache entry whose stamp matches its content, else None (a damaged
-    or edited entry is reported once and will be rewritten)."""
+def _digest(text: str) -> str:
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def _warn_once(path: Path, problem: str) -> None:
+    with _WARNED_LOCK:
+        if path in _WARNED:
+            return
+        _WARNED.add(path)
+    warnings.warn(CacheWarning(f"URDF cache entry {path} {problem}: rebuilt from the xacro"),
+                  stacklevel=4)
+
+
+def read_entry(path: Path) -> str | None:
+    """The URDF held by cache entry ``path``, or None (missing, or damaged: warned)."""
     try:
-        raw = cached.read_bytes()
-    except OSError:
+        data = path.read_bytes()
+    except (FileNotFoundError, NotADirectoryError, PermissionError):
+        return None                      # no entry, or no usable cache: just slower
+    except OSError as exc:
+        _warn_once(path, f"cannot be read ({exc.strerror or exc})")
         return None
-    first, _, body = raw.partition(b"\n")
     try:
-        stamp = first.decode("ascii")
-        urdf = body.decode("utf-8")
+        text = data.decode("utf-8")
     except UnicodeDecodeError:
-        stamp = urdf = ""
-    expected = _STAMP + hashlib.sha256(body).hexdigest() + " -->"
-    if stamp != expected:
-        warnings.warn(CacheWarning(f"the cached URDF {cached} is damaged or was edited (its "
-                                   "content does not match its checksum): rebuilt"),
-                      stacklevel=4)
+        _warn_once(path, "is not UTF-8 text (damaged)")
         return None
-    return urdf
-
-
-def _write_entry(cached: Path, urdf: str) -> Path | None:
-    """Write a stamped entry atomically (a unique temporary file, renamed); None when the
-    cache directory cannot be written."""
-    import tempfile
-
-    body = urdf.encode("utf-8")
-    data = (_STAMP + hashlib.sha256(body).hexdigest() + " -->\n").encode("ascii") + body
-    try:
-        cached.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=".oc-", suffix=".tmp", dir=cached.parent)
-    except OSError:
+    body, sep, trailer = text.rpartition(_TRAILER)
+    digest = trailer.split(" ", 1)[0] if sep else ""
+    if not sep or not trailer.endswith("-->\n") or _digest(body) != digest:
+        what = ("has no checksum trailer (truncated or not written by this version)"
+                if not sep else "does not match its checksum (truncated or edited)")
+        _warn_once(path, what)
         return None
+    return body
+
+
+def write_entry(path: Path, urdf: str) -> bool:
+    """Write ``urdf`` with its checksum trailer atomically; False if it cannot be written."""
+    tmp = None
     try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        os.replace(tmp, cached)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=".tmp", suffix=".urdf", dir=path.parent)
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(urdf + f"{_TRAILER}{_digest(urdf)} -->\n")
+        os.replace(tmp, path)
+        tmp = None
+        return True
     except OSError:
+        return False
+    finally:
+        _remove(tmp)
+
+
+def run_xacro(yaml_text: str, path: Path | None = None) -> str:
+    """Expand the xacro with the description ``yaml_text`` (no cache)."""
+    path = path or xacro_path()
+    xacro = require("xacro", "xacro", "Expanding the robot's xacro")
+    tmp = None
+    try:
+        fd, tmp = _temporary()
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(yaml_text)
+        with _EXPAND_LOCK:
+            doc = xacro.process_file(str(path), mappings={"description": tmp})
+            return doc.toprettyxml(indent="  ")
+    except Exception as exc:  # xacro raises bare Exceptions with useful text
+        if isinstance(exc, OSError) and tmp is None:
+            raise ModelError(f"cannot write a temporary file for xacro: {exc}") from None
+        raise ModelError(f"expanding {path.name} failed: {exc}") from None
+    finally:
+        _remove(tmp)
+
+
+def _remove(tmp: str | None) -> None:
+    """Delete a temporary file if there is one (a failure to delete is not an error)."""
+    if tmp is not None:
         try:
             os.unlink(tmp)
         except OSError:
             pass
-        return None
-    return cached
+
+
+def _temporary():
+    """A new temporary YAML file: in the cache directory if writable, else the system's."""
+    for folder in (cache_dir(), None):
+        try:
+            if folder is not None:
+                folder.mkdir(parents=True, exist_ok=True)
+            return tempfile.mkstemp(prefix=".desc", suffix=".yaml", dir=folder)
+        except OSError:
+            if folder is None:
+                raise
+    raise AssertionError("unreachable")
+
+
+def expand(data: dict, path: Path | None = None) -> tuple[str, Path | None]:
+    """URDF of the resolved description ``data`` and its cache file.
+
+    Args:
+        data: :meth:`Description.xacro_data`.
+
+    Returns:
+        ``(urdf_text, cache_file)``; ``cache_file`` is None when the cache cannot be
+        written.
+    """
+    path = path or xacro_path()
+    cached = cache_dir() / f"offshore_crane-{cache_key(data, path)[:32]}.urdf"
+    urdf = read_entry(cached)
+    if urdf is not None:
+        return urdf, cached
+    urdf = run_xacro(description_yaml(data), path)
+    return urdf, (cached if write_entry(cached, urdf) else None)
+
+
+def xacro_arguments(path=None) -> dict[str, str]:
+    """The flat parameter names of earlier versions (now aliases of dotted names) and
+    their values (as text) in the default description, in alias order.
+
+    Kept for callers of the former xacro arguments; see
+    :data:`offshore_crane.model.overrides.ALIASES`.
+    """
+    del path                                   # the xacro has no parameter arguments now
+    return dict(_default_parameters())
+
+
+@lru_cache(maxsize=1)
+def _default_parameters() -> tuple:
+    from .description import resolve
+    from .overrides import legacy_parameters
+
+    d = resolve()
+    return tuple(legacy_parameters(d.values, d.has_arm).items())
