@@ -56,8 +56,8 @@ def _as_times(t) -> tuple[np.ndarray, bool]:
     bad = ~np.isfinite(arr)
     if bad.any():
         k = int(np.argmax(bad))
-        raise SeaStateError(f"t[{k}] = {arr[k]!r} is not finite: give finite times [s]",
-                            name="t", index=k)
+        raise SeaStateError(f"t[{k}] = {float(arr[k])!r} is not finite: give finite times "
+                            "[s]", name="t", index=k)
     return arr, scalar
 
 
@@ -106,15 +106,15 @@ class Operation:
         if bad.any():
             k, j = (int(x) for x in np.argwhere(bad)[0])
             raise SeaStateError(
-                f"waypoint {k}: {('t', 'q7', 'q8', 'q9')[j]} = {w[k, j]!r} is not finite",
+                f"waypoint {k}: {('t', 'q7', 'q8', 'q9')[j]} = {float(w[k, j])!r} is not finite",
                 name="waypoints", index=k)
         dt = np.diff(w[:, 0])
         if (dt <= 0.0).any():
             k = int(np.argmax(dt <= 0.0)) + 1
             raise SeaStateError(
-                f"waypoint {k}: time {w[k, 0]!r} s does not increase after {w[k - 1, 0]!r} "
-                "s: give waypoints in increasing time (a dwell is two waypoints with equal "
-                "positions)", name="waypoints", index=k)
+                f"waypoint {k}: time {float(w[k, 0])!r} s does not increase after "
+                f"{float(w[k - 1, 0])!r} s: give waypoints in increasing time (a dwell is "
+                "two waypoints with equal positions)", name="waypoints", index=k)
         op = cls(np.ascontiguousarray(w[:, 0]), np.ascontiguousarray(w[:, 1:]))
         if robot is not None:
             op.check(robot)

@@ -194,7 +194,8 @@ def default_gamma(hs: float, tp: float) -> float:
     """DNV-RP-C205 3.5.5.5's default JONSWAP peak enhancement for ``Hs`` [m], ``Tp`` [s].
 
     ``γ = 5`` for ``Tp/√Hs ≤ 3.6``, ``γ = exp(5.75 − 1.15 Tp/√Hs)`` for
-    ``3.6 < Tp/√Hs < 5`` and ``γ = 1`` for ``Tp/√Hs ≥ 5`` (Tp in s, Hs in m); continuous.
+    ``3.6 < Tp/√Hs < 5`` and ``γ = 1`` for ``Tp/√Hs ≥ 5`` (Tp in s, Hs in m); continuous
+    at 5, and at 3.6 up to the standard's rounding (``exp(1.61) = 5.003``).
     """
     ratio = tp / math.sqrt(hs)
     if ratio <= _GAMMA_RATIO_LOW:
@@ -274,7 +275,7 @@ def spectrum(omega, hs, tp, kind: str = "jonswap", gamma=None) -> np.ndarray:
     bad = ~np.isfinite(w) | (w < 0.0)
     if bad.any():
         k = int(np.argmax(bad.ravel()))
-        raise SeaStateError(f"omega[{k}] = {w.ravel()[k]!r} must be finite and >= 0 [rad/s]",
+        raise SeaStateError(f"omega[{k}] = {float(w.ravel()[k])!r} must be finite and >= 0 [rad/s]",
                             name="omega", index=k)
     if kind == "jonswap" and gamma is None:
         gamma = default_gamma(hs, tp)
@@ -474,7 +475,8 @@ def _parse_raos(data: bytes, source: str) -> RAOTable:
         bad = column_values < 0.0
         if bad.any():
             r = int(np.argmax(bad))
-            raise _file_error(source, int(line_of[r]), column, f"{column_values[r]!r} {text}")
+            raise _file_error(source, int(line_of[r]), column,
+                              f"{float(column_values[r])!r} {text}")
     heading = np.mod(heading, 360.0)
     seen: dict = {}
     last: dict = {}
@@ -885,7 +887,8 @@ def ship_motion(t, hs, tp, heading_deg, vessel="supply", seed=0, kind: str = "jo
     if bad.any():
         k = int(np.argmax(bad)) + 1
         raise SeaStateError(f"t is not strictly increasing at sample {k} (t[{k - 1}] = "
-                            f"{t[k - 1]!r}, t[{k}] = {t[k]!r} s)", name="t", index=k)
+                            f"{float(t[k - 1])!r}, t[{k}] = {float(t[k])!r} s)", name="t",
+                            index=k)
     span = float(t[-1] - t[0])
     ship = sea_state(hs, tp, heading_deg, span, (t.size - 1) / span, vessel=vessel,
                      seed=seed, kind=kind, gamma=gamma, point=point, spreading=spreading,
