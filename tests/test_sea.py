@@ -283,6 +283,22 @@ def test_welch_psd_matches_target_in_bands():
             assert measured == pytest.approx(expected, rel=0.10), (a, b, sea.DOFS[dof])
 
 
+def test_response_spectrum_is_the_synthesis_variance_per_band():
+    """Long-crested, deterministic amplitudes: |c_j|²/2 = S(ω_j) Δω |H_P(ω_j)|², so the
+    Riemann sum of response_spectrum on the components' grid equals the record's
+    variance over its period exactly (1e-12); at model scale λ the same sum in ω_m = ω√λ
+    gives the translations' variance / λ² and the angles' unchanged."""
+    kw = dict(hs=2.5, tp=8.0, heading_deg=110.0, point=(-12.0, 3.0, 9.0))
+    ship = sea.sea_state(duration=900.0, rate=4.0, seed=1, **kw)
+    target = sea.response_spectrum(ship.omega, **kw).sum(axis=0) * ship.d_omega
+    np.testing.assert_allclose(target, ship.variance(), rtol=1e-12)
+    lam = 25.0
+    model = sea.response_spectrum(ship.omega * 5.0, scale=lam, **kw).sum(axis=0)
+    model *= ship.d_omega * 5.0
+    np.testing.assert_allclose(model, ship.variance() / np.r_[[lam**2] * 3, [1.0] * 3],
+                               rtol=1e-12)
+
+
 def test_fft_and_direct_paths_agree():
     """Same components, two summations: agree to round-off of ω t (ω ≤ 3.14 rad/s,
     t ≤ 3000 s: phases good to ~1e-12 rad), here 1e-11 of the record's peak; with a
@@ -356,6 +372,14 @@ def test_record_does_not_repeat_and_times_outside_raise():
     with pytest.raises(SeaStateError, match=r"outside .* the span on which this sea does "
                        r"not repeat"):
         ship(ship.repetition_period + 1.0)
+
+
+def test_sea_motion_refuses_times_beyond_its_record(robot):
+    source = sea.sea_motion(10.0, 50.0, 2.5, 8.0, 90.0, 20.0, robot)
+    source(10.0)
+    with pytest.raises(SeaStateError, match=r"t\[0\] = 20 s is outside \[0, 10.24\] s, the "
+                       r"model-scale span"):
+        source([20.0])
 
 
 # ---------------------------------------------------------------- Froude-scaled platform

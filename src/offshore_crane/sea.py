@@ -77,6 +77,7 @@ from .operations import _as_times
 
 __all__ = ["DOFS", "SPECTRA", "RAO_COLUMNS", "VESSELS", "DEFAULT_DIRECTIONS",
            "spectrum", "default_gamma", "jonswap_normalisation", "spreading_directions",
+           "response_spectrum",
            "RAOTable", "load_raos", "vessel_raos", "ShipMotion", "sea_state", "ship_motion",
            "SeaMotion", "sea_motion", "platform_trajectory"]
 
@@ -846,13 +847,51 @@ def sea_state(hs, tp, heading_deg, duration, rate, *, vessel="supply", seed=0,
         keep &= omega >= highpass
     harmonics, omega, S, phases = harmonics[keep], omega[keep], S[keep], phases[keep]
     A = np.sqrt(2.0 * S * d_omega)[:, None] * np.sqrt(weights)[None, :] * np.exp(1j * phases)
-    H = table(omega, heading + offsets)                                   # (M, K, 6)
-    coef = np.einsum("mk,mkd->md", A, H)
-    coef[:, :3] += np.cross(coef[:, 3:], r)
+    coef = np.einsum("mk,mkd->md", A, _point_raos(table, omega, heading + offsets, r))
     sea = dict(hs=hs, tp=tp, heading_deg=heading, kind=kind, gamma=gamma, seed=seed,
                vessel=table.source, point=tuple(r), spreading=spreading,
                directions=directions if spreading is not None else 1, highpass=highpass)
     return ShipMotion(d_omega, harmonics, coef, A.sum(axis=1), start, duration, rate, sea)
+
+
+def _point_raos(table: RAOTable, omega, headings, r) -> np.ndarray:
+    """``(M, K, 6)`` RAOs at the point ``r`` of the vessel: ``H_x + H_θ × r`` (linear)."""
+    H = table(omega, headings)
+    H[..., :3] += np.cross(H[..., 3:], r)
+    return H
+
+
+def response_spectrum(omega, hs, tp, heading_deg, vessel="supply", kind: str = "jonswap",
+                      gamma=None, point=(0.0, 0.0, 0.0), spreading=None,
+                      directions: int = DEFAULT_DIRECTIONS, scale: float = 1.0) -> np.ndarray:
+    """Target spectra of the six DOFs: ``Σ_k w_k S(ω) |H_P(ω, β + θ_k)|²``.
+
+    The spectrum a long record of :func:`ship_motion` (same arguments) estimates, e.g.
+    by Welch's method (whose density per Hz is ``2π`` times this). At model scale λ
+    (``scale``), for the record of :func:`platform_trajectory`: ``omega`` is then the
+    model-scale frequency ``ω_m = ω √λ`` and the spectra are
+    ``S_m(ω_m) = S(ω_m/√λ) / (λ² √λ)`` for translations and ``S(ω_m/√λ) / √λ`` for
+    angles (each band's variance scaled by ``1/λ²`` or kept).
+
+    Args:
+        omega: ``(n,)`` frequencies [rad/s] (model scale when ``scale`` is given).
+        hs, tp, heading_deg, vessel, kind, gamma, point, spreading, directions: As
+            :func:`sea_state`.
+        scale: Froude scale λ (> 0); 1 for full scale.
+
+    Returns:
+        ``(n, 6)`` [m² s/rad] (translations) and [rad² s/rad] (angles).
+    """
+    hs, tp, heading, kind, gamma = _sea_arguments(hs, tp, heading_deg, kind, gamma)
+    scale = _real(scale, "scale", "-", "give the Froude scale lambda > 0", low=0.0)
+    root = math.sqrt(scale)
+    w = np.atleast_1d(np.asarray(omega, dtype=float)) / root
+    S = spectrum(w, hs, tp, kind, gamma)
+    offsets, weights = spreading_directions(spreading, directions)
+    H = _point_raos(vessel_raos(vessel), w, heading + offsets, _vector3(point, "point", "m"))
+    out = np.einsum("k,mkd->md", weights, np.abs(H) ** 2) * S[:, None] / root
+    out[:, :3] /= scale * scale
+    return out
 
 
 def ship_motion(t, hs, tp, heading_deg, vessel="supply", seed=0, kind: str = "jonswap",
@@ -940,6 +979,15 @@ class SeaMotion:
         """
         t, scalar = _as_times(t)
         root = math.sqrt(self.scale)
+        end = self.ship.repetition_period / root
+        outside = (t < 0.0) | (t > end)
+        if outside.any():
+            k = int(np.argmax(outside))
+            raise SeaStateError(
+                f"t[{k}] = {float(t[k]):.9g} s is outside [0, {end:.9g}] s, the model-scale "
+                f"span on which this sea does not repeat (record {self.duration:g} s at "
+                f"scale {self.scale:g}): build the motion for a longer duration",
+                name="t", index=k)
         x, v, a = self.ship(t * root)
         n = t.size
         q = np.empty((n, 9))
