@@ -46,7 +46,7 @@ def timed(fn, repeats: int) -> list[float]:
 
 
 def line(name: str, times: list[float], extra: str = "") -> None:
-    print(f"{name:<44} median {statistics.median(times):7.3f} s   min {min(times):7.3f} s"
+    print(f"{name:<48} median {statistics.median(times):7.3f} s   min {min(times):7.3f} s"
           f"{extra}")
 
 

@@ -110,6 +110,8 @@ _SPECTRUM_ZERO_BELOW = 0.1
 # Headings closer than this to a table heading [deg] are that heading (round-off of
 # angle arithmetic such as 360 - 350).
 _HEADING_TOL_DEG = 1e-9
+# Relative round-off allowed when comparing heading spacings (a few ulp of 360 deg).
+_SPACING_RTOL = 1e-12
 # Times within this many units in the last place of the largest |t| of a uniform grid
 # count as that grid (arange(n) / rate * sqrt(scale) is off by a few ulp); the FFT path
 # then evaluates at the exact grid times, a difference below the direct path's own
@@ -353,7 +355,8 @@ class RAOTable:
         if h.size < 2:
             return False
         wrap = h[0] + 360.0 - h[-1]
-        return bool(wrap <= np.diff(h).max() * (1.0 + 1e-12))
+        # equal spacings computed as 360 - 350 and 20 - 10 differ by round-off only
+        return bool(wrap <= np.diff(h).max() * (1.0 + _SPACING_RTOL))
 
     def _heading_weights(self, heading_deg: np.ndarray):
         """Bracketing indices and weights for headings [deg]; raise if one is not covered."""
