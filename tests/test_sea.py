@@ -467,6 +467,7 @@ def test_workspace_error_when_rotations_alone_leave(robot, tmp_path):
     (dict(seed=1.5), r"seed must be an integer"),
     (dict(highpass=-0.1), r"highpass = -0.1 rad/s must be >= 0"),
     (dict(vessel="tanker"), r"unknown vessel 'tanker'"),
+    (dict(hs=1e300), r"the spectrum overflows with hs = 1e\+300 m"),
 ])
 def test_bad_sea_arguments(kwargs, match):
     args = dict(t=np.arange(50.0), hs=2.5, tp=8.0, heading_deg=90.0) | kwargs

@@ -288,9 +288,13 @@ def spectrum(omega, hs, tp, kind: str = "jonswap", gamma=None) -> np.ndarray:
     live = x > _SPECTRUM_ZERO_BELOW
     y = 1.0 / x[live]
     y4 = y ** 4
-    s = (5.0 / 16.0) * hs * hs / wp * y4 * y * np.exp(-1.25 * y4)
-    if kind == "jonswap" and gamma != 1.0:
-        s = s * jonswap_normalisation(gamma) * _enhancement(x[live], gamma)
+    with np.errstate(over="ignore", invalid="ignore"):
+        s = (5.0 / 16.0) * hs * hs / wp * y4 * y * np.exp(-1.25 * y4)
+        if kind == "jonswap" and gamma != 1.0:
+            s = s * jonswap_normalisation(gamma) * _enhancement(x[live], gamma)
+    if not np.isfinite(s).all():
+        raise SeaStateError(f"the spectrum overflows with hs = {hs:g} m, tp = {tp:g} s, "
+                            f"gamma = {gamma}: give physical values", name="hs")
     out[live] = s
     return out
 
@@ -851,8 +855,11 @@ def sea_state(hs, tp, heading_deg, duration, rate, *, vessel="supply", seed=0,
     harmonics, omega, S, phases = harmonics[keep], omega[keep], S[keep], phases[keep]
     A = np.sqrt(2.0 * S * d_omega)[:, None] * np.sqrt(weights)[None, :] * np.exp(1j * phases)
     coef = np.einsum("mk,mkd->md", A, _point_raos(table, omega, heading + offsets, r))
+    if not (np.isfinite(coef).all() and np.isfinite(A).all()):
+        raise SeaStateError(f"the motion's amplitudes overflow with hs = {hs:g} m, point = "
+                            f"{tuple(r.tolist())} m: give physical values", name="point")
     sea = dict(hs=hs, tp=tp, heading_deg=heading, kind=kind, gamma=gamma, seed=seed,
-               vessel=table.source, point=tuple(r), spreading=spreading,
+               vessel=table.source, point=tuple(r.tolist()), spreading=spreading,
                directions=directions if spreading is not None else 1, highpass=highpass)
     return ShipMotion(d_omega, harmonics, coef, A.sum(axis=1), start, duration, rate, sea)
 
