@@ -30,7 +30,8 @@ __all__ = ["load_robot", "inverse_dynamics", "trajectories", "Robot", "ACTUATORS
 
 
 def __getattr__(name):
-    if name in ("trajectories", "serial", "scenes", "kinematics", "dynamics"):
+    if name in ("trajectories", "serial", "scenes", "kinematics", "dynamics", "sea",
+                "operations"):
         import importlib
 
         return importlib.import_module(f".{name}", __name__)

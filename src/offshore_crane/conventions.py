@@ -42,3 +42,8 @@ AGREEMENT_RTOL = 1e-9
 #: triangle inequality): URDF and CAD files print inertias with 6-7 significant digits,
 #: and a thin disc sits exactly on the triangle boundary.
 INERTIA_RTOL = 1e-6
+
+#: From this many samples a short-lived process gains by the compiled kernels: loading
+#: Numba and the cached kernels costs ~1.2 s, the NumPy kernels ~2 µs a sample more
+#: (:func:`offshore_crane.dynamics.quick_backend`).
+NUMBA_MIN = 500_000

@@ -211,6 +211,55 @@ class BackendMissingError(OffshoreCraneError, ImportError):
         self.package = package
 
 
+class SeaStateError(InputError):
+    """A sea state, a vessel's RAO table or a crane operation cannot be used.
+
+    Raised by :mod:`offshore_crane.sea` and :mod:`offshore_crane.operations` for values out
+    of their domain (``Hs <= 0``, ``gamma < 1``, a heading the RAO table does not cover,
+    a waypoint outside a joint's limits) and for malformed RAO files; the message of a file
+    error starts with ``file, line N, column C``.
+
+    Attributes:
+        name: The argument or CSV column concerned (``"hs"``, ``"amplitude"``), or None.
+        index: Index of the offending sample, waypoint or data row, or None.
+        path: The RAO file as given, or None.
+        line: 1-based line of the file, or None.
+        column: The file's column name (``"phase_rad"``), or None.
+    """
+
+    def __init__(self, message: str, name: str | None = None, index: int | None = None,
+                 path: str | None = None, line: int | None = None, column: str | None = None):
+        super().__init__(message, name=name, index=index)
+        self.path = path
+        self.line = line
+        self.column = column
+
+
+class SeaWorkspaceError(WorkspaceError):
+    """A Froude-scaled ship motion leaves the robot's workspace (leg stroke, U-joint).
+
+    Raised by :func:`offshore_crane.sea.platform_trajectory`; the message names the sample,
+    the leg and the value at the requested scale, and the smallest scale at which the whole
+    record fits, or says that no scale fits because the rotations alone leave the workspace.
+
+    Attributes:
+        joint, index, value: As :class:`WorkspaceError`, at the requested scale.
+        scale: The requested Froude scale lambda (full-scale length / model length).
+        min_scale: The smallest scale found to fit (within the bisection's tolerance), or
+            None when no scale fits.
+        rotations_only: True when the rotations alone (lambda -> infinity) leave the
+            workspace, so that no scale fits.
+    """
+
+    def __init__(self, message: str, joint: str | None = None, index: int | None = None,
+                 value: float | None = None, scale: float | None = None,
+                 min_scale: float | None = None, rotations_only: bool = False):
+        super().__init__(message, joint=joint, index=index, value=value)
+        self.scale = scale
+        self.min_scale = min_scale
+        self.rotations_only = rotations_only
+
+
 def require(module: str, package: str, purpose: str):
     """Import an optional module lazily, or raise :class:`BackendMissingError`.
 

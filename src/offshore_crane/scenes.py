@@ -39,10 +39,27 @@ Schema (every key optional; SI units; unknown keys or sections are errors)::
                                        # positive definite; default 0 (a point mass)
 
     [trajectory]
-    source = "table1"                  # or a CSV file t_s,q1..q9 (relative to this file)
-    duration = 31.4159                 # table1 only: span from t = 0 [s] (default 10π)
-    rate = 100.0                       # table1 only: sampling rate [Hz] (default 100)
+    source = "table1"                  # "table1", "sea" ([sea] below) or a CSV file
+                                       # t_s,q1..q9 (relative to this file)
+    duration = 31.4159                 # table1, sea: model-scale span from t = 0 [s]
+                                       # (default 10π for table1, 60 for sea)
+    rate = 100.0                       # table1, sea: sampling rate [Hz] (default 100)
     fd_order = 4                       # CSV only: finite-difference order 2, 4 or 6
+
+    [sea]                              # source = "sea": a ship in a sea state, Froude-
+    hs = 2.5                           # scaled onto q1..q6 (offshore_crane.sea,
+    tp = 8.0                           # docs/sea.md); full-scale Hs [m], Tp [s],
+    heading = 90.0                     # heading [deg] (180 head seas, 90 from starboard)
+    scale = 20.0                       # Froude scale λ (full-scale length / model length)
+    vessel = "supply"                  # shipped vessel or an RAO CSV (relative to this file)
+    kind = "jonswap"                   # or "pierson-moskowitz"; gamma = 3.3 (JONSWAP only)
+    spreading = 4.0                    # cos-2s exponent (short-crested); directions = 36
+    seed = 0                           # random phases
+    point = [0.0, 0.0, 0.0]            # the crane's base on the vessel [m], full scale
+    highpass = 0.3                     # drop components below this [rad/s], full scale
+
+    [operation]                        # q7..q9 with source = "sea" (else held at zero)
+    waypoints = [[0, 0, 0, 0.1], [5, 0.8, -0.5, 0.2]]  # [t s, q7 rad, q8 rad, q9 m], quintic
 
 How a scene maps onto the robot and the solver:
 
@@ -77,12 +94,19 @@ from .conventions import ARM_ACTUATORS, ACTUATOR_UNITS, ACTUATORS, GRAVITY, INER
 from .dynamics import LEG_MODELS, METHODS
 from .errors import SceneError
 
-SECTIONS = ("robot", "subsystems", "payload", "trajectory", "control")
+SECTIONS = ("robot", "subsystems", "payload", "trajectory", "sea", "operation", "control")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
 PAYLOAD_KEYS = ("mass", "offset", "inertia")
 INERTIA_KEYS = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
 TRAJECTORY_KEYS = ("source", "duration", "rate", "fd_order")
+SEA_KEYS = ("hs", "tp", "heading", "scale", "vessel", "kind", "gamma", "spreading",
+            "directions", "seed", "point", "highpass")
+#: [sea] keys without which no sea motion exists.
+SEA_REQUIRED = ("hs", "tp", "heading", "scale")
+OPERATION_KEYS = ("waypoints",)
+#: Model-scale record of ``source = "sea"`` when [trajectory] does not say [s], [Hz].
+SEA_DURATION, SEA_RATE = 60.0, 100.0
 CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error", "noise_q",
                 "noise_qd", "seed", "model", "lower", "upper")
 #: Where a scene file sets the robot fields it owns besides [robot] (for messages).
@@ -147,6 +171,10 @@ class Scene:
         trajectory: ``"table1"`` or the path of a CSV file.
         duration, rate: Table 1 span [s] and sampling rate [Hz] (None: defaults).
         fd_order: Finite-difference order for a CSV trajectory.
+        sea: ``[sea]`` for ``trajectory = "sea"``: :func:`offshore_crane.sea.sea_motion`'s
+            arguments (``heading`` for ``heading_deg``), full scale.
+        operation: Crane waypoints ``((t, q7, q8, q9), ...)`` [s, rad, rad, m] for
+            ``trajectory = "sea"``, or None (arm held at zero).
         outputs: Actuators wanted, or None for all that exist.
         methods: Methods to run; the first one's result is reported, the others are
             compared with it.
@@ -167,6 +195,8 @@ class Scene:
     duration: float | None = None
     rate: float | None = None
     fd_order: int = 4
+    sea: dict = field(default_factory=dict)
+    operation: tuple | None = None
     outputs: tuple | None = None
     methods: tuple = ("kane",)
     control: dict = field(default_factory=dict)
@@ -178,6 +208,7 @@ class Scene:
         _check_robot(self)
         _check_values(self)
         check_scene(self)
+        _check_sea(self)
 
     def where(self) -> str:
         """Where the scene comes from, for messages."""
@@ -446,7 +477,13 @@ def _trajectory(where: str, data: dict, base: Path | None) -> dict:
     r = _section(where, data, "trajectory", TRAJECTORY_KEYS)
     source = r.string("source", "table1")
     out = dict(trajectory=source)
-    if source != "table1":
+    if source == "sea":
+        out["duration"] = r.number("duration", None, "s", positive=True)
+        out["rate"] = r.number("rate", None, "Hz", positive=True)
+        if "fd_order" in r.table:
+            r.fail("fd_order", "applies to a CSV trajectory only (a sea state has analytic "
+                   "derivatives)")
+    elif source != "table1":
         path = Path(source)
         if not path.is_absolute() and base is not None:
             path = base / path
@@ -469,6 +506,98 @@ def _trajectory(where: str, data: dict, base: Path | None) -> dict:
         out["duration"] = r.number("duration", None, "s", positive=True)
         out["rate"] = r.number("rate", None, "Hz", positive=True)
     return out
+
+
+def _sea(where: str, data: dict, base: Path | None) -> dict:
+    """``[sea]`` and ``[operation]``: types here; values by the sea module's own checks
+    (:func:`_check_sea`, when the Scene is made)."""
+    r = _section(where, data, "sea", SEA_KEYS)
+    sea = {}
+    for key in ("hs", "tp", "heading", "scale", "gamma", "spreading", "highpass"):
+        if key in r.table:
+            sea[key] = r.number(key)
+    if "point" in r.table:
+        sea["point"] = r.vector("point", 3, unit="m")
+    for key in ("seed", "directions"):
+        if key in r.table:
+            v = r.get(key)
+            if isinstance(v, bool) or not isinstance(v, int):
+                r.fail(key, "must be an integer")
+            sea[key] = v
+    if "kind" in r.table:
+        sea["kind"] = r.string("kind")
+    if "vessel" in r.table:
+        vessel = r.string("vessel")
+        from .sea import vessel_names
+
+        if vessel not in vessel_names():
+            p = Path(vessel)
+            if not p.is_absolute() and base is not None:
+                p = base / p
+            if not p.is_file():
+                r.fail("vessel", f"neither a shipped vessel ({', '.join(vessel_names())}) "
+                       f"nor a file {p} (relative paths start at the scene file's folder)")
+            vessel = str(p)
+        sea["vessel"] = vessel
+    o = _section(where, data, "operation", OPERATION_KEYS)
+    operation = None
+    if "waypoints" in o.table:
+        w = o.get("waypoints")
+        if (not isinstance(w, list) or not w or any(
+                not isinstance(row, list) or len(row) != 4 or any(
+                    isinstance(x, bool) or not isinstance(x, (int, float))
+                    or not math.isfinite(x) for x in row) for row in w)):
+            o.fail("waypoints", "must be a list of [t, q7, q8, q9] rows of finite numbers "
+                   "[s, rad, rad, m]")
+        operation = tuple(tuple(float(x) for x in row) for row in w)
+    return dict(sea=sea, operation=operation)
+
+
+def _check_sea(scene: "Scene") -> None:
+    """The ``[sea]`` / ``[operation]`` sections against the trajectory source and the
+    sea module's argument checks (what :func:`offshore_crane.sea.sea_state` would say)."""
+    where = scene.where()
+
+    def fail(key, message):
+        raise SceneError(f"{where}: {message}", path=scene.path, name=key)
+
+    if scene.trajectory != "sea":
+        if scene.sea:
+            fail("sea", f"[sea] applies to [trajectory] source = \"sea\", not "
+                 f"{_show(scene.trajectory)}")
+        if scene.operation is not None:
+            fail("operation", "[operation] applies to [trajectory] source = \"sea\"")
+        return
+    missing = [k for k in SEA_REQUIRED if k not in scene.sea]
+    if missing:
+        fail("sea", f"[trajectory] source = \"sea\" needs [sea] {', '.join(missing)} "
+             "(full-scale Hs [m], Tp [s], heading [deg], Froude scale)")
+    unknown = [k for k in scene.sea if k not in SEA_KEYS]
+    if unknown:
+        fail(f"sea.{unknown[0]}", f"[sea] unknown key '{unknown[0]}'")
+    if not scene.platform:
+        fail("sea", "[sea] moves the platform, but [subsystems] platform = false")
+    if scene.operation is not None and not scene.arm:
+        fail("operation", "[operation] moves the arm, but the robot has no arm")
+    from .errors import SeaStateError
+    from .sea import check_arguments
+
+    try:
+        check_arguments(**sea_arguments(scene))
+    except SeaStateError as exc:
+        if exc.name == "waypoints":
+            fail("operation.waypoints", f"[operation] {exc}")
+        fail(f"sea.{exc.name}", f"[sea] {exc}")
+
+
+def sea_arguments(scene: "Scene") -> dict:
+    """``scene.sea`` as keyword arguments of :func:`offshore_crane.sea.sea_motion` (but
+    duration, rate and robot)."""
+    args = dict(scene.sea)
+    args["heading_deg"] = args.pop("heading", None)
+    if scene.operation is not None:
+        args["operation"] = [list(row) for row in scene.operation]
+    return args
 
 
 def _control(where: str, data: dict) -> dict:
@@ -564,7 +693,7 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
         gravity=top.vector("gravity", 3, GRAVITY, "m/s²"),
         outputs=top.names("outputs", ACTUATORS),
         methods=top.names("methods", METHODS) or ("kane",), control=control,
-        **_trajectory(where, data, base))
+        **_trajectory(where, data, base), **_sea(where, data, base))
 
 
 def _check_values(scene: Scene) -> None:
@@ -659,6 +788,32 @@ def deck_pose(scene: Scene, robot) -> np.ndarray:
     return np.array([0.0, 0.0, float(robot.parameters["home_height"]), 0.0, 0.0, 0.0])
 
 
+def sea_trajectory(scene: Scene, robot, check: bool = True):
+    """The model-scale record of a ``source = "sea"`` scene
+    (:func:`offshore_crane.sea.platform_trajectory`, analytic rates and accelerations;
+    its ``source`` evaluates the same motion at any times).
+
+    Raises:
+        SceneError: a bad ``[sea]`` value. SeaWorkspaceError: the record leaves the
+            workspace (with the smallest scale that fits).
+    """
+    from .errors import SeaStateError
+    from .sea import platform_trajectory
+
+    args = sea_arguments(scene)
+    name = (f"sea Hs {args['hs']:g} m Tp {args['tp']:g} s heading {args['heading_deg']:g}° "
+            f"at scale {args['scale']:g}")
+    try:
+        return platform_trajectory(
+            SEA_DURATION if scene.duration is None else scene.duration,
+            SEA_RATE if scene.rate is None else scene.rate, robot=robot, check=check,
+            name=name, **args)
+    except SeaStateError as exc:
+        section = "operation" if exc.name == "waypoints" else "sea"
+        raise SceneError(f"{scene.where()}: [{section}] {exc}", path=scene.path,
+                         name=f"{section}.{exc.name}") from None
+
+
 def load_robot(scene: Scene, overrides: dict | None = None):
     """The scene's robot; ``overrides`` (dotted names or aliases) are applied on top, for
     a model that differs from the scene's on purpose (a controller's model). Command-line
@@ -707,6 +862,8 @@ def load_trajectory(scene: Scene, robot):
     """
     from . import trajectories
 
+    if scene.trajectory == "sea":
+        return sea_trajectory(scene, robot)
     traj = trajectories.load(scene.trajectory, duration=scene.duration, rate=scene.rate,
                              fd_order=scene.fd_order)
     if scene.platform:
@@ -875,6 +1032,16 @@ def format_fidelity(names, scale, rows, n_samples: int, repeat: int = FIDELITY_R
             line += f"{r.deviation[k]:>22.4e}{r.relative[k]:>11.2e}"
         lines.append(line)
     return "\n".join(lines)
+
+
+def with_trajectory(scene: Scene, where: str, source: str | None) -> Scene:
+    """``scene`` driven by another trajectory source (``--trajectory``): its ``[sea]``,
+    ``[operation]``, span and finite-difference order belong to its own source and are
+    dropped; the same source (or None) leaves the scene as it is."""
+    if source is None or source == scene.trajectory:
+        return scene
+    return replace(scene, origin=where, trajectory=source, sea={}, operation=None,
+                   duration=None, rate=None, fd_order=4)
 
 
 def with_overrides(scene: Scene, where: str, **changes) -> Scene:

@@ -18,7 +18,8 @@ from ..errors import InputError, OffshoreCraneError
 #: Modules adding sub-commands: each has ``add_parser(subparsers)``, which registers its
 #: parser with ``set_defaults(run=...)``; ``run(args) -> int`` is its exit status. They
 #: must import nothing heavy at module level (the CLI imports them all to build --help).
-SUBCOMMANDS = ("offshore_crane.cli.id", "offshore_crane.cli.simulate", "offshore_crane.serial.cli",
+SUBCOMMANDS = ("offshore_crane.cli.id", "offshore_crane.cli.motion",
+               "offshore_crane.cli.simulate", "offshore_crane.serial.cli",
                "offshore_crane.cli.compile")
 
 

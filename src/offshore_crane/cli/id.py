@@ -2,14 +2,11 @@
 
 from __future__ import annotations
 
-from ..conventions import ACTUATOR_UNITS, ACTUATORS, AGREEMENT_RTOL
+from ..conventions import ACTUATOR_UNITS, ACTUATORS, AGREEMENT_RTOL, NUMBA_MIN
 from ..errors import InputError
 from . import add_robot_options
 
 RELATIVE_LIMIT = AGREEMENT_RTOL
-#: From this many samples the command uses the compiled kernels by default: loading Numba
-#: and the cached kernels costs ~1.2 s, the NumPy kernels ~2 µs a sample more.
-NUMBA_MIN = 500_000
 
 
 def add_parser(sub) -> None:
@@ -74,7 +71,7 @@ _METHOD_LABELS = {"kane": "Kane", "kane-explicit": "Kane (explicit)", "rnea": "R
 
 def _scene(args):
     """The scene to run: ``--scene`` (or the default one) with the explicit flags applied."""
-    from ..scenes import Scene, load_scene, with_overrides
+    from ..scenes import Scene, load_scene, with_overrides, with_trajectory
 
     from . import robot_scene
 
@@ -88,6 +85,7 @@ def _scene(args):
         raise InputError(f"--outputs: unknown {', '.join(map(repr, unknown))}: choose among "
                          f"{', '.join(ACTUATORS)}", name="--outputs")
     where = f"{args.scene} with the command-line options" if args.scene else "command line"
+    scene = with_trajectory(scene, where, args.trajectory)
     scene = with_overrides(scene, where, trajectory=args.trajectory, duration=args.duration,
                            rate=args.rate, fd_order=args.fd_order, methods=methods,
                            leg_model=args.leg_model, outputs=outputs,
@@ -108,7 +106,9 @@ def run(args) -> int:
     outputs, say = plan(args, scene)
     robot = scenes.load_robot(scene)
     traj = scenes.load_trajectory(scene, robot)
-    backend = args.backend or ("numba" if len(traj.t) >= NUMBA_MIN else "numpy")
+    from ..dynamics import quick_backend
+
+    backend = args.backend or quick_backend(len(traj.t))
     options = dict(limits=not args.no_limits, thresholds=_thresholds(args),
                    backend=backend, threads=args.threads)
     done = scenes.run(scene, robot, traj, **options)

@@ -72,8 +72,7 @@ def run(args) -> int:
     from . import plan, robot_scene
 
     scene = robot_scene(args, scenes.load_scene(args.scene) if args.scene else scenes.Scene())
-    if args.trajectory:
-        scene = scenes.with_overrides(scene, "command line", trajectory=args.trajectory)
+    scene = scenes.with_trajectory(scene, "command line", args.trajectory)
     if args.gravity is not None:
         scene = scenes.with_overrides(scene, "command line", gravity=tuple(args.gravity))
     outputs, say = plan(args, scene)

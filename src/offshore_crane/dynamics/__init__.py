@@ -220,6 +220,20 @@ def _outputs(outputs, available: tuple) -> tuple:
     return tuple(n for n in ACTUATORS if n in names)
 
 
+def quick_backend(n: int) -> str:
+    """The backend that finishes ``n`` samples first in a process that may not have loaded
+    Numba yet: ``"numba"`` when it is loaded already or ``n ≥`` :data:`NUMBA_MIN` (and
+    installed), else ``"numpy"``. For one-off evaluations (a command's run, a workspace
+    check); long-lived callers keep ``"auto"``."""
+    import sys
+
+    from ..conventions import NUMBA_MIN
+
+    if "numba" in sys.modules or n >= NUMBA_MIN:
+        return "numba" if numba_available() else "numpy"
+    return "numpy"
+
+
 def resolve_backend(backend: str) -> str:
     """``"auto"`` → ``"numba"`` (installed: it is a dependency) else ``"numpy"``."""
     if backend not in BACKENDS:

@@ -1,0 +1,192 @@
+"""``offshore-crane motion``: the robot's motion from a ship in a sea state.
+
+Writes the model-scale record ``t_s,q1..q9`` with its analytic rates and accelerations
+``qd1..qd9,qdd1..qdd9`` (``id --trajectory`` uses them instead of differencing). The sea
+is the scene's ``[sea]`` (``--scene``) with the flags on top; the record is checked
+against the robot's workspace, and an error states the smallest Froude scale that fits.
+"""
+
+from __future__ import annotations
+
+from ..conventions import COORDINATES, COORDINATE_UNITS
+
+#: Plotted spectra: heave, roll, pitch (columns of q).
+SPECTRUM_COLUMNS = (2, 3, 4)
+#: Welch segment [model-scale s]: long enough to resolve the wave peak (Tp/√λ ~ 2 s at
+#: 1:20) with ~0.05 Hz bins, short enough to average several segments over a minute.
+WELCH_SEGMENT_S = 20.48
+
+
+def add_parser(sub) -> None:
+    from ..sea import SPECTRA
+    from . import add_robot_options
+
+    doc = __doc__.splitlines()
+    p = sub.add_parser("motion", help="platform and crane motion from a sea state",
+                       description=doc[0].split(": ", 1)[1] + " " + " ".join(
+                           line.strip() for line in doc[2:6]))
+    p.add_argument("--scene", metavar="FILE.toml", help="scene whose [sea], [operation], "
+                   "[trajectory] duration and rate and robot set the defaults")
+    p.add_argument("--hs", type=float, metavar="M", help="significant wave height [m], "
+                   "full scale")
+    p.add_argument("--tp", type=float, metavar="S", help="peak period [s], full scale")
+    p.add_argument("--heading", type=float, metavar="DEG",
+                   help="wave heading [deg]: 180 head seas, 90 waves from starboard")
+    p.add_argument("--scale", type=float, metavar="LAMBDA",
+                   help="Froude scale: full-scale length / model length")
+    p.add_argument("--vessel", metavar="NAME|PATH", help="shipped vessel (default supply) "
+                   "or an RAO CSV (docs/sea.md)")
+    p.add_argument("--kind", choices=SPECTRA, help="wave spectrum (default jonswap)")
+    p.add_argument("--gamma", type=float, help="JONSWAP peak enhancement (default: "
+                   "DNV-RP-C205's from Tp/sqrt(Hs))")
+    p.add_argument("--spreading", type=float, metavar="S", help="cos-2s spreading exponent "
+                   "(short-crested seas; default long-crested)")
+    p.add_argument("--seed", type=int, help="random phases (default 0)")
+    p.add_argument("--point", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                   help="the crane's base on the vessel [m], full scale, from the RAO "
+                   "table's reference point")
+    p.add_argument("--highpass", type=float, metavar="RAD_S", help="drop wave components "
+                   "below this frequency [rad/s], full scale (slow drift, yaw)")
+    p.add_argument("--duration", type=float, metavar="S", help="model-scale record [s] "
+                   "(default 60)")
+    p.add_argument("--rate", type=float, metavar="HZ", help="sampling rate [Hz] "
+                   "(default 100)")
+    p.add_argument("--no-derivatives", action="store_true",
+                   help="write t_s,q1..q9 only (id then differences them)")
+    add_robot_options(p)
+    p.add_argument("--out", help="write the record to this CSV ('-': standard output)")
+    p.add_argument("--plot", help="write the coordinates and the spectra to this figure")
+    p.set_defaults(run=run)
+
+
+def _scene(args):
+    """The scene's sea (``--scene``, or none) with the flags on top, as a ``source =
+    "sea"`` scene, its robot with ``--robot`` and ``--set``."""
+    from dataclasses import replace
+
+    from .. import scenes
+    from . import robot_scene
+
+    scene = scenes.load_scene(args.scene) if args.scene else scenes.Scene()
+    sea = dict(scene.sea)
+    flags = {"hs": args.hs, "tp": args.tp, "heading": args.heading, "scale": args.scale,
+             "vessel": args.vessel, "kind": args.kind, "gamma": args.gamma,
+             "spreading": args.spreading, "seed": args.seed, "highpass": args.highpass,
+             "point": None if args.point is None else tuple(args.point)}
+    sea.update({k: v for k, v in flags.items() if v is not None})
+    where = f"{args.scene} with the command-line options" if args.scene else "command line"
+    changes = dict(trajectory="sea", sea=sea, duration=args.duration, rate=args.rate)
+    if scene.trajectory == "sea":        # keep the scene's record unless the flags say
+        changes = {k: v for k, v in changes.items() if v is not None}
+    scene = replace(scene, origin=where, **changes)   # table1's span does not carry over
+    return robot_scene(args, scene)
+
+
+def _statistics(q, arm: bool) -> str:
+    """Mean, standard deviation, min and max of each coordinate (q7..q9 with an
+    operation only)."""
+    import numpy as np
+
+    n = 9 if arm else 6
+    lines = [f"{'coordinate':<11}{'unit':<5}{'mean':>12}{'std':>12}{'min':>12}{'max':>12}"]
+    for k in range(n):
+        x = q[:, k]
+        lines.append(f"{COORDINATES[k]:<11}{COORDINATE_UNITS[k]:<5}{x.mean():>12.5g}"
+                     f"{x.std():>12.5g}{x.min():>12.5g}{x.max():>12.5g}")
+    return "\n".join(lines)
+
+
+def run(args) -> int:
+    import sys
+
+    import numpy as np
+
+    from .. import scenes, trajectories
+    from ..io import FIGURE_FORMATS, plan_outputs
+
+    scene = _scene(args)
+    outputs = plan_outputs({"--out": args.out, "--plot": args.plot},
+                           [args.scene, scene.robot_description], {"--plot": FIGURE_FORMATS})
+    to_stdout = any(o.kind == "stdout" for o in outputs.values())
+
+    def say(*a):
+        print(*a, file=sys.stderr if to_stdout else sys.stdout)
+
+    robot = scenes.load_robot(scene)
+    traj = scenes.load_trajectory(scene, robot)
+    motion = traj.source
+    ship, t = motion.ship, traj.t
+    sea = ship.sea
+    gamma = "" if sea["gamma"] is None else f", gamma {sea['gamma']:.3g}"
+    say(f"offshore-crane motion: {traj.name}, {len(t)} samples, t = {t[0]:.2f}..{t[-1]:.2f} s "
+        f"at {motion.rate:g} Hz (full scale {t[-1] * np.sqrt(motion.scale):.1f} s, "
+        f"{ship.harmonics.size} wave components, no repetition for "
+        f"{ship.repetition_period:.1f} s full scale)")
+    vessel = scene.sea.get("vessel", "supply")
+    say(f"vessel {vessel}, {sea['kind']}{gamma}, seed {sea['seed']}; every sample inside "
+        "the workspace")
+    say(_statistics(traj.q, motion.operation is not None))
+    if "--out" in outputs:
+        if args.no_derivatives:
+            trajectories.write_csv(outputs["--out"], t, traj.q)
+        else:
+            trajectories.write_csv(outputs["--out"], t, traj.q, traj.qd, traj.qdd)
+        say(f"wrote {args.out}")
+    if "--plot" in outputs:
+        plot(outputs["--plot"], scene, traj)
+        say(f"wrote {args.plot}")
+    return 0
+
+
+def plot(target, scene, traj) -> None:
+    """Left: q1..q6 over time; right: for heave, roll and pitch, the Welch estimate of the
+    record's spectrum over the target ``S |RAO|²`` (model scale).
+
+    Args:
+        target: Path or :class:`~offshore_crane.io.Target` of the figure.
+        scene: The ``source = "sea"`` scene. traj: Its trajectory.
+    """
+    import numpy as np
+
+    from ..errors import require
+    from ..report import save_figure
+    from ..scenes import sea_arguments
+    from ..sea import response_spectrum, welch
+
+    matplotlib = require("matplotlib", "matplotlib", "--plot")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    motion = traj.source
+    args = {k: v for k, v in sea_arguments(scene).items()
+            if k not in ("operation", "seed", "highpass", "scale")}
+    scale = motion.scale
+    fig = plt.figure(figsize=(12, 8), constrained_layout=True)
+    grid = fig.add_gridspec(6, 2)
+    t, q = traj.t, traj.q
+    for k in range(6):
+        ax = fig.add_subplot(grid[k, 0])
+        ax.plot(t, q[:, k], lw=0.8)
+        ax.set_ylabel(f"{COORDINATES[k]} [{COORDINATE_UNITS[k]}]")
+        ax.grid(True, alpha=0.3)
+        if k < 5:
+            ax.tick_params(labelbottom=False)
+    ax.set_xlabel("time [s] (model scale)")
+    segment = int(min(len(t), round(WELCH_SEGMENT_S * motion.rate)))
+    segment -= segment % 2
+    omega, S = welch(q[:, list(SPECTRUM_COLUMNS)], motion.rate, segment)
+    expected = response_spectrum(omega[1:], scale=scale, **args)
+    peak = 2.0 * np.pi / (args["tp"] / np.sqrt(scale))     # model-scale peak [rad/s]
+    names = ("heave q3 [m²·s/rad]", "roll q4 [rad²·s/rad]", "pitch q5 [rad²·s/rad]")
+    for i, (col, name) in enumerate(zip(SPECTRUM_COLUMNS, names)):
+        ax = fig.add_subplot(grid[2 * i:2 * i + 2, 1])
+        ax.plot(omega[1:], S[1:, i], lw=1.0, label="Welch estimate of the record")
+        ax.plot(omega[1:], expected[:, col], lw=1.5, ls="--", color="k",
+                label="target S |RAO|² (model scale)")
+        ax.set_ylabel(name)
+        ax.set_xlim(0.0, 4.0 * peak)
+        ax.grid(True, alpha=0.3)
+        ax.legend(loc="upper right", fontsize=8)
+    ax.set_xlabel("frequency ω [rad/s] (model scale)")
+    fig.suptitle(f"offshore-crane: {traj.name}")
+    save_figure(fig, target)
