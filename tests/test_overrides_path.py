@@ -110,3 +110,23 @@ def test_with_robot_overrides_refuses_a_contradiction():
         scenes.with_robot_overrides(scene, {"platform.mass": 11.0})
     same = scenes.with_robot_overrides(scene, {"platform.mass": 10.0})
     assert same.robot["platform.mass"] == 10.0
+
+
+def test_actuators_section_is_a_description_override(tmp_path, capsys):
+    """[actuators] sets actuators.* through the same path: a bad key or value is named,
+    and a --set contradicting it is an error."""
+    good = tmp_path / "good.toml"
+    good.write_text("[actuators]\nFl.push_max = 3000.0\n", encoding="utf-8")
+    scene = scenes.load_scene(good)
+    assert scene.robot == {"actuators.Fl.push_max": 3000.0}
+    assert scenes.load_robot(scene).capacities.push_max[3:].tolist() == [3000.0] * 6
+    status, _, err = _run(["id", "--scene", str(good), "--set", "leg_force_limit=10"], capsys)
+    assert status == 2 and ("--set actuators.Fl.push_max = 10 contradicts the scene's "
+                            "[actuators] Fl.push_max = 3000") in err
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[actuators]\nFl.push = 3000.0\n", encoding="utf-8")
+    with pytest.raises(SceneError, match=r"\[actuators\] unknown field 'actuators\.Fl\.push'"):
+        scenes.load_scene(bad)
+    bad.write_text("[actuators]\nFl.push_max = -1.0\n", encoding="utf-8")
+    with pytest.raises(SceneError, match=r"actuators\.Fl\.push_max"):
+        scenes.load_scene(bad)

@@ -181,7 +181,7 @@ def test_cli_stop_keeps_the_samples(tmp_path, capsys):
 
     out = tmp_path / "sim.csv"
     code = main(["simulate", "--controller", "pd-gravity", "--control-rate", "200",
-                 "--duration", "5", "--out", str(out)])
+                 "--duration", "5", "--no-saturation", "--out", str(out)])   # diverges
     assert code == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "simulation stopped at t =" in err
@@ -201,3 +201,36 @@ def test_cli_errors(argv, match, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and match in err
+
+
+def test_saturation_at_the_description_capacities(tmp_path):
+    """Default saturation clips to the robot description's capacities, which a scene's
+    [actuators] overrides (push and pull apart): applied X inside [-pull_max, push_max],
+    the saturated flags exactly where the command lies outside, and a command inside the
+    limits applied unchanged."""
+    from offshore_crane import scenes
+    from offshore_crane.simulate import simulate
+
+    path = tmp_path / "sat.toml"
+    path.write_text("[actuators]\nFl = { push_max = 180.0, pull_max = 120.0 }\n"
+                    "T1.pull_max = 4.0\n[control]\nlaw = \"computed-torque\"\n",
+                    encoding="utf-8")
+    scene = scenes.load_scene(path)
+    robot = scenes.load_robot(scene)
+    caps = robot.capacities
+    assert caps.push_max[3:].tolist() == [180.0] * 6 and caps.pull_max[3:].tolist() == [120.0] * 6
+    assert caps.pull_max[0] == 4.0
+    traj = scenes.load_trajectory(scene, robot)
+    controller = scenes.controller(scene, robot)
+    lo, hi = controller.bounds(robot)
+    np.testing.assert_array_equal(lo, -caps.pull_max)
+    np.testing.assert_array_equal(hi, caps.push_max)
+    q0, qd0, _ = (x[0] for x in traj.reference(traj.t[:1]))
+    res = simulate(robot, 0.3, traj.reference, q0, qd0, controller, limits=False)
+    assert np.all(res.X >= lo - 0.0) and np.all(res.X <= hi + 0.0)
+    clipped = np.clip(res.X_cmd, lo, hi)
+    np.testing.assert_array_equal(res.X, clipped)
+    np.testing.assert_array_equal(res.saturated, (res.X_cmd < lo) | (res.X_cmd > hi))
+    assert res.saturated.any() and not res.saturated.all()
+    free = scenes.controller(scene, robot).__class__(law="computed-torque", saturation=False)
+    assert np.isinf(free.bounds(robot)[1]).all()

@@ -69,7 +69,9 @@ class Controller:
             :data:`PD_KD`.
         rate: Control rate [Hz] (sample-and-hold), or None for a continuous law.
         lower, upper: ``(9,)`` actuator limits [N·m, N] (push and pull apart; −inf/inf
-            for none).
+            for none); None (the default): the robot's capacities
+            (:meth:`bounds`).
+        saturation: False: no limits at all (lower/upper must then be None).
         model: The robot the controller uses (None: the simulated robot itself).
         noise_q, noise_qd: ``(9,)`` standard deviations of the measurement noise [m, rad]
             and [m/s, rad/s] (zeros: none); ``seed`` seeds it.
@@ -81,6 +83,7 @@ class Controller:
     rate: float | None = None
     lower: object = None
     upper: object = None
+    saturation: bool = True
     model: object = None
     noise_q: object = None
     noise_qd: object = None
@@ -105,6 +108,12 @@ class Controller:
                 np.isnan(upper).any() or (lower > upper).any():
             raise InputError("actuator limits lower/upper must be 9 numbers each with lower "
                              f"≤ upper, in the order {', '.join(ACTUATORS)}", name="lower")
+        if not isinstance(self.saturation, bool):
+            raise InputError(f"saturation = {self.saturation!r}: must be true or false",
+                             name="saturation")
+        if not self.saturation and (self.lower is not None or self.upper is not None):
+            raise InputError("saturation = false with actuator limits lower/upper given: "
+                             "drop one of them", name="saturation")
         noise = []
         for name, value in (("noise_q", self.noise_q), ("noise_qd", self.noise_qd)):
             n = np.zeros(9) if value is None else _gains(name, value, np.zeros(9))
@@ -119,8 +128,26 @@ class Controller:
 
     @property
     def limits(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(lower, upper)`` actuator limits ``(9,)``."""
+        """``(lower, upper)`` actuator limits ``(9,)`` as given (±inf where not)."""
         return self._arrays["lower"], self._arrays["upper"]
+
+    def bounds(self, robot) -> tuple[np.ndarray, np.ndarray]:
+        """``(lower, upper)`` ``(9,)`` [N·m, N] the applied forces are clipped to on
+        ``robot`` (the plant): ``lower``/``upper`` where given, else the robot
+        description's capacities ``(−pull_max, push_max)`` (``inf`` where the description
+        gives none); ±inf everywhere with ``saturation=False``."""
+        lower, upper = self.limits
+        if not self.saturation:
+            return lower, upper
+        caps = robot.capacities
+        lo = -np.asarray(caps.pull_max, float) if self.lower is None else lower
+        hi = np.asarray(caps.push_max, float) if self.upper is None else upper
+        if (lo > hi).any():
+            k = int(np.argmax(lo > hi))
+            raise InputError(f"actuator {ACTUATORS[k]}: lower limit {lo[k]:g} > upper limit "
+                             f"{hi[k]:g} (given limits against the robot's capacities)",
+                             name="lower")
+        return lo, hi
 
     @property
     def noise(self) -> tuple[np.ndarray, np.ndarray]:

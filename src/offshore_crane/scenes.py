@@ -38,6 +38,11 @@ Schema (every key optional; SI units; unknown keys or sections are errors)::
                                        # about its centre of mass, arm_tip axes [kg·m²];
                                        # positive definite; default 0 (a point mass)
 
+    [actuators]                        # capacities: overrides of the description's
+    Fl.push_max = 3000.0               # actuators.* fields (Fl = all legs, Fl1..Fl6, T1,
+    T1 = { push_max = 40, pull_max = 40 }   # T2, Fs; push_max, pull_max, speed_max,
+                                       # power_max) [N, N·m, m/s, rad/s, W]
+
     [trajectory]
     source = "table1"                  # "table1", "sea" ([sea] below) or a CSV file
                                        # t_s,q1..q9 (relative to this file)
@@ -94,7 +99,8 @@ from .conventions import ARM_ACTUATORS, ACTUATOR_UNITS, ACTUATORS, GRAVITY, INER
 from .dynamics import LEG_MODELS, METHODS
 from .errors import SceneError
 
-SECTIONS = ("robot", "subsystems", "payload", "trajectory", "sea", "operation", "control")
+SECTIONS = ("robot", "subsystems", "payload", "actuators", "trajectory", "sea", "operation",
+            "control")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
 PAYLOAD_KEYS = ("mass", "offset", "inertia")
@@ -108,10 +114,20 @@ OPERATION_KEYS = ("waypoints",)
 #: Model-scale record of ``source = "sea"`` when [trajectory] does not say [s], [Hz].
 SEA_DURATION, SEA_RATE = 60.0, 100.0
 CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error", "noise_q",
-                "noise_qd", "seed", "model", "lower", "upper")
+                "noise_qd", "seed", "model", "lower", "upper", "saturation")
+#: [control] keys that are Controller arguments (the others: simulate's).
+CONTROLLER_KEYS = ("law", "kp", "kd", "rate", "lower", "upper", "saturation", "noise_q",
+                   "noise_qd", "seed")
 #: Where a scene file sets the robot fields it owns besides [robot] (for messages).
 SCENE_FIELDS = {"arm.enabled": "[subsystems] arm", "payload.mass": "[payload] mass",
                 "payload.com": "[payload] offset", "payload.inertia": "[payload] inertia"}
+
+
+def _scene_field(name: str) -> str:
+    """Where a scene file sets the robot field ``name`` besides [robot]."""
+    if name.startswith("actuators."):
+        return f"[actuators] {name[len('actuators.'):]}"
+    return SCENE_FIELDS[name]
 #: Run time of the fidelity report: median of this many runs per leg model.
 FIDELITY_REPEAT = 5
 
@@ -377,9 +393,14 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
     sub = data.get("subsystems", {})
     if isinstance(sub, dict) and "arm" in sub:
         payload["arm.enabled"] = sub["arm"]
+    actuators = data.get("actuators", {})
+    if not isinstance(actuators, dict):
+        raise SceneError(f"{where}: actuators = {_show(actuators)}: must be a table "
+                         "[actuators]", path=where, name="actuators")
+    payload.update(_normalised(where, {"actuators": actuators}, "[actuators]", flatten=True))
     for name, value in _normalised(where, payload, None).items():
         if name in overrides and not _same_value(overrides[name], value):
-            raise SceneError(f"{where}: {SCENE_FIELDS[name]} = {_plain(value)} contradicts "
+            raise SceneError(f"{where}: {_scene_field(name)} = {_plain(value)} contradicts "
                              f"[robot] {name} = {_plain(overrides[name])}: give it once",
                              path=where, name=name)
         overrides[name] = value
@@ -632,6 +653,8 @@ def _control(where: str, data: dict) -> dict:
         out["step"] = r.number("step", unit="s", positive=True)
     if "integrator" in r.table:
         out["integrator"] = r.string("integrator", choices=INTEGRATORS)
+    if "saturation" in r.table:
+        out["saturation"] = r.boolean("saturation", True)
     if "seed" in r.table:
         seed = r.get("seed")
         if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
@@ -643,9 +666,7 @@ def _control(where: str, data: dict) -> dict:
             r.fail("model", "must be a table of robot parameters (the controller's model)")
         out["model"] = _normalised(where, model, "[control] model", flatten=True)
     try:                                # the law's own checks (gains, limits), named here
-        Controller(**{k: v for k, v in out.items() if k in ("law", "kp", "kd", "rate",
-                                                             "lower", "upper", "noise_q",
-                                                             "noise_qd", "seed")})
+        Controller(**{k: v for k, v in out.items() if k in CONTROLLER_KEYS})
     except InputError as exc:
         raise SceneError(f"{where}: [control] {exc}", path=where, name="control") from None
     return out
@@ -660,9 +681,7 @@ def controller(scene: Scene, robot=None):
     model = None
     if "model" in c:
         model = load_robot(scene, c["model"])
-    return Controller(**{k: v for k, v in c.items() if k in (
-        "law", "kp", "kd", "rate", "lower", "upper", "noise_q", "noise_qd", "seed")},
-        model=model)
+    return Controller(**{k: v for k, v in c.items() if k in CONTROLLER_KEYS}, model=model)
 
 
 def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) -> Scene:
@@ -826,6 +845,13 @@ def load_robot(scene: Scene, overrides: dict | None = None):
                  {**scene.robot_overrides(), **normalise(overrides, "robot overrides")})
 
 
+def _field_owner(scene: Scene, name: str) -> str:
+    """The scene's section that sets ``name`` (for messages)."""
+    if name in SCENE_FIELDS or name.startswith("actuators."):
+        return _scene_field(name)
+    return f"[robot] {name}"
+
+
 def with_robot_overrides(scene: Scene, overrides: dict, source: str = "--set") -> Scene:
     """``scene`` with robot overrides (e.g. ``--set``) added, re-checked.
 
@@ -846,7 +872,7 @@ def with_robot_overrides(scene: Scene, overrides: dict, source: str = "--set") -
     if clash:
         c = clash[0]
         raise SceneError(f"{where}: {source} {c.field} = {_plain(c.cli)} contradicts the "
-                         f"scene's {SCENE_FIELDS.get(c.field, f'[robot] {c.field}')} = "
+                         f"scene's {_field_owner(scene, c.field)} = "
                          f"{_plain(c.scene)}: change the scene or drop the {source}",
                          path=scene.path, name=c.field)
     robot = {**scene.robot, **overrides}

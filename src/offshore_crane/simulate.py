@@ -178,7 +178,7 @@ def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=No
     plant = robot_arrays(robot)
     model = robot_arrays(controller.model or robot)
     kp, kd = controller.gains
-    lo, hi = controller.limits
+    lo, hi = controller.bounds(robot)
     n_ctrl = n_steps // hold + 2 if hold else 1
     rng = np.random.default_rng(controller.seed)
     sq, sqd = controller.noise
@@ -237,7 +237,7 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
     Cc_arrays = robot_arrays(controller.model or robot)
     Cc = Cc_arrays.kane
     kp, kd = controller.gains
-    lo, hi = controller.limits
+    lo, hi = controller.bounds(robot)
     n = 6 + C.n_arm
     ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
           np.empty((max(C.n_arm, 1), 27)), np.empty((9, 3)), np.empty((9, 3)),

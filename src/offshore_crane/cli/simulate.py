@@ -48,6 +48,9 @@ def add_parser(sub) -> None:
     p.add_argument("--gravity", type=float, nargs=3, metavar=("GX", "GY", "GZ"))
     p.add_argument("--no-limits", action="store_true", help="do not stop at the workspace "
                    "limits")
+    p.add_argument("--no-saturation", action="store_true", help="apply the commanded forces "
+                   "unclipped (default: clipped to the actuators' capacities of the robot "
+                   "description and [actuators], push and pull apart)")
     p.add_argument("--out", help="write the run to this CSV")
     p.add_argument("--plot", help="write tracking errors and forces to this figure")
     p.set_defaults(run=run)
@@ -82,6 +85,8 @@ def run(args) -> int:
     flags = {"law": args.controller, "kp": _gains(args.kp, "--kp"),
              "kd": _gains(args.kd, "--kd"), "rate": args.control_rate}
     flags = {k: v for k, v in flags.items() if v is not None}
+    if args.no_saturation:
+        flags.update(saturation=False, lower=None, upper=None)
     if flags:
         controller = replace(controller, _arrays={}, **flags)
     c = scene.control
