@@ -1,12 +1,12 @@
 """Measure what each exact pruning of issue 4 saves, and print the fidelity tables.
 
-Run: ``PYTHONPATH=src python scripts/pruning_speedups.py [--repeat 7]``.
+Run: ``python benchmarks/pruning_speedups.py [--repeat 7]``.
 
 Every timing is the median of ``--repeat`` runs after one untimed warm-up, on the
-Table 1 default span (10π s at 100 Hz: 3142 samples). "kernel" rows time the fused Kane
-kernel alone with the options :func:`offshore_crane.dynamics.solve` would pass it
-(condition numbers and leg diagnostics when the legs are evaluated), pruned against
-unpruned, for each backend; "solve" rows time the whole call (checks included). Import
+Table 1 default span (10π s at 100 Hz: 3142 samples). "kernel" rows time the Kane
+kernel alone (an entry of :data:`offshore_crane.dynamics.REGISTRY`) with the options
+:func:`offshore_crane.dynamics.solve` would pass it (condition numbers when the legs are
+evaluated), pruned against unpruned, for each backend; "solve" rows time the whole call (checks included). Import
 costs are measured in fresh interpreters. The pruned and unpruned results are compared
 too (max relative difference), to show that each pruning is exact.
 """
@@ -29,8 +29,9 @@ sys.path.insert(0, str(ROOT / "src"))
 
 import offshore_crane as oc  # noqa: E402
 from offshore_crane import scenes, trajectories  # noqa: E402
-from offshore_crane.dynamics import fused, solve  # noqa: E402
-from offshore_crane.dynamics.fused import Options, fused_inverse_dynamics  # noqa: E402
+from offshore_crane.dynamics import REGISTRY, numba_available, solve  # noqa: E402
+from offshore_crane.dynamics.kernels import Options  # noqa: E402
+from offshore_crane.kinematics.formulas import MASSLESS  # noqa: E402
 
 G = np.array([0.0, 0.0, -9.81])
 ARM = ("T1", "T2", "Fs")
@@ -58,12 +59,13 @@ def row(label: str, t_unpruned: float, t_pruned: float, err: float | None = None
             f"{t_unpruned / t_pruned:>9.2f}{tail}")
 
 
-def kernel_rows(label, fd, q, qd, qdd, unpruned: Options, pruned: Options, repeat, cols=None):
-    backends = ("numpy", "numba") if fused.numba_available() else ("numpy",)
+def kernel_rows(label, robot, q, qd, qdd, unpruned: Options, pruned: Options, repeat,
+                cols=None):
+    backends = ("numpy", "numba") if numba_available() else ("numpy",)
     out = []
     for b in backends:
         def run(opts):
-            return fused_inverse_dynamics(fd, q, qd, qdd, G, opts, backend=b)[0]
+            return REGISTRY[("kane", b)](robot, q, qd, qdd, G, opts, 1)[0]
         X0, X1 = run(unpruned), run(pruned)
         c = slice(None) if cols is None else cols
         out.append(row(f"{label} [kernel, {b}]", median_time(lambda: run(unpruned), repeat),
@@ -93,13 +95,13 @@ def main() -> int:
     robot = oc.load_robot()
     t = trajectories.time_grid()
     q, qd, qdd = trajectories.table1(t)
-    full_opts = Options(conditioning=True, diagnostics=True)
+    full_opts = Options(conditioning=True)
     print(f"Table 1 default span: {len(t)} samples; median of {n} runs after a warm-up; "
-          f"Numba {'installed' if fused.numba_available() else 'absent'}")
+          f"Numba {'installed' if numba_available() else 'absent'}")
     print(f"{'pruning':<58}{'full [ms]':>10}{'pruned':>10}{'speed-up':>9}{'max rel.':>12}")
     lines = []
     # 1. arm-only outputs: no leg kinematics or dynamics
-    lines += kernel_rows("arm-only outputs (T1, T2, Fs)", robot.fused, q, qd, qdd, full_opts,
+    lines += kernel_rows("arm-only outputs (T1, T2, Fs)", robot, q, qd, qdd, full_opts,
                          Options(legs=False), n, cols=slice(0, 3))
     Xf, Xa = solve(robot, q, qd, qdd).X, solve(robot, q, qd, qdd, outputs=ARM).X
     lines.append(row("arm-only outputs (T1, T2, Fs) [solve]",
@@ -110,10 +112,10 @@ def main() -> int:
     qs, qds, qdds = q.copy(), qd.copy(), qdd.copy()
     qs[:, :6] = (0.0, 0.0, 0.5, 0.0, 0.0, 0.0)
     qds[:, :6] = qdds[:, :6] = 0.0
-    lines += kernel_rows("static platform (all outputs)", robot.fused, qs, qds, qdds, full_opts,
-                         Options(platform_static=True, conditioning=True, diagnostics=True), n)
-    lines += kernel_rows("static platform + arm-only (fixed deck)", robot.fused, qs, qds,
-                         qdds, full_opts, Options(legs=False, platform_static=True), n,
+    lines += kernel_rows("static platform (all outputs)", robot, qs, qds, qdds, full_opts,
+                         Options(static=True, conditioning=True), n)
+    lines += kernel_rows("static platform + arm-only (fixed deck)", robot, qs, qds,
+                         qdds, full_opts, Options(legs=False, static=True), n,
                          cols=slice(0, 3))
     deck, crane = scenes.load_scene(ROOT / "scenes/arm_fixed_deck.toml"), scenes.Scene()
     deck_traj = scenes.load_trajectory(deck, robot)
@@ -124,9 +126,8 @@ def main() -> int:
                          scenes.run(crane, robot, deck_traj).result.X[:, :3])))
     # 3. massless legs (a robot whose legs weigh nothing): no leg inertia terms
     light = oc.load_robot(leg_lower_mass=0.0, leg_upper_mass=0.0)
-    lines += kernel_rows("massless-leg robot (leg inertia terms)", light.fused, q, qd, qdd,
-                         full_opts, Options(leg_model="massless", conditioning=True,
-                                            diagnostics=True), n)
+    lines += kernel_rows("massless-leg robot (leg inertia terms)", light, q, qd, qdd,
+                         full_opts, Options(leg_model=MASSLESS, conditioning=True), n)
     for line in lines:
         print(line)
 
@@ -135,20 +136,25 @@ def main() -> int:
     for module in ("pinocchio", "matplotlib.pyplot", "xacro", "yourdfpy"):
         print(f"  {module:<20}{import_cost(module, n) * 1e3:>9.1f} ms")
     from offshore_crane.model import Robot
+    from offshore_crane.model.description import resolve
     from offshore_crane.model.xacro_cache import expand
 
+    spec = resolve()
+    data = spec.xacro_data()
     with tempfile.TemporaryDirectory() as tmp:
         def miss():
             os.environ["OFFSHORE_CRANE_CACHE"] = tempfile.mkdtemp(dir=tmp)
-            return expand({})
+            return expand(data)
 
         t_miss = median_time(miss, n)
-        t_hit = median_time(lambda: expand({}), n)
+        t_hit = median_time(lambda: expand(data), n)
         os.environ.pop("OFFSHORE_CRANE_CACHE")
-    urdf, path = expand({})
-    t_parse = median_time(lambda: Robot(urdf, path, {}), n)
+    urdf, path = expand(data)
+    t_resolve = median_time(resolve, n)
+    t_parse = median_time(lambda: Robot(urdf, path, spec), n)
     t_memo = median_time(lambda: oc.load_robot(), n)
-    print(f"URDF: xacro expansion {t_miss * 1e3:.1f} ms, cache hit {t_hit * 1e3:.2f} ms, "
+    print(f"robot: description resolved and checked {t_resolve * 1e3:.1f} ms, xacro "
+          f"expansion {t_miss * 1e3:.1f} ms, cache hit {t_hit * 1e3:.2f} ms, "
           f"URDF parse + model {t_parse * 1e3:.2f} ms, load_robot memo hit "
           f"{t_memo * 1e6:.1f} µs")
 
