@@ -55,8 +55,14 @@ class EquationsOfMotion:
     gimbal: np.ndarray | None = None
 
 
+#: Names of q̈'s columns, for messages.
+_QDD_NAMES = tuple(f"q̈{c_[1:]}" for c_ in COORDINATES)
+_DEFAULT_THRESHOLDS = ws.Thresholds()
+
+
 def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, checks=True,
-         limits=True, thresholds=ws.Thresholds(), t=None, threads=1) -> EquationsOfMotion:
+         limits=True, thresholds=_DEFAULT_THRESHOLDS, t=None,
+         threads=1) -> EquationsOfMotion:
     from . import _compiled, _threaded, _threads
 
     c = _compiled()
@@ -84,7 +90,13 @@ def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, chec
                   checks, limits, thresholds.warn, thresholds.error, start, stop, out["qdd"],
                   out["M"], out["h"], out["A"], kappa, health)
 
-    health = _threaded(run, N, _threads(threads))
+    if N == 1:                                    # one sample: no thread machinery
+        health = ws.new_health()
+        run(0, 1, health)
+    else:
+        health = _threaded(run, N, _threads(threads))
+    if ws.is_clean(health):                    # the common case: nothing to report
+        return _result(out, (qdd, M, h, A), kappa if checks else None)
     ws.check_inputs(health, (q, qd, Xa))
     if limits:
         ws.check_workspace(health, arrays.limits, q, t)
@@ -99,12 +111,48 @@ def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, chec
             kind="attitude")
     if checks:
         ws.check_singularities(health, kappa, thresholds, t, (ws.GIMBAL, ws.ATTITUDE))
-    ws.check_outputs(health, [f"q̈{c_[1:]}" for c_ in COORDINATES], (q, qd, Xa), t)
-    res = EquationsOfMotion(**{k: (v if flag else None) for (k, v), flag in zip(
-        out.items(), (qdd, M, h, A))})
-    if checks:
+    ws.check_outputs(health, _QDD_NAMES, (q, qd, Xa), t)
+    return _result(out, (qdd, M, h, A), kappa if checks else None)
+
+
+def _result(out: dict, wanted, kappa) -> EquationsOfMotion:
+    res = EquationsOfMotion(**{k: (v if flag else None)
+                               for (k, v), flag in zip(out.items(), wanted)})
+    if kappa is not None:
         res.attitude, res.gimbal = kappa[2], kappa[1]
     return res
+
+
+_UNUSED9 = np.empty((1, 9))           # outputs the kernel is told not to write
+_UNUSED99 = np.empty((1, 9, 9))
+_G0 = np.asarray(GRAVITY, dtype=float)
+
+
+def _is_state(x) -> bool:
+    return (type(x) is np.ndarray and x.shape == (9,) and x.dtype == np.float64
+            and x.flags.c_contiguous)
+
+
+def _lean(robot, q, qd, X, gravity):
+    """One sample with the default options and a clean health record, with as little
+    Python as possible (a controller's or a user's per-step call); None when anything
+    is unusual (then the general path runs, and reports)."""
+    if not (_is_state(q) and _is_state(qd) and _is_state(X)):
+        return None
+    from . import _compiled
+
+    arrays = robot_arrays(robot)
+    if arrays.kane.n_arm != 3:
+        return None
+    g = _G0 if gravity is GRAVITY else as_gravity(gravity)
+    qdd = np.empty((1, 9))
+    kappa = np.empty((3, 1))
+    health = ws.new_health()
+    t = _DEFAULT_THRESHOLDS
+    _compiled().forward(arrays.flat, arrays.layout, arrays.prismatic, q[None], qd[None],
+                        X[None], g, True, False, False, False, True, True, t.warn, t.error,
+                        0, 1, qdd, _UNUSED99, _UNUSED9, _UNUSED99, kappa, health)
+    return qdd[0] if ws.is_clean(health) else None
 
 
 def mass_matrix(robot, q, **options) -> np.ndarray:
@@ -157,6 +205,10 @@ def forward_dynamics(robot, q, qd, X, gravity=GRAVITY, method: str = "kane",
     if method not in FORWARD_METHODS:
         raise InputError(f"unknown method {method!r}: use one of {', '.join(FORWARD_METHODS)}",
                          name="method")
+    if not options and method == "kane":
+        qdd = _lean(robot, q, qd, X, gravity)
+        if qdd is not None:
+            return qdd
     single = np.ndim(q) == 1
     if method == "pinocchio":
         from ..reference.constrained import forward_dynamics as pin_fd

@@ -102,13 +102,19 @@ def new_health() -> np.ndarray:
     return _EMPTY.copy()
 
 
+def is_clean(health: np.ndarray) -> bool:
+    """True when the record holds nothing to report (no bad input or result, no workspace
+    violation, no κ above a threshold): one comparison."""
+    return bool((health[_FIRST] < 0.0).all())
+
+
 def enforce(health: np.ndarray, arrays, limits, kappa, thresholds, error_kinds, t=None):
     """Every check of a kernel's health record, in order: inputs, workspace (when
     ``limits`` is given), singularities (when ``kappa`` is given), finite results.
 
     A clean record (the common case) is recognised with one comparison.
     """
-    if (health[_FIRST] < 0.0).all():
+    if is_clean(health):
         return
     h = health.tolist()
     check_inputs(h, arrays)
