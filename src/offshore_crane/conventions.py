@@ -47,3 +47,7 @@ INERTIA_RTOL = 1e-6
 #: Numba and the cached kernels costs ~1.2 s, the NumPy kernels ~2 µs a sample more
 #: (:func:`offshore_crane.dynamics.quick_backend`).
 NUMBA_MIN = 500_000
+
+#: Wave spectra of :mod:`offshore_crane.sea` (here so that the command line lists them
+#: without importing the sea module).
+SPECTRA = ("jonswap", "pierson-moskowitz")

@@ -72,6 +72,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .conventions import SPECTRA
 from .errors import SeaStateError, SeaWorkspaceError, WorkspaceError
 from .operations import _as_times
 
@@ -85,7 +86,6 @@ __all__ = ["DOFS", "SPECTRA", "RAO_COLUMNS", "VESSELS", "DEFAULT_DIRECTIONS",
 #: rad, rad].
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 #: Spectrum kinds accepted by :func:`spectrum`.
-SPECTRA = ("jonswap", "pierson-moskowitz")
 #: Header of a RAO table CSV file.
 RAO_COLUMNS = ("omega_rad_s", "heading_deg", "dof", "amplitude", "phase_rad")
 #: Packaged vessels: name -> RAO file in ``offshore_crane/data/vessels``.

@@ -18,7 +18,7 @@ WELCH_SEGMENT_S = 20.48
 
 
 def add_parser(sub) -> None:
-    from ..sea import SPECTRA
+    from ..conventions import SPECTRA
     from . import add_robot_options
 
     doc = __doc__.splitlines()

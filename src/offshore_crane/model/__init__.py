@@ -108,14 +108,6 @@ class Robot:
                 f"total_mass={self.hybrid.total_mass:.3f} kg)")
 
 
-def _frozen(value):
-    if isinstance(value, dict):
-        return tuple(sorted((k, _frozen(v)) for k, v in value.items()))
-    if isinstance(value, (list, tuple)):
-        return tuple(_frozen(v) for v in value)
-    return (type(value).__name__, value)
-
-
 def load_robot(description=None, overrides: dict | None = None, **aliases) -> Robot:
     """Load a robot from its description file, with overrides.
 
@@ -138,7 +130,7 @@ def load_robot(description=None, overrides: dict | None = None, **aliases) -> Ro
         ModelError: the expanded URDF is invalid (should not happen for a valid
             description).
     """
-    from .description import default_description, read_toml, resolve_data
+    from .description import default_description, frozen, resolve
     from .overrides import normalise
 
     merged = dict(overrides or {})
@@ -161,14 +153,14 @@ def load_robot(description=None, overrides: dict | None = None, **aliases) -> Ro
         content = Path(path).read_bytes()
     except OSError:
         content = b""                       # read_toml names the problem below
-    key = (os.path.abspath(path), hashlib.sha256(content).hexdigest(), _frozen(canonical))
+    key = (os.path.abspath(path), hashlib.sha256(content).hexdigest(), frozen(canonical))
     robot = _ROBOTS.get(key)
     if robot is not None:
         return robot
     with _ROBOTS_LOCK:
         robot = _ROBOTS.get(key)
         if robot is None:
-            spec = resolve_data(read_toml(path), path, canonical)
+            spec = resolve(path, canonical)
             urdf, cached = expand(spec.xacro_data())
             robot = _ROBOTS[key] = Robot(urdf, cached, spec)
     return robot
