@@ -1,6 +1,7 @@
-"""Time per sample of Pinocchio's closed-loop forward dynamics on the robot's tree.
+"""Forward dynamics and simulation speed: ours against Pinocchio's closed-loop forward
+dynamics on the robot's tree, side by side in one run (issue 13's speed targets).
 
-    PYTHONPATH=src python benchmarks/pinocchio_fd.py [--samples N] [--repeats R]
+    python benchmarks/pinocchio_fd.py [--samples N] [--repeats R]
 
 On Table 1's states (every ``3142 // N``-th sample) with X from the Kane inverse
 dynamics, one Pinocchio call per sample from Python (Pinocchio has no batched form):
@@ -15,7 +16,13 @@ dynamics, one Pinocchio call per sample from Python (Pinocchio has no batched fo
   even after ``initConstraintDynamics``: errors of tens of percent), for a few proximal
   ``mu`` (lcaba needs mu > 0; its round-off grows like eps/mu, its passes with mu);
 - the loop-closure solve alone (:func:`tree_states`), and the whole reference
-  (:func:`constrained_dynamics`: tree solve + constraintDynamics + residual checks).
+  (:func:`constrained_dynamics`: tree solve + constraintDynamics + residual checks);
+- ours: :func:`offshore_crane.forward_dynamics` batched at N = 10⁴ (Table 1 states) and
+  one sample per call from Python, and ``simulate`` of 60 s at 1 kHz (RK4, built-in
+  computed torque, compiled) as a real-time factor.
+
+The targets (ours batched ≤ 0.5 × constraintDynamics' call, ours single ≤ 1 ×, real-time
+factor ≥ 10) are printed with the measured ratios.
 
 Each Pinocchio call is timed alone (``perf_counter_ns``); the Python-level functions are
 timed per batch and divided by N. Medians and minima over ``R`` repeats are printed, with
@@ -139,6 +146,30 @@ def main(argv=None) -> int:
     d = per_batch(lambda: oc.inverse_dynamics(robot, q, qd, qdd), n, args.repeats)
     rows.append((f"Kane inverse_dynamics, batched N = {n}", d, None, float("nan")))
 
+    fd = oc.forward_dynamics
+    d = per_call(lambda k: fd(robot, q[k], qd[k], X[k]), n, args.repeats)
+    ours_single = np.median(d)
+    rows.append(("Kane forward_dynamics, one sample per call", d.sum(axis=1) / n, d,
+                 error_of(fd(robot, q, qd, X), qdd, scale)))
+    tb = oc.trajectories.time_grid(100.0, 100.0)[:10_000]           # N = 10^4
+    qb, qdb, qddb = oc.trajectories.table1(tb)
+    Xb = oc.inverse_dynamics(robot, qb, qdb, qddb)
+    d = per_batch(lambda: fd(robot, qb, qdb, Xb), len(tb), args.repeats)
+    ours_batch = np.median(d)
+    rows.append((f"Kane forward_dynamics, batched N = {len(tb)}", d, None,
+                 error_of(fd(robot, qb, qdb, Xb), qddb, np.abs(fd(robot, qb, qdb,
+                                                                 0 * Xb)).max())))
+
+    from offshore_crane.simulate import simulate
+
+    simulate(robot, 0.01, oc.trajectories.table1)                   # load the loop
+    walls = []
+    for _ in range(max(1, args.repeats // 2)):
+        t0 = time.perf_counter()
+        simulate(robot, 60.0, oc.trajectories.table1, step=1e-3)
+        walls.append(time.perf_counter() - t0)
+    rtf = 60.0 / min(walls)
+
     base = np.median(ref)
     print(f"pin {pin.__version__}, {n} Table 1 states, {args.repeats} repeats; "
           "times per sample [µs]")
@@ -153,7 +184,22 @@ def main(argv=None) -> int:
     print("median/min: per-sample time of a whole pass (median, minimum over repeats);"
           " call med/min: single calls; ratio: median against constraintDynamics' call; "
           "error: max |Δq̈| / max |q̈ with X = 0| against the Kane accelerations")
+    print(f"\nsimulate 60 s at 1 kHz (RK4, computed torque, compiled): "
+          f"{min(walls):.2f} s (best of {len(walls)}), real-time factor {rtf:.1f}")
+    print("\n| target | measured | met |\n| --- | --- | --- |")
+    for label, value, limit in (
+            ("forward dynamics batched (N = 10⁴) ≤ 0.5 × constraintDynamics call",
+             ours_batch / base, 0.5),
+            ("forward dynamics, one sample ≤ 1 × constraintDynamics call",
+             ours_single / base, 1.0)):
+        print(f"| {label} | {value:.2f} × | {value <= limit} |")
+    print(f"| simulate 60 s at 1 kHz, real-time factor ≥ 10 | {rtf:.1f} | {rtf >= 10} |")
     return 0
+
+
+def error_of(a, b, scale) -> float:
+    """max |a − b| / scale."""
+    return float(np.abs(a - b).max() / scale)
 
 
 if __name__ == "__main__":

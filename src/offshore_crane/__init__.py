@@ -3,9 +3,11 @@
 Quick start::
 
     import offshore_crane as oc
-    robot = oc.load_robot()                      # expands models/offshore_crane.urdf.xacro
+    robot = oc.load_robot()                      # models/descriptions/lab.toml -> URDF
     q, qd, qdd = oc.trajectories.table1(t)       # (N, 9) each
     X = oc.inverse_dynamics(robot, q, qd, qdd)   # (N, 9): T1, T2 [N·m], Fs, Fl1..Fl6 [N]
+    qdd2 = oc.forward_dynamics(robot, q, qd, X)  # (N, 9), = qdd to round-off
+    run = oc.simulate(robot, 10.0, oc.trajectories.table1, controller=oc.Controller())
 
 Heavy dependencies (pinocchio, matplotlib, xacro, yourdfpy) are imported only when used.
 """
@@ -13,20 +15,28 @@ Heavy dependencies (pinocchio, matplotlib, xacro, yourdfpy) are imported only wh
 from __future__ import annotations
 
 from .dynamics import inverse_dynamics
-from .errors import (BackendMissingError, InputError, ModelError, NumericalError,
-                     OffshoreCraneError, SceneError, SingularConfigurationError,
-                     TrajectoryError, WorkspaceError)
+from .dynamics.forward import (actuation_matrix, bias_forces, equations_of_motion,
+                               forward_dynamics, mass_matrix)
+from .errors import (BackendMissingError, ConstraintResidualError, DescriptionError,
+                     InputError, ModelError, NumericalError, OffshoreCraneError, OutputError,
+                     SceneError, SeaStateError, SeaWorkspaceError, SimulationError,
+                     SingularConfigurationError, TrajectoryError, WorkspaceError)
 from .conventions import ACTUATORS, ACTUATOR_UNITS, GRAVITY
 from .kinematics.workspace import OffshoreCraneWarning, Thresholds
 from .model import Robot, load_robot
+from .control import Controller
+from .simulate import SimulationResult, simulate     # the function (the module: sys.modules)
 
 __version__ = "0.1.0"
 
-__all__ = ["load_robot", "inverse_dynamics", "trajectories", "Robot", "ACTUATORS",
+__all__ = ["load_robot", "inverse_dynamics", "forward_dynamics", "mass_matrix",
+           "bias_forces", "actuation_matrix", "equations_of_motion", "simulate",
+           "SimulationResult", "Controller", "trajectories", "Robot", "ACTUATORS",
            "ACTUATOR_UNITS", "GRAVITY", "Thresholds", "OffshoreCraneWarning",
            "OffshoreCraneError", "InputError", "TrajectoryError", "SceneError", "ModelError",
-           "WorkspaceError", "SingularConfigurationError", "NumericalError",
-           "BackendMissingError"]
+           "DescriptionError", "WorkspaceError", "SingularConfigurationError",
+           "NumericalError", "ConstraintResidualError", "SimulationError", "OutputError",
+           "SeaStateError", "SeaWorkspaceError", "BackendMissingError"]
 
 
 def __getattr__(name):
