@@ -24,8 +24,8 @@ def test_table1_default_span(robot, table1, kane):
 
 
 @pytest.mark.parametrize("kane", ["kane", "kane-explicit"])
-def test_1000_random_states(robot, kane):
-    q, qd, qdd = random_states(robot, 1000, seed=20261122)
+def test_10000_random_states(robot, kane):
+    q, qd, qdd = random_states(robot, 10_000, seed=20261122)
     Xk = oc.inverse_dynamics(robot, q, qd, qdd, method=kane)
     Xr = oc.inverse_dynamics(robot, q, qd, qdd, method="rnea")
     assert relative_error(Xk, Xr) <= LIMIT
