@@ -25,6 +25,10 @@ from .constants import FIELDS
 from .formulas import KaneConstants
 
 JIT = dict(cache=True, nogil=True, error_model="numpy")
+# No fastmath: measured on the fused driver, reassociation saves 8 % (1.37 against 1.50 µs
+# a sample at N = 10⁴) but lets LLVM fold the drivers' own non-finite checks (a NaN input
+# then passes as finite: the callees are compiled with the caller's flags); contraction,
+# signless zeros and fast reciprocals alone save 4 %, not worth a second float model.
 def _jit_formula(f):
     """Compile a formula, inlined into its caller: the fused Kane driver becomes one
     function that LLVM optimises whole (measured: 1.5 µs a sample against 2.3 µs with
@@ -156,7 +160,7 @@ def _first(health, slot, k, a, b):
 @njit(**JIT)
 def _kappa(health, kind, k, value, warn, error):
     s = _KAPPA + 4 * kind
-    if value > health[s] or (value != value and health[s] == health[s]):
+    if value > health[s] or (np.isnan(value) and not np.isnan(health[s])):
         health[s] = value
         health[s + 1] = k
     if health[s + 2] < 0.0 and value > warn:
@@ -173,7 +177,7 @@ def _finite_inputs(q, qd, qdd, k, health):
     total = 0.0
     for j in range(9):
         total += q[k, j] + qd[k, j] + qdd[k, j]
-    if total - total == 0.0:
+    if np.isfinite(total):
         return True
     for which in range(3):
         arr = q if which == 0 else (qd if which == 1 else qdd)
@@ -224,7 +228,7 @@ def _check(k, q, na, diag, cond, want_legs, want_cond, want_limits, warn, error,
         _kappa(health, 2, k, att, warn, error)
         kappa[0, k] = cond
         if want_legs:
-            if cond == cond:
+            if not np.isnan(cond):
                 _kappa(health, 0, k, cond, warn, error)
             worst = diag[_COS, 0]
             for l in range(1, 6):
