@@ -130,3 +130,20 @@ def test_actuators_section_is_a_description_override(tmp_path, capsys):
     bad.write_text("[actuators]\nFl.push_max = -1.0\n", encoding="utf-8")
     with pytest.raises(SceneError, match=r"actuators\.Fl\.push_max"):
         scenes.load_scene(bad)
+
+
+def test_describe_writes_the_yaml_the_xacro_reads(tmp_path, capsys):
+    """`describe` prints the resolved description; expanding the xacro with it gives the
+    URDF load_robot builds (same overrides)."""
+    import yaml
+    from offshore_crane.model.xacro_cache import run_xacro
+
+    out = tmp_path / "lab.yaml"
+    assert main(["describe", "--set", "platform_mass=55", "--out", str(out)]) == 0
+    data = yaml.safe_load(out.read_text(encoding="utf-8"))
+    assert data["platform"]["mass"] == 55.0
+    urdf = run_xacro(out.read_text(encoding="utf-8"))
+    robot = oc.load_robot(platform_mass=55)
+    assert urdf.split("\n", 3)[3] == robot.urdf.split("\n", 3)[3]   # past xacro's header
+    status, _, err = _run(["describe", "--set", "platform_mass=-1"], capsys)
+    assert status == 2 and "platform.mass: -1 kg is negative" in err

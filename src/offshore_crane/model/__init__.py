@@ -24,7 +24,7 @@ from ..conventions import (ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, ARM_JOINT
                            PLATFORM_JOINTS)
 from .hybrid import HybridModel
 from .urdf import URDF, parse_urdf
-from .xacro_cache import expand, xacro_arguments, xacro_path
+from .xacro_cache import expand, xacro_path
 
 __all__ = ["Robot", "load_robot", "ACTUATORS", "ACTUATOR_UNITS", "ACTUATED_JOINTS",
            "ARM_JOINTS", "PLATFORM_JOINTS", "xacro_arguments"]
@@ -106,6 +106,14 @@ class Robot:
         name = self.spec.name if self.spec is not None else "urdf"
         return (f"Robot({name!r}, overrides={self.overrides}, "
                 f"total_mass={self.hybrid.total_mass:.3f} kg)")
+
+
+def xacro_arguments() -> dict[str, str]:
+    """The flat parameter names of earlier versions with their default values (text):
+    :func:`offshore_crane.model.overrides.xacro_arguments`."""
+    from .overrides import xacro_arguments as arguments
+
+    return arguments()
 
 
 def load_robot(description=None, overrides: dict | None = None, **aliases) -> Robot:

@@ -1384,30 +1384,3 @@ def _xacro_data(d: Description) -> dict:
         arm["tip"] = {"origin": _floats(tip_origin), "rpy": _floats(tip_rpy)}
         data["arm"] = arm
     return data
-
-
-def main(argv=None) -> int:
-    """``python -m offshore_crane.model.description FILE.toml [NAME=VALUE ...]``: print the
-    resolved description as the YAML the xacro reads (to expand the xacro by hand:
-    ``xacro models/offshore_crane.urdf.xacro description:=$PWD/FILE.yaml``)."""
-    import sys
-
-    from .overrides import parse_set
-    from .xacro_cache import description_yaml
-
-    args = list(sys.argv[1:] if argv is None else argv)
-    if not args or args[0].startswith("-"):
-        sys.stderr.write("usage: python -m offshore_crane.model.description FILE.toml "
-                         "[NAME=VALUE ...]\n")
-        return 2
-    try:
-        d = resolve(args[0], parse_set(args[1:]))
-    except Exception as exc:                 # noqa: BLE001 - one line, exit status 2
-        sys.stderr.write(f"error: {exc}\n")
-        return 2
-    sys.stdout.write(description_yaml(d.xacro_data()))
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -32,6 +32,7 @@ from __future__ import annotations
 import difflib
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 from ..errors import DescriptionError, InputError
 from .description import (MAGNITUDE_LIMIT, Leaf, _boolean, _components, field_names,
@@ -360,3 +361,18 @@ def alias_table() -> list[tuple[str, str, str]]:
         for comp in _components(leaf):
             units[".".join((name, *comp))] = leaf.unit
     return [(a, n, units.get(n, "")) for a, n in ALIASES.items()]
+
+
+def xacro_arguments() -> dict[str, str]:
+    """The flat parameter names of earlier versions (now aliases of dotted names,
+    :data:`ALIASES`) and their values (as text) in the default description, in alias
+    order (kept for callers of the former xacro arguments)."""
+    return dict(_default_parameters())
+
+
+@lru_cache(maxsize=1)
+def _default_parameters() -> tuple:
+    from .description import resolve
+
+    d = resolve()
+    return tuple(legacy_parameters(d.values, d.has_arm).items())

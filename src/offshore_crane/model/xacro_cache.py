@@ -221,23 +221,3 @@ def expand(data: dict, path: Path | None = None) -> tuple[str, Path | None]:
         return urdf, cached
     urdf = run_xacro(description_yaml(data), path)
     return urdf, (cached if write_entry(cached, urdf) else None)
-
-
-def xacro_arguments(path=None) -> dict[str, str]:
-    """The flat parameter names of earlier versions (now aliases of dotted names) and
-    their values (as text) in the default description, in alias order.
-
-    Kept for callers of the former xacro arguments; see
-    :data:`offshore_crane.model.overrides.ALIASES`.
-    """
-    del path                                   # the xacro has no parameter arguments now
-    return dict(_default_parameters())
-
-
-@lru_cache(maxsize=1)
-def _default_parameters() -> tuple:
-    from .description import resolve
-    from .overrides import legacy_parameters
-
-    d = resolve()
-    return tuple(legacy_parameters(d.values, d.has_arm).items())
