@@ -24,6 +24,10 @@ LEG_ACTUATORS = ACTUATORS[3:]
 PLATFORM_JOINTS = ("platform_x", "platform_y", "platform_z",
                    "platform_roll", "platform_pitch", "platform_yaw")   # q1..q6
 ARM_JOINTS = ("arm_joint1", "arm_joint2", "arm_slide")                  # q7..q9
+#: The hanging load's sway joints (when payload.cable_length > 0): phi1 about x of arm_tip,
+#: phi2 about the rotated y (docs/cable.md); they follow the arm joints in the tree.
+CABLE_JOINTS = ("cable_joint1", "cable_joint2")
+SWAY = ("phi1", "phi2")
 LEG_JOINTS = tuple((f"leg{i}_u1", f"leg{i}_u2", f"leg{i}_slide")
                    for i in range(1, N_LEGS + 1))
 ACTUATED_JOINTS = ARM_JOINTS + tuple(j[2] for j in LEG_JOINTS)

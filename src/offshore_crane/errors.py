@@ -281,3 +281,27 @@ def require(module: str, package: str, purpose: str):
             f"run `pip install {package}`.",
             package=package,
         ) from exc
+
+
+class SlackCableError(OffshoreCraneError, ArithmeticError):
+    """The hanging payload's cable went slack: the tension it would need is ≤ 0, so the
+    pendulum model (an inextensible cable, taut) no longer holds there.
+
+    Raised by :mod:`offshore_crane.cable` at the first such sample (unless asked to warn
+    and mark the samples instead).
+
+    Attributes:
+        index: The first slack sample.
+        time: Its time [s].
+        tension: The tension the model gives there [N] (≤ 0).
+        result: The run up to (not including) that sample, every sample computed before it
+            kept (a :class:`~offshore_crane.cable.CableResult`).
+    """
+
+    def __init__(self, message: str, index: int | None = None, time: float | None = None,
+                 tension: float | None = None, result=None):
+        super().__init__(message)
+        self.index = index
+        self.time = time
+        self.tension = tension
+        self.result = result

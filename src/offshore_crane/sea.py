@@ -1136,7 +1136,7 @@ def _violation(robot, q, t):
 
     zeros = np.zeros_like(q)
     try:
-        solve(robot, q, zeros, zeros, t=t, limits=True, checks=False,
+        solve(robot.without_hanging_payload(), q, zeros, zeros, t=t, limits=True, checks=False,
               backend=quick_backend(len(q)))
     except WorkspaceError as exc:
         return exc

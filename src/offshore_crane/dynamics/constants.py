@@ -14,6 +14,7 @@ import numpy as np
 from .formulas import KaneConstants
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+_CABLE_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 @dataclass(frozen=True)
@@ -103,10 +104,51 @@ def build(model) -> RobotArrays:
 
 
 def robot_arrays(robot) -> RobotArrays:
-    """:func:`build` of ``robot.hybrid``, cached per robot."""
+    """:func:`build` of ``robot.hybrid``, cached per robot.
+
+    Raises:
+        ModelError: the robot's payload hangs on a cable: its forces depend on the sway
+            state, which these arrays (the robot without its payload) cannot give.
+    """
     out = _CACHE.get(robot)
     if out is None:
+        if robot.hybrid.cable is not None:
+            from ..errors import ModelError
+
+            raise ModelError(
+                f"this robot's payload hangs on a cable (payload.cable_length = "
+                f"{robot.hybrid.cable_length:g} m): its forces depend on the swing, so "
+                "the rigid-robot solvers do not apply; use offshore_crane.cable "
+                "(inverse_dynamics; the command line's id does it), or cable_length = 0 "
+                "for a welded payload", element="payload.cable_length")
         out = _CACHE[robot] = build(robot.hybrid)
+    return out
+
+
+def cable_arrays(robot) -> RobotArrays:
+    """:func:`build` of the robot with its hanging payload: the arm chain continued by the
+    two sway joints and the payload (``robot.hybrid.cable``, 5 joints), cached per robot.
+    The sway joints are unlimited (the URDF gives them ±π only because URDF needs limits).
+
+    Raises:
+        ModelError: the robot has no payload on a cable.
+    """
+    from dataclasses import replace
+
+    out = _CABLE_CACHE.get(robot)
+    if out is None:
+        model = robot.hybrid
+        if model.cable is None:
+            from ..errors import ModelError
+
+            raise ModelError("the robot has no payload on a cable (payload.cable_length = 0)",
+                             element="payload.cable_length")
+        chain = model.cable
+        n = chain.n
+        free = np.arange(n) >= model.arm.n
+        chain = replace(chain, lower=np.where(free, -np.inf, chain.lower),
+                        upper=np.where(free, np.inf, chain.upper))
+        out = _CABLE_CACHE[robot] = build(replace(model, arm=chain))
     return out
 
 

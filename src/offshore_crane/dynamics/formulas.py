@@ -38,6 +38,8 @@ from __future__ import annotations
 
 from collections import namedtuple
 
+from numpy import sqrt
+
 from ..kinematics.formulas import (FULL, MASSLESS, add, arm_child, arm_joint, attitude, axpy,
                                    cross, platform_partials, put, take, dot, leg_frame, leg_geometry, leg_motion,
                                    leg_spin, mat3, mm, mtv, mv, platform_rates,
@@ -373,3 +375,47 @@ def actuator_coordinates(C, q, qd, pos, rate):
         r, d, length, il, u, dx, dy, dz, h = leg_geometry(p, R, s, P, X, Y, Z)
         pos[3 + l] = length
         rate[3 + l] = dot(u, point_velocity(v, omega, r))
+
+
+# --------------------------------------------------------------------------- hanging load
+# With a payload on a cable the arm chain ``C`` continues by the two sway joints (φ1 about
+# x of arm_tip, φ2 about the rotated y) and the payload, a point mass L below them
+# (``C.n_arm = 5``; q, q̇, q̈ have 11 entries: q1..q9, φ1, φ2). Kane's equations of the
+# sway speeds are rows 3 and 4 of the arm pass (no actuator acts there):
+# ``rows[3:5] = M_φφ φ̈ + b = 0``.
+def sway_mass(C, store):
+    """The sway joints' 2x2 generalized inertia ``(M33, M34, M44)`` [kg·m²] from the arm
+    pass's ``store``: ``M_jk = m (z_j × ρ)·(z_k × ρ)`` with ρ the payload's position from
+    the sway joints' common origin (base axes) and ``z_j`` their axes."""
+    b = C.n_arm - 1
+    rho = take(store, b, RC_)
+    v3 = cross(take(store, b - 1, Z_), rho)
+    v4 = cross(take(store, b, Z_), rho)
+    m = C.arm_m[b]
+    return m * dot(v3, v3), m * dot(v3, v4), m * dot(v4, v4)
+
+
+def sway_accelerations(C, q, qd, qdd, g, rows, store):
+    """``(φ̈1, φ̈2)`` [rad/s²] of the hanging payload under the robot's prescribed motion
+    ``q, q̇, q̈`` (q̈[9:11] must be zero: the pass then gives ``b``), and the sway inertia
+    determinant ``det M_φφ`` [kg²·m⁴] (zero on the singular set ``cos φ2 = 0``, where the
+    cable lies along the φ1 axis)."""
+    R, w4, w5, w6 = attitude(q)
+    omega, alpha = platform_rates(w4, w5, qd, qdd)
+    arm_forward(C, R, omega, alpha, (qdd[0], qdd[1], qdd[2]), q, qd, qdd, 6, g, store, False)
+    arm_backward(C, store, rows)
+    m33, m34, m44 = sway_mass(C, store)
+    det = m33 * m44 - m34 * m34
+    b3 = rows[C.n_arm - 2]
+    b4 = rows[C.n_arm - 1]
+    return (m34 * b4 - m44 * b3) / det, (m34 * b3 - m33 * b4) / det, det
+
+
+def cable_force(C, store):
+    """The cable's pull on the arm tip ``f_tip`` (3,) [N] (base axes) and its tension [N]
+    (> 0 taut), from an arm pass at the true accelerations: the payload's
+    ``m (a − g)`` reversed, and its component along the cable (tip → payload)."""
+    b = C.n_arm - 1
+    f = scale(take(store, b, F_), -1.0)
+    rho = take(store, b, RC_)
+    return f, dot(f, rho) / sqrt(dot(rho, rho))

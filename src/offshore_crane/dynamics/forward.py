@@ -213,6 +213,8 @@ def forward_dynamics(robot, q, qd, X, gravity=GRAVITY, method: str = "kane",
     if method == "pinocchio":
         from ..reference.constrained import forward_dynamics as pin_fd
 
+        robot_arrays(robot)                 # refuses a payload on a cable, like kane
+
         out = pin_fd(robot, q, qd, X, gravity=gravity)
         return out
     qdd = _run(robot, q, qd, X, gravity, qdd=True, **options).qdd

@@ -94,6 +94,15 @@ class Robot:
         h = self.parameters.get("home_height")
         return None if h is None else float(h)
 
+    def without_hanging_payload(self) -> "Robot":
+        """This robot, or for a payload on a cable the same robot without it (its
+        kinematics and workspace, which the payload does not change, for checks that
+        need no force: the rigid solvers refuse a hanging payload)."""
+        if self.hybrid.cable is None:
+            return self
+        return load_robot(self.description_path, {**self.overrides, "payload.mass": 0.0,
+                                                  "payload.cable_length": 0.0})
+
     @cached_property
     def pinocchio_model(self):
         """The equivalent tree as a ``pinocchio.Model`` (imports pinocchio on first use)."""

@@ -1261,7 +1261,19 @@ class _Resolver:
         self._check_inertia("payload.inertia", m, I, "payload.mass")
         cable = self.n.get("payload.cable_length", 0.0)
         if cable < 0.0:
-            self.fail("payload.cable_length", f"{cable:g} m must not be negative")
+            self.fail("payload.cable_length", f"{cable:g} m must not be negative (0: the "
+                      "payload welded to arm_tip; > 0: hanging on a cable of that length)")
+        if cable > 0.0:
+            if not m > 0.0:
+                self.fail("payload.cable_length", f"{cable:g} m: a cable needs a payload to "
+                          "hang from it: give payload.mass > 0, or cable_length = 0",
+                          "payload.mass")
+            if np.any(com != 0.0) or np.any(I != 0.0):
+                self.fail("payload.com" if np.any(com != 0.0) else "payload.inertia",
+                          "with a cable (payload.cable_length > 0) the payload is a point "
+                          "mass at the cable's end: set payload.com = [0, 0, 0] and "
+                          "payload.inertia to zero (the cable length is measured to the "
+                          "centre of mass)", "payload.cable_length")
         return Body(m, com, I, {"type": "none"}), cable
 
     # ------------------------------------------------------------------ actuators
@@ -1369,7 +1381,8 @@ def _xacro_data(d: Description) -> dict:
     data = {"format": FORMAT, "name": d.name, "base": {"visual": _visual(d.base_visual)},
             "platform": _body_data(d.platform), "legs": legs, "arm": None,
             "payload": {"mass": float(d.payload.mass), "com": _floats(d.payload.com),
-                        "inertia": _inertia6(d.payload.inertia)}}
+                        "inertia": _inertia6(d.payload.inertia),
+                        "cable_length": float(d.cable_length)}}
     if d.arm is not None:
         origin, rpy, column = d.arm["column"]
         arm = {"column": {"origin": _floats(origin), "rpy": _floats(rpy),

@@ -12,8 +12,8 @@ from functools import cached_property
 
 import numpy as np
 
-from ..conventions import (ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, ARM_JOINTS, N_LEGS,
-                           PLATFORM_JOINTS)
+from ..conventions import (ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, ARM_JOINTS,
+                           CABLE_JOINTS, N_LEGS, PLATFORM_JOINTS)
 from ..errors import ModelError
 from .chain import SerialChain, chain_from_urdf, merged_inertial
 from .urdf import URDF
@@ -48,6 +48,10 @@ class HybridModel:
         ujoint_limits: ``(6, 2, 2)`` [leg, axis, (lower, upper)] [rad].
         arm: The arm as a :class:`SerialChain` mounted on the platform; it has no
             joints for a Stewart platform without arm (xacro argument ``with_arm = 0``).
+            A payload on a cable is not part of it.
+        cable: With a hanging payload (``payload.cable_length > 0``), the arm chain
+            continued by the two sway joints ``cable_joint1``, ``cable_joint2`` and the
+            payload below them (5 joints: q7, q8, q9, phi1, phi2); None otherwise.
     """
 
     platform_mass: float
@@ -65,6 +69,7 @@ class HybridModel:
     stroke: np.ndarray
     ujoint_limits: np.ndarray
     arm: SerialChain
+    cable: SerialChain | None = None
 
     @property
     def has_arm(self) -> bool:
@@ -84,9 +89,17 @@ class HybridModel:
 
     @property
     def total_mass(self) -> float:
-        """Mass of all bodies [kg] (the contract's 17, fewer without arm, plus a payload)."""
+        """Mass of all bodies [kg] (the contract's 17, fewer without arm, plus a payload,
+        welded or hanging)."""
+        hanging = 0.0 if self.cable is None else float(self.cable.mass[self.arm.n:].sum())
         return float(self.platform_mass + self.lower_mass.sum() + self.upper_mass.sum()
-                     + self.arm.mass.sum())
+                     + self.arm.mass.sum() + hanging)
+
+    @property
+    def cable_length(self) -> float:
+        """Length of the payload's cable [m] (0 for a welded payload): the distance from
+        ``cable_joint2`` to the payload's centre of mass, read from the URDF."""
+        return 0.0 if self.cable is None else float(np.linalg.norm(self.cable.com[-1]))
 
 
 def _check(cond: bool, message: str, element: str):
@@ -151,10 +164,25 @@ def hybrid_from_urdf(urdf: URDF) -> HybridModel:
         ulim.append(((u1.lower, u1.upper), (u2.lower, u2.upper)))
         lower.append(merged_inertial(urdf, u2.child)[:3])
         upper.append(merged_inertial(urdf, sl.child)[:3])
-    arm = chain_from_urdf(urdf, "platform")
+    arm = chain_from_urdf(urdf, "platform", stop_at=CABLE_JOINTS[:1])
     _check(arm.joint_names in (ARM_JOINTS, ()),
            f"the arm's joints are {arm.joint_names}, expected {ARM_JOINTS} (or none: a "
            "Stewart platform without arm)", "arm")
+    cable = None
+    if CABLE_JOINTS[0] in urdf.joints:
+        cable = chain_from_urdf(urdf, "platform")
+        _check(cable.joint_names == ARM_JOINTS + CABLE_JOINTS
+               and all(urdf.joint(j).type == "revolute" for j in CABLE_JOINTS),
+               f"the hanging load's chain is {cable.joint_names}, expected "
+               f"{ARM_JOINTS + CABLE_JOINTS} (revolute sway joints)", CABLE_JOINTS[0])
+        _check(_near(cable.axis[3], (1, 0, 0)) and _near(cable.axis[4], (0, 1, 0))
+               and _near(cable.p_parent_joint[4], 0.0) and _near(cable.R_parent_joint[4],
+                                                                  np.eye(3))
+               and cable.mass[3] == 0.0 and _near(cable.com[4][:2], 0.0)
+               and cable.com[4][2] < 0.0 and _near(cable.inertia[4], 0.0)
+               and cable.mass[4] > 0.0,
+               "the sway joints must be about x then y at one point, the cable link "
+               "massless and the payload a point mass below them on the cable", CABLE_JOINTS[0])
     return HybridModel(
         platform_mass=pm, platform_com=pc, platform_inertia=pI,
         p_platform_S=np.array(S), p_base_P=np.array(P), R_base_U=np.array(RU),
@@ -162,4 +190,4 @@ def hybrid_from_urdf(urdf: URDF) -> HybridModel:
         lower_inertia=np.array([x[2] for x in lower]),
         upper_mass=np.array([x[0] for x in upper]), upper_com=np.array([x[1] for x in upper]),
         upper_inertia=np.array([x[2] for x in upper]),
-        stroke=np.array(stroke), ujoint_limits=np.array(ulim), arm=arm)
+        stroke=np.array(stroke), ujoint_limits=np.array(ulim), arm=arm, cable=cable)

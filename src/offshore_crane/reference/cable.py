@@ -1,0 +1,152 @@
+"""The hanging load by Pinocchio: an independent check of :mod:`offshore_crane.cable`.
+
+It shares only the URDF with the Kane path. The pendulum is the two sway joints
+``cable_joint1``, ``cable_joint2`` of Pinocchio's model of the equivalent tree, the payload
+the mass below them; the robot's motion is prescribed, so this is hybrid dynamics:
+
+- sway accelerations: with the tree at the robot's state (the platform's virtual joints
+  take q1..q6 and their rates directly, the arm joints q7..q9; the legs are other
+  branches and do not act on the sway rows) and the sway at ``(φ, φ̇)``,
+  ``b = RNEA(q, v, a with φ̈ = 0)`` on the sway rows and ``M_φφ`` from CRBA give
+  ``φ̈ = −M_φφ⁻¹ b``, integrated by the same classical RK4 (in Python: a reference, not a
+  fast path);
+- actuator forces: the RNEA reference's loop-closing tree states
+  (:func:`offshore_crane.reference.rnea.tree_state`) with the sway joints' rows set,
+  ``pin.rneaInParallel`` and the RNEA reference's projection on the independent speeds;
+  the residual torque on the sway joints (zero when φ̈ solves the sway equations) and the
+  cable's pull on the tip, ``m (g − a_payload)`` from Pinocchio's frame acceleration.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..conventions import ARM_JOINTS, CABLE_JOINTS, PLATFORM_JOINTS
+from ..errors import require
+
+_MODELS: dict = {}
+
+
+class _Pendulum:
+    """Pinocchio's model of the robot with the sway joints, and its indices."""
+
+    def __init__(self, robot, g):
+        self.pin = pin = require("pinocchio", "pin", "The hanging load's Pinocchio reference")
+        model = robot.pinocchio_model.copy()
+        model.gravity.linear = np.asarray(g, dtype=float)
+        self.model, self.data = model, model.createData()
+        jid = model.getJointId
+        self.coords = [(model.idx_qs[jid(n)], model.idx_vs[jid(n)], k)
+                       for k, n in enumerate(PLATFORM_JOINTS + ARM_JOINTS)
+                       if model.existJointName(n)]
+        self.sway_q = np.array([model.idx_qs[jid(n)] for n in CABLE_JOINTS])
+        self.sway_v = np.array([model.idx_vs[jid(n)] for n in CABLE_JOINTS])
+        self.payload = model.getFrameId("payload")
+        self.mass = float(sum(model.inertias[j].mass for j in range(model.njoints)
+                              if j >= jid(CABLE_JOINTS[0])))
+        self.g = np.asarray(g, dtype=float)
+
+    def state(self, q9, qd9, qdd9, y, phidd=(0.0, 0.0)):
+        m = self.model
+        x, v, a = np.zeros(m.nq), np.zeros(m.nv), np.zeros(m.nv)
+        for iq, iv, k in self.coords:
+            x[iq], v[iv], a[iv] = q9[k], qd9[k], qdd9[k]
+        x[self.sway_q] = y[0:2]
+        v[self.sway_v] = y[2:4]
+        a[self.sway_v] = phidd
+        return x, v, a
+
+    def rhs(self, q9, qd9, qdd9, y, out):
+        """``out = (φ̇, φ̈)``; returns ``det M_φφ / M44²``."""
+        pin = self.pin
+        x, v, a = self.state(q9, qd9, qdd9, y)
+        tau = pin.rnea(self.model, self.data, x, v, a)
+        M = pin.crba(self.model, self.data, x)
+        i, j = self.sway_v
+        m11, m12, m22 = M[i, i], M[min(i, j), max(i, j)], M[j, j]
+        b1, b2 = tau[i], tau[j]
+        det = m11 * m22 - m12 * m12
+        out[0:2] = y[2:4]
+        out[2] = (m12 * b2 - m22 * b1) / det
+        out[3] = (m12 * b1 - m11 * b2) / det
+        return det / (m22 * m22)
+
+
+def integrate(robot, Q, Qd, Qdd, g, h, sub, y0, rel_min):
+    """RK4 of the sway with Pinocchio's right-hand side; same contract as the compiled
+    :func:`offshore_crane.dynamics.cable_kernels.integrate` (returns ``(Y, status)``)."""
+    P = _Pendulum(robot, g)
+    n_steps = (Q.shape[0] - 1) // 2
+    Y = np.full((n_steps // sub + 1, 6), np.nan)
+    status = np.array([0.0, -1.0, 0.0])
+    y = np.array(y0, dtype=float)
+    k1, k2, k3, k4 = (np.empty(4) for _ in range(4))
+    for s in range(n_steps + 1):
+        rel = P.rhs(Q[2 * s], Qd[2 * s], Qdd[2 * s], y, k1)
+        if s % sub == 0:
+            k = s // sub
+            Y[k, 0:4] = y
+            Y[k, 4:6] = k1[2:4]
+            worst = 1.0 / rel if rel > 0 else np.inf
+            finite = bool(np.isfinite(Y[k]).all())
+            status[2] = max(status[2], worst) if finite else np.inf
+            if not finite or not rel >= rel_min:
+                status[0], status[1] = (2 if not finite else 1), k
+                return Y, status
+        if s == n_steps:
+            break
+        P.rhs(Q[2 * s + 1], Qd[2 * s + 1], Qdd[2 * s + 1], y + 0.5 * h * k1, k2)
+        P.rhs(Q[2 * s + 1], Qd[2 * s + 1], Qdd[2 * s + 1], y + 0.5 * h * k2, k3)
+        P.rhs(Q[2 * s + 2], Qd[2 * s + 2], Qdd[2 * s + 2], y + h * k3, k4)
+        y = y + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+    return Y, status
+
+
+def forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
+    """``(X (n, 9), F (n, 6), kappa)`` at the integrated sway: X from the RNEA reference
+    with the sway rows set; ``F`` the cable's pull on the tip (3) [N], the tension [N],
+    the RNEA torques left on the sway joints (2) [N·m]; ``kappa`` ``(3, n)`` (or None)."""
+    from ..dynamics.constants import robot_arrays
+    from ..dynamics.kernels import Options
+    from ..kinematics import workspace as ws
+    from . import rnea
+
+    pin = require("pinocchio", "pin", "The hanging load's Pinocchio reference")
+    P = _Pendulum(robot, g)
+    T = rnea.tree(robot)
+    n = len(t)
+    X = np.empty((n, 9))
+    F = np.empty((n, 6))
+    kappa = np.empty((3, n)) if checks else None
+    if n == 0:
+        return X, F, kappa
+    Qt, Vt, At, G, diag = rnea.tree_state(robot, q, qd, qdd)
+    for arr, col in ((Qt, 0), (Vt, 2), (At, 4)):
+        arr[P.sway_v] = Y[:, col:col + 2].T
+    tau = np.empty_like(Qt, order="F")
+    pool = rnea._pool(robot, g, 1)
+    pin.rneaInParallel(1, pool, Qt, Vt, At, tau)
+    cond = np.empty(n)
+    rnea.project(tau, G, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, bool(checks), X, cond)
+    F[:, 4:6] = tau[P.sway_v].T
+    model, data = P.model, P.data
+    for k in range(n):
+        x, v, a = P.state(q[k], qd[k], qdd[k], Y[k, 0:4], Y[k, 4:6])
+        pin.forwardKinematics(model, data, x, v, a)
+        acc = pin.getFrameClassicalAcceleration(model, data, P.payload,
+                                                pin.ReferenceFrame.LOCAL_WORLD_ALIGNED).linear
+        f = P.mass * (P.g - np.asarray(acc))
+        pin.updateFramePlacement(model, data, P.payload)
+        tip = data.oMi[model.getJointId(CABLE_JOINTS[0])].translation
+        e = data.oMf[P.payload].translation - tip
+        F[k, 0:3] = f
+        F[k, 3] = f @ e / np.linalg.norm(e)
+    health = ws.new_health()
+    opts = Options(legs=True, conditioning=bool(checks), limits=bool(limits),
+                   warn=thresholds.warn, error=thresholds.error)
+    arrays = robot_arrays(robot)
+    ws.record_chunk(X, cond, diag[0], diag[1], diag[2], np.stack([diag[3], diag[4]], -1), q, 0,
+                    opts, arrays.limits, kappa, health)
+    ws.enforce(health, (q, qd, qdd), arrays.limits if limits else None, kappa, thresholds,
+               (ws.LEG_JACOBIAN, ws.GIMBAL), t)
+    return X, F, kappa
