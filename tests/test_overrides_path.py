@@ -97,7 +97,8 @@ def test_library_scene_overrides_match_load_robot():
     assert scene.robot == {"legs.lower.mass": 0.5, "payload.mass": 1.0,
                            "payload.com": [0.0, 0.0, 0.0],
                            "payload.inertia": dict.fromkeys(
-                               ("ixx", "iyy", "izz", "ixy", "ixz", "iyz"), 0.0)}
+                               ("ixx", "iyy", "izz", "ixy", "ixz", "iyz"), 0.0),
+                           "payload.cable_length": 0.0}
     robot = scenes.load_robot(scene)
     assert robot is oc.load_robot(overrides=scene.robot)
     assert robot.hybrid.lower_mass.tolist() == [0.5] * 6

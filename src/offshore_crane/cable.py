@@ -409,6 +409,41 @@ def _slack(res: CableResult, policy: str) -> None:
         "in the result's slack array"), stacklevel=3)
 
 
+def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY) -> np.ndarray:
+    """The right-hand side of the swing: ``φ̈`` ``(N, 2)`` [rad/s²] at given states.
+
+    The same formula the integrator runs compiled
+    (:func:`~offshore_crane.dynamics.formulas.sway_accelerations`), here on NumPy arrays.
+
+    Args:
+        robot: With a payload on a cable.
+        q, qd, qdd: ``(N, 9)`` the robot's state and accelerations.
+        sway, sway_rate: ``(N, 2)`` φ [rad], φ̇ [rad/s].
+        gravity: ``(3,)`` [m/s²].
+    """
+    from .dynamics import backends
+    from .dynamics.constants import cable_arrays
+    from .dynamics.formulas import STORE_WIDTH
+
+    robot = cable_robot(robot)
+    q, single = as_samples("q", q)
+    qd = as_samples("qd", qd)[0]
+    qdd = as_samples("qdd", qdd)[0]
+    sway = as_samples("sway", sway, width=2)[0]
+    sway_rate = as_samples("sway_rate", sway_rate, width=2)[0]
+    g = tuple(float(x) for x in as_gravity(gravity))
+    C = cable_arrays(robot).kane
+    zero = np.zeros((len(q), 2))
+    rows = np.empty(C.n_arm, dtype=object)
+    store = np.empty((C.n_arm, STORE_WIDTH), dtype=object)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a1, a2, _ = backends.NUMPY.sway_accelerations(
+            C, np.concatenate([q, sway], 1).T, np.concatenate([qd, sway_rate], 1).T,
+            np.concatenate([qdd, zero], 1).T, g, rows, store)
+    out = np.stack([a1, a2], axis=-1)
+    return out[0] if single else out
+
+
 def swing(robot, trajectory, **options) -> CableResult:
     """:func:`inverse_dynamics` of a :class:`~offshore_crane.trajectories.Trajectory`,
     its analytic ``source`` (when it has one) evaluated at RK4's stage times."""

@@ -37,6 +37,13 @@ Schema (every key optional; SI units; unknown keys or sections are errors)::
     inertia = { ixx = 1e-3, iyy = 1e-3, izz = 1e-3, ixy = 0, ixz = 0, iyz = 0 }
                                        # about its centre of mass, arm_tip axes [kg·m²];
                                        # positive definite; default 0 (a point mass)
+    cable_length = 0.0                 # [m]: > 0 hangs the payload (a point mass: offset
+                                       # and inertia zero) on a cable from arm_tip
+    [cable]                            # the swing, with cable_length > 0 (docs/cable.md)
+    initial = [0.05, 0.0]              # sway phi1, phi2 at the start [rad] (default 0)
+    initial_rate = [0.0, 0.0]          # [rad/s]
+    substeps = 1                       # RK4 steps per sample interval
+    slack = "error"                    # or "warn": mark slack-cable samples and go on
 
     [actuators]                        # capacities: overrides of the description's
     Fl.push_max = 3000.0               # actuators.* fields (Fl = all legs, Fl1..Fl6, T1,
@@ -99,11 +106,12 @@ from .conventions import ARM_ACTUATORS, ACTUATOR_UNITS, ACTUATORS, GRAVITY, INER
 from .dynamics import LEG_MODELS, METHODS
 from .errors import SceneError
 
-SECTIONS = ("robot", "subsystems", "payload", "actuators", "trajectory", "sea", "operation",
-            "control")
+SECTIONS = ("robot", "subsystems", "payload", "cable", "actuators", "trajectory", "sea",
+            "operation", "control")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
-PAYLOAD_KEYS = ("mass", "offset", "inertia")
+PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length")
+CABLE_KEYS = ("initial", "initial_rate", "substeps", "slack")
 INERTIA_KEYS = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
 TRAJECTORY_KEYS = ("source", "duration", "rate", "fd_order")
 SEA_KEYS = ("hs", "tp", "heading", "scale", "vessel", "kind", "gamma", "spreading",
@@ -120,7 +128,8 @@ CONTROLLER_KEYS = ("law", "kp", "kd", "rate", "lower", "upper", "saturation", "n
                    "noise_qd", "seed")
 #: Where a scene file sets the robot fields it owns besides [robot] (for messages).
 SCENE_FIELDS = {"arm.enabled": "[subsystems] arm", "payload.mass": "[payload] mass",
-                "payload.com": "[payload] offset", "payload.inertia": "[payload] inertia"}
+                "payload.com": "[payload] offset", "payload.inertia": "[payload] inertia",
+                "payload.cable_length": "[payload] cable_length"}
 
 
 def _scene_field(name: str) -> str:
@@ -151,16 +160,20 @@ class Payload:
         offset: ``(3,)`` centre of mass in the ``arm_tip`` frame [m] (``payload.com``).
         inertia: ``(ixx, iyy, izz, ixy, ixz, iyz)`` about the centre of mass, ``arm_tip``
             axes [kg·m²] (URDF convention); all zero for a point mass.
+        cable_length: [m]; 0: welded to ``arm_tip``; > 0: a point mass hanging on a
+            cable of this length (:mod:`offshore_crane.cable`).
     """
 
     mass: float = 0.0
     offset: tuple = (0.0, 0.0, 0.0)
     inertia: tuple = (0.0,) * 6
+    cable_length: float = 0.0
 
     def overrides(self) -> dict:
         """The dotted robot fields this payload sets."""
         return {"payload.mass": self.mass, "payload.com": list(self.offset),
-                "payload.inertia": dict(zip(INERTIA_KEYS, self.inertia))}
+                "payload.inertia": dict(zip(INERTIA_KEYS, self.inertia)),
+                "payload.cable_length": self.cable_length}
 
 
 @dataclass(frozen=True)
@@ -216,6 +229,7 @@ class Scene:
     outputs: tuple | None = None
     methods: tuple = ("kane",)
     control: dict = field(default_factory=dict)
+    cable: dict = field(default_factory=dict)
     #: Where the scene comes from, for messages (the file, or the file with the
     #: command-line options applied).
     origin: str | None = field(default=None, compare=False, repr=False)
@@ -387,7 +401,7 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
     if "inertia" in r.table:
         _Reader(where, "payload.inertia", r.get("inertia"), INERTIA_KEYS)  # known keys
     for key, name in (("mass", "payload.mass"), ("offset", "payload.com"),
-                      ("inertia", "payload.inertia")):
+                      ("inertia", "payload.inertia"), ("cable_length", "payload.cable_length")):
         if key in r.table:
             payload[name] = r.get(key)
     sub = data.get("subsystems", {})
@@ -491,7 +505,8 @@ def _payload_of(spec) -> Payload:
     p = spec.payload
     return Payload(float(p.mass), tuple(float(x) for x in p.com),
                    tuple(float(p.inertia[i, j]) for i, j in
-                         ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))))
+                         ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))),
+                   float(spec.cable_length))
 
 
 def _trajectory(where: str, data: dict, base: Path | None) -> dict:
@@ -672,6 +687,27 @@ def _control(where: str, data: dict) -> dict:
     return out
 
 
+def _cable(where: str, data: dict) -> dict:
+    """The ``[cable]`` section: :func:`offshore_crane.cable.inverse_dynamics`'s
+    ``initial``, ``initial_rate``, ``substeps`` and ``slack``, checked."""
+    from .cable import SLACK
+
+    r = _section(where, data, "cable", CABLE_KEYS)
+    out: dict = {}
+    if "initial" in r.table:
+        out["initial"] = r.vector("initial", 2, unit="rad")
+    if "initial_rate" in r.table:
+        out["initial_rate"] = r.vector("initial_rate", 2, unit="rad/s")
+    if "substeps" in r.table:
+        n = r.get("substeps")
+        if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+            r.fail("substeps", "must be an integer ≥ 1 (RK4 steps per sample interval)")
+        out["substeps"] = n
+    if "slack" in r.table:
+        out["slack"] = r.string("slack", choices=SLACK)
+    return out
+
+
 def controller(scene: Scene, robot=None):
     """The :class:`~offshore_crane.control.Controller` of the scene's ``[control]``
     section (its ``model`` table overrides the scene's robot for the controller)."""
@@ -703,6 +739,7 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
                   TOP_KEYS)
     sub = _section(where, data, "subsystems", SUBSYSTEM_KEYS)
     control = _control(where, data)
+    cable = _cable(where, data)
     return Scene(                       # Scene checks how the parts fit (check_scene)
         name=top.string("name", Path(where).stem),
         description=top.string("description", ""),
@@ -711,7 +748,7 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
         deck_pose=sub.vector("deck_pose", 6, None, "m, rad"), **_robot(where, data, base),
         gravity=top.vector("gravity", 3, GRAVITY, "m/s²"),
         outputs=top.names("outputs", ACTUATORS),
-        methods=top.names("methods", METHODS) or ("kane",), control=control,
+        methods=top.names("methods", METHODS) or ("kane",), control=control, cable=cable,
         **_trajectory(where, data, base), **_sea(where, data, base))
 
 
@@ -772,6 +809,19 @@ def check_scene(scene: Scene) -> None:
                          f"approximation offered by method kane only, but methods = "
                          f"{_show(list(scene.methods))}", path=scene.path,
                          name="subsystems.leg_model")
+    hanging = scene.payload.cable_length > 0
+    if scene.cable and not hanging:
+        raise SceneError(f"{where}: [cable] applies to a payload on a cable, but [payload] "
+                         "cable_length = 0 (welded): set cable_length > 0 or remove [cable]",
+                         path=scene.path, name="cable")
+    if hanging and scene.leg_model != "full":
+        raise SceneError(f"{where}: [subsystems] leg_model = {_show(scene.leg_model)}: the "
+                         "hanging load is computed with the full leg model only",
+                         path=scene.path, name="subsystems.leg_model")
+    if hanging and "kane-explicit" in scene.methods:
+        raise SceneError(f"{where}: methods = {_show(list(scene.methods))}: with a payload on "
+                         "a cable the methods are kane and rnea (the Pinocchio reference of "
+                         "the swing)", path=scene.path, name="methods")
 
 
 def load_scene(path) -> Scene:

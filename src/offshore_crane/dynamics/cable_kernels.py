@@ -20,6 +20,7 @@ import numpy as np
 from numba import njit
 
 from . import compiled as c
+from .formulas import STORE_WIDTH
 
 sway_accelerations, cable_force = c.KE.sway_accelerations, c.KE.cable_force
 sway_mass, finite_inputs = c.KE.sway_mass, c._finite_inputs
@@ -83,7 +84,7 @@ def _make(stamp):
         qd = np.empty(11)
         qdd = np.empty(11)
         rows = np.zeros(C.n_arm)
-        store = np.empty((C.n_arm, 27))
+        store = np.empty((C.n_arm, STORE_WIDTH))
         y = y0.copy()
         ys = np.empty(4)
         k1 = np.empty(4)
@@ -147,7 +148,7 @@ def _make(stamp):
         A = np.empty((6, 6))
         rhs6 = np.empty(6)
         diag = np.zeros((7, 6))
-        store = np.empty((na, 27))
+        store = np.empty((na, STORE_WIDTH))
         x = np.empty(6)
         M = np.empty((6, 13))
         gt = (g[0], g[1], g[2])

@@ -106,7 +106,7 @@ def forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
     """``(X (n, 9), F (n, 6), kappa)`` at the integrated sway: X from the RNEA reference
     with the sway rows set; ``F`` the cable's pull on the tip (3) [N], the tension [N],
     the RNEA torques left on the sway joints (2) [N·m]; ``kappa`` ``(3, n)`` (or None)."""
-    from ..dynamics.constants import robot_arrays
+    from ..dynamics.constants import Limits, cable_arrays
     from ..dynamics.kernels import Options
     from ..kinematics import workspace as ws
     from . import rnea
@@ -144,9 +144,10 @@ def forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
     health = ws.new_health()
     opts = Options(legs=True, conditioning=bool(checks), limits=bool(limits),
                    warn=thresholds.warn, error=thresholds.error)
-    arrays = robot_arrays(robot)
+    lim = cable_arrays(robot).limits            # the robot's, for the checks' messages
+    lim = Limits(lim.arm[:robot.hybrid.arm.n], lim.stroke, lim.ujoint)
     ws.record_chunk(X, cond, diag[0], diag[1], diag[2], np.stack([diag[3], diag[4]], -1), q, 0,
-                    opts, arrays.limits, kappa, health)
-    ws.enforce(health, (q, qd, qdd), arrays.limits if limits else None, kappa, thresholds,
+                    opts, lim, kappa, health)
+    ws.enforce(health, (q, qd, qdd), lim if limits else None, kappa, thresholds,
                (ws.LEG_JACOBIAN, ws.GIMBAL), t)
     return X, F, kappa
