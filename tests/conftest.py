@@ -30,11 +30,12 @@ _COMPILE: dict = {}
 def pytest_sessionstart(session):
     """Compile (or load) the Numba kernels once, timed: on a fresh clone (CI) this is the
     cold compile of everything the tests need, reported at the end of the run."""
+    from offshore_crane.cable import warm_up as warm_up_cable
     from offshore_crane.dynamics import warm_up
     from offshore_crane.simulate import warm_up as warm_up_simulation
 
     t0 = time.perf_counter()
-    _COMPILE["parts"] = warm_up() + warm_up_simulation()
+    _COMPILE["parts"] = warm_up() + warm_up_simulation() + warm_up_cable()
     _COMPILE["total"] = time.perf_counter() - t0
 
 

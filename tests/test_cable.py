@@ -275,3 +275,47 @@ def test_description_checks_the_cable(overrides, match):
 
     with pytest.raises(DescriptionError, match=match):
         oc.load_robot(overrides=overrides)
+
+
+# ------------------------------------------------------------------- command line
+CABLE_SET = ["--set", "payload.mass=2", "--set", "payload.cable_length=0.5"]
+
+
+def test_cli_id_with_a_cable(tmp_path, capsys):
+    """The summary gives the sway and the tension; the CSV gains phi1, phi2, tension,
+    equal to the library's result; --method both compares the two paths."""
+    from offshore_crane.cli import main
+
+    out = tmp_path / "x.csv"
+    assert main(["id", *CABLE_SET, "--duration", "5", "--initial-sway", "0.05", "0",
+                 "--method", "both", "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "hanging on a 0.5 m cable" in text and "max sway" in text
+    assert "cable tension: min" in text and "max |Δsway|" in text
+    header = out.read_text().splitlines()[0]
+    assert header.endswith("Fl6_N,phi1_rad,phi2_rad,tension_N")
+    data = np.loadtxt(out, delimiter=",", skiprows=1)
+    robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 0.5})
+    t = data[:, 0]
+    lib = cable.inverse_dynamics(robot, t, *table1(t), reference=table1, initial=(0.05, 0.0))
+    assert np.array_equal(data[:, 10:12], lib.sway)
+    assert np.array_equal(data[:, 12], lib.tension)
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--set", "payload.cable_length=-1"], "must not be negative"),
+    (["--initial-sway", "0.1", "0"], "--initial-sway: applies to a payload on a cable"),
+    ([*CABLE_SET, "--initial-sway", "0", "1.5707963267948966"], "singular set"),
+    ([*CABLE_SET, "--substeps", "0"], "--substeps 0: give an integer >= 1"),
+    ([*CABLE_SET, "--method", "kane-explicit"], "the methods are kane and rnea"),
+    ([*CABLE_SET, "--compare-fidelity"], "hangs on a cable"),
+    ([*CABLE_SET, "--gravity", "0", "0", "9.81"], "the cable goes slack at sample 0"),
+])
+def test_cli_bad_input_one_line_no_file(tmp_path, capsys, argv, match):
+    from offshore_crane.cli import main
+
+    out = tmp_path / "x.csv"
+    assert main(["id", "--duration", "1", *argv, "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and match in err, err
+    assert not out.exists() and list(tmp_path.iterdir()) == []

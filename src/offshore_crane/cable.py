@@ -450,3 +450,20 @@ def swing(robot, trajectory, **options) -> CableResult:
     reference = trajectory.reference if trajectory.source is not None else None
     return inverse_dynamics(robot, trajectory.t, trajectory.q, trajectory.qd, trajectory.qdd,
                             reference=reference, **options)
+
+
+def warm_up(robot=None) -> list[tuple[str, float]]:
+    """Compile (or load from the cache) the swing's kernels: ``[(name, seconds)]``."""
+    import time
+
+    from .model import load_robot
+
+    t0 = time.perf_counter()
+    robot = robot or load_robot()
+    if robot.hybrid.cable is None:
+        robot = cable_robot(robot, length=1.0, mass=1.0)
+    t = np.array([0.0, 1e-3])
+    q = np.zeros((2, 9))
+    q[:, 2] = robot.home_height
+    inverse_dynamics(robot, t, q, 0 * q, 0 * q, limits=False)
+    return [("hanging-load kernels", time.perf_counter() - t0)]

@@ -46,19 +46,51 @@ def format_summary(rows) -> str:
 PLOT_FORMATS = FIGURE_FORMATS
 
 
-def write_csv(target, t: np.ndarray, X: np.ndarray) -> None:
+#: Columns added when the payload hangs on a cable (docs/cable.md).
+CABLE_COLUMNS = "phi1_rad,phi2_rad,tension_N"
+
+
+def write_csv(target, t: np.ndarray, X: np.ndarray, cable=None) -> None:
     """Write ``t_s,T1_Nm,T2_Nm,Fs_N,Fl1_N,...,Fl6_N`` with 17 significant digits
-    (``target``: a path or a :class:`~offshore_crane.io.Target`)."""
-    io.write_csv(target, CSV_HEADER, np.column_stack([t, X]))
+    (``target``: a path or a :class:`~offshore_crane.io.Target`); with a
+    :class:`~offshore_crane.cable.CableResult`, also ``phi1_rad,phi2_rad,tension_N``."""
+    if cable is None:
+        io.write_csv(target, CSV_HEADER, np.column_stack([t, X]))
+    else:
+        io.write_csv(target, f"{CSV_HEADER},{CABLE_COLUMNS}",
+                     np.column_stack([t, X, cable.sway, cable.tension]))
 
 
-def plot(path, t: np.ndarray, X: np.ndarray, title: str = "") -> None:
-    """Figure like the paper's Fig. 3: leg forces, arm torques and slider force vs time."""
+def cable_summary(cable) -> str:
+    """Lines on the hanging load: largest sway, smallest and largest tension, and when."""
+    t = cable.t
+    angle = cable.sway_angle
+    k = int(np.argmax(angle))
+    lo, hi = int(np.argmin(cable.tension)), int(np.argmax(cable.tension))
+    peaks = np.abs(cable.sway).max(axis=0)
+    lines = [f"hanging load: {cable.mass:g} kg on a {cable.length:g} m cable "
+             f"({cable.method}, RK4 step {cable.step:g} s): max sway {angle[k]:.4g} rad "
+             f"from the tip's vertical at t = {t[k]:.2f} s (max |phi1| {peaks[0]:.4g}, "
+             f"|phi2| {peaks[1]:.4g} rad)",
+             f"cable tension: min {cable.tension[lo]:.4g} N at t = {t[lo]:.2f} s, max "
+             f"{cable.tension[hi]:.4g} N at t = {t[hi]:.2f} s (m g = "
+             f"{cable.mass * 9.81:.4g} N at 9.81 m/s²)"]
+    if cable.slack.any():
+        lines.append(f"SLACK CABLE at {int(cable.slack.sum())} samples (first t = "
+                     f"{t[int(np.argmax(cable.slack))]:.2f} s): the model does not hold there")
+    return "\n".join(lines)
+
+
+def plot(path, t: np.ndarray, X: np.ndarray, title: str = "", cable=None) -> None:
+    """Figure like the paper's Fig. 3: leg forces, arm torques and slider force vs time;
+    with a :class:`~offshore_crane.cable.CableResult`, a panel of the sway angles and one
+    of the tension."""
     matplotlib = require("matplotlib", "matplotlib", "--plot")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True, constrained_layout=True)
+    n = 3 if cable is None else 5
+    fig, axes = plt.subplots(n, 1, figsize=(8, 3 * n), sharex=True, constrained_layout=True)
     for i in range(6):
         axes[0].plot(t, X[:, 3 + i], label=f"Fl{i + 1}")
     axes[0].set_ylabel("leg force [N]")
@@ -67,6 +99,12 @@ def plot(path, t: np.ndarray, X: np.ndarray, title: str = "") -> None:
     axes[1].set_ylabel("arm torque [N·m]")
     axes[2].plot(t, X[:, 2], label="Fs", color="k")
     axes[2].set_ylabel("slider force [N]")
+    if cable is not None:
+        axes[3].plot(t, np.degrees(cable.sway[:, 0]), label="phi1")
+        axes[3].plot(t, np.degrees(cable.sway[:, 1]), label="phi2")
+        axes[3].set_ylabel("sway [deg]")
+        axes[4].plot(t, cable.tension, label="tension", color="k")
+        axes[4].set_ylabel("cable tension [N]")
     finish_figure(fig, axes, path, title)
 
 

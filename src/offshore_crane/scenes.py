@@ -262,7 +262,10 @@ class Scene:
                  "no legs)", "arm" if self.arm else "no arm"]
         if self.platform:
             parts.append(f"{self.leg_model} legs")
-        if self.payload.mass > 0:
+        if self.payload.cable_length > 0:
+            parts.append(f"payload {self.payload.mass:g} kg hanging on a "
+                         f"{self.payload.cable_length:g} m cable from arm_tip")
+        elif self.payload.mass > 0:
             parts.append(f"payload {self.payload.mass:g} kg at "
                          f"({', '.join(f'{x:g}' for x in self.payload.offset)}) m from arm_tip")
         return ", ".join(parts)
@@ -978,8 +981,31 @@ class SceneRun:
 def _solve(scene: Scene, robot, traj, method: str, leg_model: str, **options):
     from .dynamics import solve
 
+    if robot.hybrid.cable is not None:
+        return _swing(scene, robot, traj, method, **options)
     return solve(robot, traj.q, traj.qd, traj.qdd, method=method, gravity=scene.gravity,
                  leg_model=leg_model, outputs=scene.wanted(), t=traj.t, **options)
+
+
+#: The hanging load's path for each scene method: Kane's, or the Pinocchio reference.
+CABLE_METHODS = {"kane": "kane", "rnea": "pinocchio"}
+
+
+def _swing(scene: Scene, robot, traj, method: str, limits: bool = True, checks: bool = True,
+           thresholds=None, **ignored):
+    """A scene with a payload on a cable: :func:`offshore_crane.cable.swing` (the
+    ``[cable]`` options; ``backend`` and ``threads`` do not apply), as a
+    :class:`~offshore_crane.dynamics.Result` holding the :class:`CableResult`."""
+    from .cable import swing
+    from .dynamics import Result
+    from .kinematics.workspace import Thresholds
+
+    res = swing(robot, traj, method=CABLE_METHODS[method], gravity=scene.gravity,
+                limits=limits, checks=checks, thresholds=thresholds or Thresholds(),
+                **scene.cable)
+    return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
+                  condition=res.condition, gimbal=None, attitude=None,
+                  backend="numba" if method == "kane" else "pinocchio", cable=res)
 
 
 def run(scene: Scene, robot=None, trajectory=None, **options) -> SceneRun:
@@ -1060,6 +1086,10 @@ def compare_fidelity(scene: Scene, robot=None, trajectory=None,
         actuator, and one :class:`Fidelity` per leg model (``full`` first).
     """
     robot = robot or load_robot(scene)
+    if robot.hybrid.cable is not None:
+        raise SceneError(f"{scene.where()}: the leg models' fidelity is compared on a rigid "
+                         "robot; this one's payload hangs on a cable (computed with the full "
+                         "leg model only)", path=scene.path, name="payload.cable_length")
     traj = trajectory or load_trajectory(scene, robot)
     names = scene.wanted()
     cols = [ACTUATORS.index(n) for n in names]

@@ -17,11 +17,12 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
+    from ..cable import warm_up as warm_up_cable
     from ..dynamics import warm_up
     from ..simulate import warm_up as warm_up_simulation
 
     total = 0.0
-    for name, seconds in warm_up() + warm_up_simulation():
+    for name, seconds in warm_up() + warm_up_simulation() + warm_up_cable():
         total += seconds
         print(f"{name}: {seconds:.1f} s")
     print(f"compiled kernels ready in {total:.1f} s")

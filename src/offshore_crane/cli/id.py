@@ -51,6 +51,15 @@ def add_parser(sub) -> None:
                    help="warn above this condition number (default 1e5)")
     p.add_argument("--error-cond", type=float, default=1e8,
                    help="stop above this condition number (default 1e8)")
+    p.add_argument("--initial-sway", type=float, nargs=2, metavar=("PHI1", "PHI2"),
+                   help="with a payload on a cable (--set payload.cable_length=L): the sway "
+                   "angles at the start [rad] (arm_tip frame; default the scene's [cable], "
+                   "else 0 0)")
+    p.add_argument("--slack", choices=("error", "warn"),
+                   help="a slack cable (tension <= 0): stop with an error (default) or warn "
+                   "and mark the samples")
+    p.add_argument("--substeps", type=int, help="RK4 steps of the swing per sample interval "
+                   "(default 1)")
     p.add_argument("--compare-fidelity", action="store_true",
                    help="also run every leg model (kane) and print its run time and "
                    "largest deviation from 'full' per actuator")
@@ -67,6 +76,7 @@ def _thresholds(args):
 
 
 _METHOD_LABELS = {"kane": "Kane", "kane-explicit": "Kane (explicit)", "rnea": "RNEA"}
+#: With a payload on a cable, "rnea" runs the swing's Pinocchio reference.
 
 
 def _scene(args):
@@ -90,6 +100,18 @@ def _scene(args):
                            rate=args.rate, fd_order=args.fd_order, methods=methods,
                            leg_model=args.leg_model, outputs=outputs,
                            gravity=None if args.gravity is None else tuple(args.gravity))
+    cable = {k: v for k, v in (("initial", args.initial_sway), ("slack", args.slack),
+                               ("substeps", args.substeps)) if v is not None}
+    if cable:
+        if not scene.payload.cable_length > 0:
+            flags = ", ".join(f"--{k.replace('initial', 'initial-sway')}" for k in cable)
+            raise InputError(f"{flags}: applies to a payload on a cable; set "
+                             "payload.cable_length > 0 (--set, or the scene's [payload])",
+                             name="--initial-sway")
+        if "substeps" in cable and cable["substeps"] < 1:
+            raise InputError(f"--substeps {cable['substeps']}: give an integer >= 1",
+                             name="--substeps")
+        scene = with_overrides(scene, where, cable={**scene.cable, **cable})
     table1 = scene.trajectory == "table1"
     if table1 and args.fd_order is not None:
         raise InputError("--fd-order applies to a CSV trajectory only (table1 has analytic "
@@ -98,6 +120,8 @@ def _scene(args):
 
 
 def run(args) -> int:
+    import numpy as np
+
     from .. import scenes
     from ..report import format_summary, plot, summary_rows, write_csv
     from . import plan
@@ -114,6 +138,7 @@ def run(args) -> int:
     done = scenes.run(scene, robot, traj, **options)
     res, t = done.result, traj.t
     X = res.X
+    cable = res.cable
     if args.scene:
         say(f"scene {scene.name} ({args.scene}): {scene.describe()}")
     elif args.robot or args.set:
@@ -130,6 +155,10 @@ def run(args) -> int:
                                     [ACTUATOR_UNITS[k] for k in cols])))
     for kind, kappa, k in res.worst():
         say(f"worst {kind} condition number: {kappa:.4g} at t = {t[k]:.2f} s (sample {k})")
+    if cable is not None:
+        from ..report import cable_summary
+
+        say(cable_summary(cable))
     status = 0
     first = _METHOD_LABELS[scene.methods[0]]
     for m, diff, scale, rel, i, j in scenes.compare_methods(done):
@@ -139,14 +168,20 @@ def run(args) -> int:
             f"{rel:.3e} "
             f"({'OK' if ok else 'FAIL'}, limit {RELATIVE_LIMIT:g})")
         status = status if ok else 1
+        other = done.results[m].cable
+        if cable is not None and other is not None:
+            say(f"{first} vs {_METHOD_LABELS[m]}: max |Δsway| = "
+                f"{np.abs(other.sway - cable.sway).max():.3e} rad, max |Δtension| = "
+                f"{np.abs(other.tension - cable.tension).max():.3e} N")
     if args.compare_fidelity:
         names, scale, rows = scenes.compare_fidelity(scene, robot, traj, **options)
         say()
         say(scenes.format_fidelity(names, scale, rows, len(t)))
     if "--out" in outputs:
-        write_csv(outputs["--out"], t, X)
+        write_csv(outputs["--out"], t, X, cable)
         say(f"wrote {args.out}")
     if "--plot" in outputs:
-        plot(outputs["--plot"], t, X, title=f"offshore-crane: {traj.name}, {scene.methods[0]}")
+        plot(outputs["--plot"], t, X, title=f"offshore-crane: {traj.name}, {scene.methods[0]}",
+             cable=cable)
         say(f"wrote {args.plot}")
     return status

@@ -59,6 +59,9 @@ class Result:
         approximations: Labels of the approximations used (empty: exact).
         pruned: What was skipped because the result does not depend on it.
         backend: ``"numpy"`` or ``"numba"``: what ran.
+        cable: With a payload on a cable, the
+            :class:`~offshore_crane.cable.CableResult` (sway, tension, cable force), else
+            None.
     """
 
     X: np.ndarray
@@ -71,6 +74,7 @@ class Result:
     approximations: tuple = ()
     pruned: tuple = field(default_factory=tuple)
     backend: str = "numpy"
+    cable: object = None
 
     def worst(self) -> list[tuple[str, float, int]]:
         """``[(kind, worst condition number, sample index), ...]`` of what was measured."""
