@@ -83,6 +83,45 @@ def test_constant_horizontal_acceleration_tilts_the_pendulum(crane):
     assert np.abs(res.sway[:, 0]).max() <= 1e-15
 
 
+def test_damping_decays_the_swing_at_its_rate():
+    """payload.sway_damping c = 2 ζ m L² ω with ζ = 0.05: a small swing (φ0 = 1e-4 rad)
+    follows the damped oscillator φ0 e^{−ζωt} (cos ω_d t + ζ/√(1−ζ²) sin ω_d t) to
+    1e-12 rad over 5 s at 1 ms (nonlinear terms ~φ0³ = 1e-12; RK4 ~1e-15)."""
+    zeta, w = 0.05, np.sqrt(G / LENGTH)
+    c = 2 * zeta * MASS * LENGTH ** 2 * w
+    robot = oc.load_robot(overrides={"payload.mass": MASS, "payload.cable_length": LENGTH,
+                                     "payload.sway_damping": c})
+    t, q, qd, qdd = at_rest(robot, 5.0, 1000.0)
+    res = cable.inverse_dynamics(robot, t, q, qd, qdd, initial=(0.0, 1e-4))
+    wd = w * np.sqrt(1 - zeta ** 2)
+    ref = 1e-4 * np.exp(-zeta * w * t) * (np.cos(wd * t) + zeta / np.sqrt(1 - zeta ** 2)
+                                          * np.sin(wd * t))
+    assert np.abs(res.sway[:, 1] - ref).max() <= 1e-12
+    p = cable.inverse_dynamics(robot, t[:500], q[:500], qd[:500], qdd[:500],
+                               initial=(0.3, 0.2), method="pinocchio")
+    k = cable.inverse_dynamics(robot, t[:500], q[:500], qd[:500], qdd[:500], initial=(0.3, 0.2))
+    assert np.abs(k.sway - p.sway).max() <= 1e-12          # both read <dynamics damping>
+    assert np.abs(k.X - p.X).max() <= 1e-12 * np.abs(p.X).max()
+
+
+def test_damped_swing_settles_at_the_tilt_of_the_acceleration():
+    """With damping (ζ = 0.5, L = 0.1 m: decay rate ζω = 4.95 /s), under a constant
+    horizontal acceleration a = 0.05 m/s² for 3 s (the platform moves 0.225 m, inside the
+    workspace) the sway settles at atan(a/g): to 1e-5 relative (e^{−ζωt} = 4e-7)."""
+    a, zeta, L = 0.05, 0.5, 0.1
+    c = 2 * zeta * MASS * L ** 2 * np.sqrt(G / L)
+    robot = oc.load_robot(overrides={"payload.mass": MASS, "payload.cable_length": L,
+                                     "payload.sway_damping": c})
+    t, q, qd, qdd = at_rest(robot, 3.0, 1000.0)
+    q[:, 0] = -0.1125 + 0.5 * a * t ** 2
+    qd[:, 0] = a * t
+    qdd[:, 0] = a
+    res = cable.inverse_dynamics(robot, t, q, qd, qdd)
+    assert res.sway[-1, 1] == pytest.approx(np.arctan(a / G), rel=1e-5)
+    assert abs(res.sway_rate[-1, 1]) <= 1e-5 * np.arctan(a / G) * np.sqrt(G / L)
+    assert np.abs(res.sway[:, 0]).max() <= 1e-15
+
+
 def test_at_rest_the_cable_pulls_mg_like_a_welded_payload(crane):
     """Hanging still under a robot at rest: tension m g, and X equal to the rigid robot's
     with the same mass welded at the cable's end (measured: identical to the last bit)."""
@@ -269,6 +308,9 @@ def test_rigid_solvers_refuse_a_hanging_payload(crane):
     ({"payload.cable_length": 1.0}, "needs a payload to hang from it"),
     ({"payload.cable_length": 1.0, "payload.mass": 2.0, "payload.com": [0, 0, -0.1]},
      "point mass at the cable's end"),
+    ({"payload.sway_damping": 0.1}, "damps the swing of a payload on a cable"),
+    ({"payload.cable_length": 1.0, "payload.mass": 2.0, "payload.sway_damping": -0.1},
+     "must not be negative"),
 ])
 def test_description_checks_the_cable(overrides, match):
     from offshore_crane.errors import DescriptionError

@@ -18,12 +18,15 @@ step): from ``reference`` (an analytic motion: Table 1, sea states, crane operat
 by quintic Hermite interpolation of q, q̇, q̈ at both ends of each interval (error
 ``O(h⁶)`` in q; the derivatives of a CSV are its own columns or finite differences).
 
-Two independent paths, like the rest of the project: ``method="kane"`` (compiled; the
-formulas :func:`~offshore_crane.dynamics.formulas.sway_accelerations` and
-``kane_sample`` on the arm chain continued by the sway joints) and ``method="pinocchio"``
-(:mod:`offshore_crane.reference.cable`: the sway joints of Pinocchio's model of the URDF,
-their accelerations from RNEA and CRBA, X from the RNEA reference), which share only the
-URDF.
+Two independent paths, like the rest of the project: ``method="kane"`` (compiled) and
+``method="pinocchio"`` (:mod:`offshore_crane.reference.cable`: the sway joints of
+Pinocchio's model of the URDF, their accelerations from RNEA and CRBA, X from the RNEA
+reference), which share only the URDF. The Kane path writes the pendulum's own equations
+by Kane's method on the tip's motion
+(:func:`~offshore_crane.dynamics.formulas.tip_motion`, ``pendulum``) and X by
+``kane_sample`` on the arm chain continued by the sway joints and the payload (the
+cable's pull enters through the arm); that pass's rows of the sway speeds must vanish at
+the integrated sway, a check between the two (``CableResult.residual``).
 
 A cable cannot push: where the tension the model needs is ≤ 0 the model no longer holds
 and :class:`~offshore_crane.errors.SlackCableError` names the time (``slack="warn"``: a
@@ -208,23 +211,31 @@ def cable_robot(robot, length=None, mass=None):
 
 def stage_grid(t, q, qd, qdd, reference, substeps: int):
     """The robot's motion at RK4's stage times (every half step): ``(tt, Q, Qd, Qdd)``
-    with ``2 substeps (N − 1) + 1`` rows (see the module docstring)."""
+    with ``2 substeps (N − 1) + 1`` rows (see the module docstring); the samples' own rows
+    are the given ``q, qd, qdd``, only the points between them are evaluated."""
     N = len(t)
     h = (t[-1] - t[0]) / (N - 1) / substeps
     tt = t[0] + np.arange(2 * substeps * (N - 1) + 1) * (0.5 * h)
-    tt[-1] = t[-1]
+    tt[::2 * substeps] = t
     if reference is None:
         return (tt, *_quintic_midpoints(t, q, qd, qdd, substeps))
-    Q, Qd, Qdd = (np.ascontiguousarray(np.asarray(x, dtype=float)) for x in reference(tt))
-    for name, x in (("q", Q), ("qd", Qd), ("qdd", Qdd)):
-        if x.shape != (len(tt), 9):
+    between = np.ones(len(tt), dtype=bool)
+    between[::2 * substeps] = False
+    grid = []
+    for name, x, given in zip(("q", "qd", "qdd"), reference(tt[between]), (q, qd, qdd)):
+        x = np.asarray(x, dtype=float)
+        if x.shape != (int(between.sum()), 9):
             raise InputError(f"reference(t) returned {name} of shape {x.shape}; expected "
-                             f"({len(tt)}, 9)", name="reference")
+                             f"({int(between.sum())}, 9)", name="reference")
         if not np.isfinite(x).all():
             k = int(np.argmax(~np.isfinite(x).all(axis=1)))
-            raise InputError(f"reference(t) returned a non-finite {name} at t = {tt[k]:.6g} s",
-                             name="reference", index=k)
-    return tt, Q, Qd, Qdd
+            raise InputError(f"reference(t) returned a non-finite {name} at t = "
+                             f"{tt[between][k]:.6g} s", name="reference", index=k)
+        full = np.empty((len(tt), 9))
+        full[between] = x
+        full[~between] = given
+        grid.append(full)
+    return (tt, *grid)
 
 
 # --------------------------------------------------------------------------- public
@@ -309,6 +320,8 @@ def inverse_dynamics(robot, t, q, qd, qdd, *, reference=None, gravity=GRAVITY,
     res = _forces(robot, t[:n], q[:n], qd[:n], qdd[:n], Y[:n], g, method, limits, checks,
                   thresholds, worst, length_, mass_, h)
     if code != 0:
+        if slack == "error":
+            _slack(res, slack)         # a slack cable before the stop is its first cause
         cause = ("the sway reached the singular set cos(phi2) = 0 (1/cos^2 above "
                  f"{thresholds.error:.3g})" if code == 1 else "the sway diverged (a "
                  "non-finite state)")
@@ -338,8 +351,8 @@ def _integrate_kane(robot, Q, Qd, Qdd, g, h, sub, y0, thresholds):
     n_out = (Q.shape[0] - 1) // (2 * sub) + 1
     Y = np.full((n_out, 6), np.nan)
     status = np.zeros(3)
-    ck.integrate(arrays.flat, arrays.layout, arrays.prismatic, Q, Qd, Qdd, g, h, sub, y0,
-                 1.0 / thresholds.error, Y, status)
+    ck.integrate(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, Q, Qd,
+                 Qdd, g, h, sub, y0, 1.0 / thresholds.error, Y, status)
     return Y, status
 
 
@@ -379,8 +392,9 @@ def _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
         return X, F, kappa if checks else None
 
     def run(start, stop, health):
-        ck.kane(arrays.flat, arrays.layout, arrays.prismatic, q11, qd11, qdd11, g, checks,
-                limits, thresholds.warn, thresholds.error, start, stop, X, kappa, health, F)
+        ck.kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11,
+                qd11, qdd11, g, checks, limits, thresholds.warn, thresholds.error, start, stop,
+                X, kappa, health, F)
 
     health = _threaded(run, n, 1)
     ws.enforce(health, (q, qd, qdd), arrays.limits if limits else None,
@@ -412,8 +426,9 @@ def _slack(res: CableResult, policy: str) -> None:
 def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY) -> np.ndarray:
     """The right-hand side of the swing: ``φ̈`` ``(N, 2)`` [rad/s²] at given states.
 
-    The same formula the integrator runs compiled
-    (:func:`~offshore_crane.dynamics.formulas.sway_accelerations`), here on NumPy arrays.
+    The same formulas the integrator runs compiled
+    (:func:`~offshore_crane.dynamics.formulas.tip_motion` and ``pendulum``), here on NumPy
+    arrays.
 
     Args:
         robot: With a payload on a cable.
@@ -423,7 +438,6 @@ def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY) -> n
     """
     from .dynamics import backends
     from .dynamics.constants import cable_arrays
-    from .dynamics.formulas import STORE_WIDTH
 
     robot = cable_robot(robot)
     q, single = as_samples("q", q)
@@ -433,13 +447,12 @@ def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY) -> n
     sway_rate = as_samples("sway_rate", sway_rate, width=2)[0]
     g = tuple(float(x) for x in as_gravity(gravity))
     C = cable_arrays(robot).kane
-    zero = np.zeros((len(q), 2))
-    rows = np.empty(C.n_arm, dtype=object)
-    store = np.empty((C.n_arm, STORE_WIDTH), dtype=object)
+    c1, c2 = (float(c) for c in robot.hybrid.sway_damping)
+    F = backends.NUMPY
     with np.errstate(divide="ignore", invalid="ignore"):
-        a1, a2, _ = backends.NUMPY.sway_accelerations(
-            C, np.concatenate([q, sway], 1).T, np.concatenate([qd, sway_rate], 1).T,
-            np.concatenate([qdd, zero], 1).T, g, rows, store)
+        Rt, w, al, a = F.tip_motion(C, q.T, qd.T, qdd.T)
+        a1, a2, _ = F.pendulum(C, Rt, w, al, a, g, sway[:, 0], sway[:, 1], sway_rate[:, 0],
+                               sway_rate[:, 1], c1, c2)
     out = np.stack([a1, a2], axis=-1)
     return out[0] if single else out
 

@@ -39,6 +39,7 @@ Schema (every key optional; SI units; unknown keys or sections are errors)::
                                        # positive definite; default 0 (a point mass)
     cable_length = 0.0                 # [m]: > 0 hangs the payload (a point mass: offset
                                        # and inertia zero) on a cable from arm_tip
+    sway_damping = 0.0                 # [N·m·s/rad] of each sway angle (with a cable)
     [cable]                            # the swing, with cable_length > 0 (docs/cable.md)
     initial = [0.05, 0.0]              # sway phi1, phi2 at the start [rad] (default 0)
     initial_rate = [0.0, 0.0]          # [rad/s]
@@ -110,7 +111,7 @@ SECTIONS = ("robot", "subsystems", "payload", "cable", "actuators", "trajectory"
             "operation", "control")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
-PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length")
+PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length", "sway_damping")
 CABLE_KEYS = ("initial", "initial_rate", "substeps", "slack")
 INERTIA_KEYS = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
 TRAJECTORY_KEYS = ("source", "duration", "rate", "fd_order")
@@ -129,7 +130,8 @@ CONTROLLER_KEYS = ("law", "kp", "kd", "rate", "lower", "upper", "saturation", "n
 #: Where a scene file sets the robot fields it owns besides [robot] (for messages).
 SCENE_FIELDS = {"arm.enabled": "[subsystems] arm", "payload.mass": "[payload] mass",
                 "payload.com": "[payload] offset", "payload.inertia": "[payload] inertia",
-                "payload.cable_length": "[payload] cable_length"}
+                "payload.cable_length": "[payload] cable_length",
+                "payload.sway_damping": "[payload] sway_damping"}
 
 
 def _scene_field(name: str) -> str:
@@ -162,18 +164,21 @@ class Payload:
             axes [kg·m²] (URDF convention); all zero for a point mass.
         cable_length: [m]; 0: welded to ``arm_tip``; > 0: a point mass hanging on a
             cable of this length (:mod:`offshore_crane.cable`).
+        sway_damping: viscous damping of each sway angle [N·m·s/rad] (with a cable).
     """
 
     mass: float = 0.0
     offset: tuple = (0.0, 0.0, 0.0)
     inertia: tuple = (0.0,) * 6
     cable_length: float = 0.0
+    sway_damping: float = 0.0
 
     def overrides(self) -> dict:
         """The dotted robot fields this payload sets."""
         return {"payload.mass": self.mass, "payload.com": list(self.offset),
                 "payload.inertia": dict(zip(INERTIA_KEYS, self.inertia)),
-                "payload.cable_length": self.cable_length}
+                "payload.cable_length": self.cable_length,
+                "payload.sway_damping": self.sway_damping}
 
 
 @dataclass(frozen=True)
@@ -404,7 +409,8 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
     if "inertia" in r.table:
         _Reader(where, "payload.inertia", r.get("inertia"), INERTIA_KEYS)  # known keys
     for key, name in (("mass", "payload.mass"), ("offset", "payload.com"),
-                      ("inertia", "payload.inertia"), ("cable_length", "payload.cable_length")):
+                      ("inertia", "payload.inertia"), ("cable_length", "payload.cable_length"),
+                      ("sway_damping", "payload.sway_damping")):
         if key in r.table:
             payload[name] = r.get(key)
     sub = data.get("subsystems", {})
@@ -509,7 +515,7 @@ def _payload_of(spec) -> Payload:
     return Payload(float(p.mass), tuple(float(x) for x in p.com),
                    tuple(float(p.inertia[i, j]) for i, j in
                          ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))),
-                   float(spec.cable_length))
+                   float(spec.cable_length), float(spec.sway_damping))
 
 
 def _trajectory(where: str, data: dict, base: Path | None) -> dict:

@@ -1,11 +1,12 @@
 """Compiled drivers of the hanging load (:mod:`offshore_crane.cable`; imports Numba).
 
-The formulas are those of :mod:`.formulas` (``sway_accelerations``, ``cable_force``,
-``kane_sample`` on the arm chain continued by the two sway joints), compiled without
-inlining (:data:`.compiled.KE`). Two drivers:
+The formulas are those of :mod:`.formulas` (``tip_motion``, ``pendulum``, ``cable_force``,
+``kane_sample`` on the arm chain continued by the two sway joints), compiled inlined
+(:data:`.compiled.K`). Two drivers:
 
 - :func:`integrate`: classical RK4 of the sway state ``y = (φ1, φ2, φ̇1, φ̇2)`` under the
-  robot's prescribed motion, given on the grid of RK4's stage times (every half step);
+  robot's prescribed motion, given on the grid of RK4's stage times (every half step):
+  the tip's motion (``tip_motion``) drives the pendulum's equations (``pendulum``);
 - :func:`kane`: Kane's inverse dynamics of the robot with the payload hanging at the
   integrated sway (the cable's pull enters X through the arm pass), with the cable force
   and the residual of the sway equations (zero up to round-off: a check).
@@ -22,69 +23,79 @@ from numba import njit
 from . import compiled as c
 from .formulas import STORE_WIDTH
 
-sway_accelerations, cable_force = c.KE.sway_accelerations, c.KE.cable_force
-sway_mass, finite_inputs = c.KE.sway_mass, c._finite_inputs
-kane_sample, unpack, post, tangent_bounds = c.KE.kane_sample, c.unpack, c._post, c.tangent_bounds
+tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_force
+finite_inputs = c._finite_inputs
+kane_sample, unpack, post, tangent_bounds = c.K.kane_sample, c.unpack, c._post, c.tangent_bounds
 jit = njit(**c.JIT)
 #: Stop codes of :func:`integrate` (``status[0]``).
 OK, SINGULAR, DIVERGED = 0, 1, 2
 
 
 def _helpers(stamp):
-    """The right-hand side, closed over the formulas' hash (its disk cache key; the
-    drivers reach it as a module global, see :mod:`offshore_crane._rk4`)."""
+    """The right-hand side pieces, closed over the formulas' hash (their disk cache key;
+    the drivers reach them as module globals, see :mod:`offshore_crane._rk4`)."""
 
     @jit
-    def rhs(C, g, Qh, Qdh, Qddh, i, y, q, qd, qdd, rows, store, out):
-        """``out = (φ̇1, φ̇2, φ̈1, φ̈2)`` at stage-grid point ``i`` and sway state ``y``;
-        returns ``det M_φφ / M44²`` (``cos²φ2`` for the point mass; 0 on the singular
-        set)."""
+    def tip(C, Qh, Qdh, Qddh, i, q, qd, qdd, out):
+        """``out`` (18,) = R_base_tip (by rows), ω, α, a of the tip at stage point ``i``."""
         if len(stamp) == 0:
-            return 0.0
+            return
         for j in range(9):
             q[j] = Qh[i, j]
             qd[j] = Qdh[i, j]
             qdd[j] = Qddh[i, j]
-        q[9] = y[0]
-        q[10] = y[1]
-        qd[9] = y[2]
-        qd[10] = y[3]
-        qdd[9] = 0.0
-        qdd[10] = 0.0
-        a1, a2, det = sway_accelerations(C, q, qd, qdd, g, rows, store)
+        R, w, al, a = tip_motion(C, q, qd, qdd)
+        for r in range(3):
+            for j in range(3):
+                out[3 * r + j] = R[r][j]
+            out[9 + r] = w[r]
+            out[12 + r] = al[r]
+            out[15 + r] = a[r]
+
+    @jit
+    def rhs(C, g, damp, T, y, out):
+        """``out = (φ̇1, φ̇2, φ̈1, φ̈2)`` for the tip state ``T`` (18,) and sway ``y``;
+        returns ``cos²φ2`` (0 on the singular set)."""
+        if len(stamp) == 0:
+            return 0.0
+        R = ((T[0], T[1], T[2]), (T[3], T[4], T[5]), (T[6], T[7], T[8]))
+        a1, a2, cos2 = pendulum(C, R, (T[9], T[10], T[11]), (T[12], T[13], T[14]),
+                                (T[15], T[16], T[17]), g, y[0], y[1], y[2], y[3], damp[0],
+                                damp[1])
         out[0] = y[2]
         out[1] = y[3]
         out[2] = a1
         out[3] = a2
-        m44 = sway_mass(C, store)[2]
-        return det / (m44 * m44)
+        return cos2
 
-    return rhs
+    return tip, rhs
 
 
-rhs = _helpers(c.STAMP)
+tip, rhs = _helpers(c.STAMP)
 
 
 def _make(stamp):
 
     @jit
-    def integrate(flat, lay, prism, Qh, Qdh, Qddh, g, h, sub, y0, rel_min, Y, status):
-        """RK4 of the sway from ``y0`` (4,) with step ``h`` [s]; ``Qh, Qdh, Qddh``
-        ``(2 n + 1, 9)`` the robot's motion at every half step (n steps); writes every
-        ``sub``-th state to ``Y`` ``(n // sub + 1, 6)``: φ1, φ2 [rad], φ̇1, φ̇2 [rad/s],
-        φ̈1, φ̈2 [rad/s²]. ``status`` (3,): stop code, sample index of the stop, and the
-        worst ``1 / cos²φ2`` met (the sway inertia's condition); the run stops at the
-        first output sample whose state is not finite or whose ``cos²φ2`` falls below
-        ``rel_min`` (``Y`` holds every sample before it)."""
+    def integrate(flat, lay, prism, damp, Qh, Qdh, Qddh, g, h, sub, y0, rel_min, Y, status):
+        """RK4 of the sway from ``y0`` (4,) with step ``h`` [s] and the sway joints'
+        damping ``damp`` (2,) [N·m·s/rad]; ``Qh, Qdh, Qddh`` ``(2 n + 1, 9)`` the robot's
+        motion at every half step (n steps; the tip's motion is formed once per point);
+        writes every ``sub``-th state to ``Y`` ``(n // sub + 1, 6)``: φ1, φ2 [rad], φ̇1,
+        φ̇2 [rad/s], φ̈1, φ̈2 [rad/s²]. ``status`` (3,): stop code, sample index of the
+        stop, and the worst ``1 / cos²φ2`` met (the sway inertia's condition); the run
+        stops at the first output sample whose state is not finite or whose ``cos²φ2``
+        falls below ``rel_min`` (``Y`` holds every sample before it)."""
         if len(stamp) == 0:
             return
         C = unpack(flat, lay, prism)[0]
         gt = (g[0], g[1], g[2])
-        q = np.empty(11)
-        qd = np.empty(11)
-        qdd = np.empty(11)
-        rows = np.zeros(C.n_arm)
-        store = np.empty((C.n_arm, STORE_WIDTH))
+        q = np.empty(9)
+        qd = np.empty(9)
+        qdd = np.empty(9)
+        T0 = np.empty(18)
+        Tm = np.empty(18)
+        T1 = np.empty(18)
         y = y0.copy()
         ys = np.empty(4)
         k1 = np.empty(4)
@@ -95,8 +106,9 @@ def _make(stamp):
         status[0] = OK
         status[1] = -1
         status[2] = 0.0
+        tip(C, Qh, Qdh, Qddh, 0, q, qd, qdd, T0)
         for s in range(n_steps + 1):
-            rel = rhs(C, gt, Qh, Qdh, Qddh, 2 * s, y, q, qd, qdd, rows, store, k1)
+            rel = rhs(C, gt, damp, T0, y, k1)
             if s % sub == 0:
                 k = s // sub
                 finite = True
@@ -119,26 +131,31 @@ def _make(stamp):
                     return
             if s == n_steps:
                 break
+            tip(C, Qh, Qdh, Qddh, 2 * s + 1, q, qd, qdd, Tm)
+            tip(C, Qh, Qdh, Qddh, 2 * s + 2, q, qd, qdd, T1)
             for j in range(4):
                 ys[j] = y[j] + 0.5 * h * k1[j]
-            rhs(C, gt, Qh, Qdh, Qddh, 2 * s + 1, ys, q, qd, qdd, rows, store, k2)
+            rhs(C, gt, damp, Tm, ys, k2)
             for j in range(4):
                 ys[j] = y[j] + 0.5 * h * k2[j]
-            rhs(C, gt, Qh, Qdh, Qddh, 2 * s + 1, ys, q, qd, qdd, rows, store, k3)
+            rhs(C, gt, damp, Tm, ys, k3)
             for j in range(4):
                 ys[j] = y[j] + h * k3[j]
-            rhs(C, gt, Qh, Qdh, Qddh, 2 * s + 2, ys, q, qd, qdd, rows, store, k4)
+            rhs(C, gt, damp, T1, ys, k4)
             for j in range(4):
                 y[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+            for j in range(18):
+                T0[j] = T1[j]
 
     @jit
-    def kane(flat, lay, prism, q, qd, qdd, g, want_cond, want_limits, warn, error, start,
-             stop, X, kappa, health, F):
+    def kane(flat, lay, prism, damp, q, qd, qdd, g, want_cond, want_limits, warn, error,
+             start, stop, X, kappa, health, F):
         """Samples ``start..stop-1`` of the fused Kane equations of the robot with its
         hanging payload: ``q, qd, qdd`` ``(N, 11)`` (the sway's in columns 9, 10); fills
         X ``(N, 9)`` and ``F`` ``(N, 6)``: the cable's pull on the tip (3) [N, base
         axes], the tension [N], and the residual of the two sway equations [N·m]
-        (Kane's rows of the sway speeds, zero when φ̈ solves them)."""
+        (Kane's rows of the sway speeds with the damping ``damp`` (2,) [N·m·s/rad], zero
+        when φ̈ solves them)."""
         if len(stamp) == 0:
             return
         C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
@@ -165,8 +182,8 @@ def _make(stamp):
             for j in range(3):
                 F[k, j] = f[j]
             F[k, 3] = tension
-            F[k, 4] = rows[na - 2]
-            F[k, 5] = rows[na - 1]
+            F[k, 4] = rows[na - 2] + damp[0] * qd[k, 4 + na]
+            F[k, 5] = rows[na - 1] + damp[1] * qd[k, 5 + na]
             post(k, q, na, A, rhs6, diag, True, want_cond, want_limits, warn, error,
                  lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 

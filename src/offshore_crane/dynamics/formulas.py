@@ -38,7 +38,7 @@ from __future__ import annotations
 
 from collections import namedtuple
 
-from numpy import sqrt
+from numpy import cos, sin, sqrt
 
 from ..kinematics.formulas import (FULL, MASSLESS, add, arm_child, arm_joint, attitude, axpy,
                                    cross, platform_partials, put, take, dot, leg_frame, leg_geometry, leg_motion,
@@ -379,36 +379,60 @@ def actuator_coordinates(C, q, qd, pos, rate):
 
 # --------------------------------------------------------------------------- hanging load
 # With a payload on a cable the arm chain ``C`` continues by the two sway joints (φ1 about
-# x of arm_tip, φ2 about the rotated y) and the payload, a point mass L below them
-# (``C.n_arm = 5``; q, q̇, q̈ have 11 entries: q1..q9, φ1, φ2). Kane's equations of the
-# sway speeds are rows 3 and 4 of the arm pass (no actuator acts there):
-# ``rows[3:5] = M_φφ φ̈ + b = 0``.
-def sway_mass(C, store):
-    """The sway joints' 2x2 generalized inertia ``(M33, M34, M44)`` [kg·m²] from the arm
-    pass's ``store``: ``M_jk = m (z_j × ρ)·(z_k × ρ)`` with ρ the payload's position from
-    the sway joints' common origin (base axes) and ``z_j`` their axes."""
-    b = C.n_arm - 1
-    rho = take(store, b, RC_)
-    v3 = cross(take(store, b - 1, Z_), rho)
-    v4 = cross(take(store, b, Z_), rho)
-    m = C.arm_m[b]
-    return m * dot(v3, v3), m * dot(v3, v4), m * dot(v4, v4)
-
-
-def sway_accelerations(C, q, qd, qdd, g, rows, store):
-    """``(φ̈1, φ̈2)`` [rad/s²] of the hanging payload under the robot's prescribed motion
-    ``q, q̇, q̈`` (q̈[9:11] must be zero: the pass then gives ``b``), and the sway inertia
-    determinant ``det M_φφ`` [kg²·m⁴] (zero on the singular set ``cos φ2 = 0``, where the
-    cable lies along the φ1 axis)."""
+# x of arm_tip, φ2 about the rotated y, one origin) and the payload, a point mass L below
+# them (``C.n_arm = 5``; q, q̇, q̈ have 11 entries: q1..q9, φ1, φ2). The sway's equations
+# come from :func:`pendulum` on the tip's motion (:func:`tip_motion`); the actuator forces
+# from :func:`kane_sample` on the whole chain, whose rows of the sway speeds must then
+# vanish (``rows[3:5] + c φ̇ = 0``): a check between the two.
+def tip_motion(C, q, qd, qdd):
+    """The first sway joint's frame (``arm_tip``): ``(R_base_tip, ω [rad/s], α [rad/s²],
+    a [m/s²])``, its attitude, angular velocity and acceleration, and its origin's
+    acceleration, under the robot's motion ``q, q̇, q̈`` (the arm chain ``C`` continued
+    by the two sway joints)."""
     R, w4, w5, w6 = attitude(q)
     omega, alpha = platform_rates(w4, w5, qd, qdd)
-    arm_forward(C, R, omega, alpha, (qdd[0], qdd[1], qdd[2]), q, qd, qdd, 6, g, store, False)
-    arm_backward(C, store, rows)
-    m33, m34, m44 = sway_mass(C, store)
-    det = m33 * m44 - m34 * m34
-    b3 = rows[C.n_arm - 2]
-    b4 = rows[C.n_arm - 1]
-    return (m34 * b4 - m44 * b3) / det, (m34 * b3 - m33 * b4) / det, det
+    a = (qdd[0], qdd[1], qdd[2])
+    nb = C.n_arm - 2
+    for b in range(nb):
+        axis = row3(C.arm_axis, b)
+        r, Rj, z = arm_joint(R, mat3(C.arm_Ro, b), row3(C.arm_t, b), axis)
+        R, off, omega, alpha, a = arm_child(Rj, z, axis, omega, alpha,
+                                            point_acceleration(a, omega, alpha, r),
+                                            C.arm_prism[b], q[6 + b], qd[6 + b], qdd[6 + b])
+    r, Rj, z = arm_joint(R, mat3(C.arm_Ro, nb), row3(C.arm_t, nb), row3(C.arm_axis, nb))
+    return Rj, omega, alpha, point_acceleration(a, omega, alpha, r)
+
+
+def pendulum(C, Rt, omega, alpha, a_t, g, p1, p2, r1, r2, c1, c2):
+    """Kane's equations of the sway speeds: ``(φ̈1, φ̈2)`` [rad/s²] and ``cos²φ2``.
+
+    A point mass m on a cable of length L (``C``'s last body, at ``(0, 0, −L)`` below the
+    sway joints) from the origin of a frame of attitude ``Rt`` (R_base_tip), angular
+    velocity ``omega``, acceleration ``alpha``, origin acceleration ``a_t``; sway angles
+    ``p1, p2`` about x then the rotated y of that frame, rates ``r1, r2``, viscous damping
+    ``c1, c2`` [N·m·s/rad]. With ``e = Rx(φ1) Ry(φ2) (0, 0, −1)`` (tip axes) the partial
+    velocities are ``v_r = L Rt ∂e/∂φ_r`` and ``v_r · m (a_p − g) + c_r φ̇_r = 0``, where
+    ``∂e/∂φ1 · ∂e/∂φ1 = cos²φ2``, ``∂e/∂φ2 · ∂e/∂φ2 = 1``, ``∂e/∂φ1 · ∂e/∂φ2 = 0``.
+    """
+    b = C.n_arm - 1
+    m = C.arm_m[b]
+    L = -C.arm_c[b, 2]
+    s1, k1, s2, k2 = sin(p1), cos(p1), sin(p2), cos(p2)
+    e = (-s2, s1 * k2, -k1 * k2)
+    e1 = (0.0 * s1, k1 * k2, s1 * k2)
+    e2 = (-k2, -s1 * s2, k1 * s2)
+    quad = axpy(r2 * r2, (s2, -s1 * k2, k1 * k2),
+                axpy(2.0 * r1 * r2, (0.0 * s1, -k1 * s2, -s1 * s2),
+                     scale((0.0 * s1, -s1 * k2, k1 * k2), r1 * r1)))
+    w = mtv(Rt, omega)
+    rho = scale(e, L)
+    # the payload's acceleration but for the φ̈ terms, minus g, in tip axes
+    acc = add(point_acceleration(mtv(Rt, sub(a_t, g)), w, mtv(Rt, alpha), rho),
+              add(scale(cross(w, axpy(r2, e2, scale(e1, r1))), 2.0 * L), scale(quad, L)))
+    mL = m * L
+    cos2 = k2 * k2
+    return (-(mL * dot(e1, acc) + c1 * r1) / (mL * L * cos2),
+            -(mL * dot(e2, acc) + c2 * r2) / (mL * L), cos2)
 
 
 def cable_force(C, store):

@@ -101,7 +101,8 @@ class Robot:
         if self.hybrid.cable is None:
             return self
         return load_robot(self.description_path, {**self.overrides, "payload.mass": 0.0,
-                                                  "payload.cable_length": 0.0})
+                                                  "payload.cable_length": 0.0,
+                                                  "payload.sway_damping": 0.0})
 
     @cached_property
     def pinocchio_model(self):

@@ -315,7 +315,9 @@ SCHEMA = {
     "payload": {"mass": _num("kg", "payload mass (0: none)"),
                 "com": Leaf("vec3", "m", "payload centre of mass in the arm_tip frame"),
                 "inertia": Leaf("inertia", "kg·m²", "about its centre of mass, arm_tip axes"),
-                "cable_length": _num("m", "cable length (0: welded)")},
+                "cable_length": _num("m", "cable length (0: welded)"),
+                "sway_damping": _num("N·m·s/rad", "viscous damping of each sway angle "
+                                     "(hanging payload; 0: none)")},
     "actuators": {g: ACTUATOR for g in ACTUATOR_GROUPS},
 }
 
@@ -758,6 +760,7 @@ class Description:
             ArmJoint, "link2": ..., "slider": ..., "tip": (origin, rpy)}``.
         payload: :class:`Body` in the arm_tip frame (mass 0: none).
         cable_length: [m].
+        sway_damping: [N·m·s/rad].
         capacities: :class:`Capacities`.
         values: ``{dotted name: value}`` of every numeric field given (after overrides
             and expressions).
@@ -783,6 +786,7 @@ class Description:
     arm: dict | None
     payload: Body
     cable_length: float
+    sway_damping: float
     capacities: Capacities
     values: dict = field(repr=False)
 
@@ -904,7 +908,7 @@ class _Resolver:
         a1, R_U, rpy_U = self._ujoints(P, S, h)
         self._check_home(P, S, h, stroke, R_U, ulim)
         arm = self._arm()
-        payload, cable = self._payload(arm is not None)
+        payload, cable, damping = self._payload(arm is not None)
         caps = self._capacities()
         return Description(
             name=self.v.raw.get("name", Path(self.path).stem), source=self.v.raw.get(
@@ -912,8 +916,8 @@ class _Resolver:
             p_base_P=P, p_platform_S=S, a1=a1, R_base_U=R_U, rpy_U=rpy_U, lower=tuple(p[0] for p in parts),
             upper=tuple(p[1] for p in parts), part_length=lengths, stroke=stroke,
             ujoint_limit=ulim, platform=platform, base_visual=self._base_visual(P),
-            arm=arm, payload=payload, cable_length=cable, capacities=caps,
-            values=dict(self.n.cache))
+            arm=arm, payload=payload, cable_length=cable, sway_damping=damping,
+            capacities=caps, values=dict(self.n.cache))
 
     # ------------------------------------------------------------------ anchors
     def _anchors(self, side: str, letter: str) -> np.ndarray:
@@ -1263,6 +1267,13 @@ class _Resolver:
         if cable < 0.0:
             self.fail("payload.cable_length", f"{cable:g} m must not be negative (0: the "
                       "payload welded to arm_tip; > 0: hanging on a cable of that length)")
+        damping = self.n.get("payload.sway_damping", 0.0)
+        if not damping >= 0.0:
+            self.fail("payload.sway_damping", f"{damping:g} N·m·s/rad must not be negative")
+        if damping > 0.0 and not cable > 0.0:
+            self.fail("payload.sway_damping", f"{damping:g} N·m·s/rad damps the swing of a "
+                      "payload on a cable, but payload.cable_length = 0 (welded)",
+                      "payload.cable_length")
         if cable > 0.0:
             if not m > 0.0:
                 self.fail("payload.cable_length", f"{cable:g} m: a cable needs a payload to "
@@ -1274,7 +1285,7 @@ class _Resolver:
                           "mass at the cable's end: set payload.com = [0, 0, 0] and "
                           "payload.inertia to zero (the cable length is measured to the "
                           "centre of mass)", "payload.cable_length")
-        return Body(m, com, I, {"type": "none"}), cable
+        return Body(m, com, I, {"type": "none"}), cable, damping
 
     # ------------------------------------------------------------------ actuators
     def _capacities(self) -> Capacities:
@@ -1382,7 +1393,8 @@ def _xacro_data(d: Description) -> dict:
             "platform": _body_data(d.platform), "legs": legs, "arm": None,
             "payload": {"mass": float(d.payload.mass), "com": _floats(d.payload.com),
                         "inertia": _inertia6(d.payload.inertia),
-                        "cable_length": float(d.cable_length)}}
+                        "cable_length": float(d.cable_length),
+                        "sway_damping": float(d.sway_damping)}}
     if d.arm is not None:
         origin, rpy, column = d.arm["column"]
         arm = {"column": {"origin": _floats(origin), "rpy": _floats(rpy),

@@ -7,7 +7,7 @@ on, and says what is wrong otherwise.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
@@ -52,6 +52,8 @@ class HybridModel:
         cable: With a hanging payload (``payload.cable_length > 0``), the arm chain
             continued by the two sway joints ``cable_joint1``, ``cable_joint2`` and the
             payload below them (5 joints: q7, q8, q9, phi1, phi2); None otherwise.
+        sway_damping: ``(2,)`` viscous damping of the sway joints [N·m·s/rad] (their URDF
+            ``<dynamics damping>``); zeros without a cable.
     """
 
     platform_mass: float
@@ -70,6 +72,7 @@ class HybridModel:
     ujoint_limits: np.ndarray
     arm: SerialChain
     cable: SerialChain | None = None
+    sway_damping: np.ndarray = field(default_factory=lambda: np.zeros(2))
 
     @property
     def has_arm(self) -> bool:
@@ -190,4 +193,6 @@ def hybrid_from_urdf(urdf: URDF) -> HybridModel:
         lower_inertia=np.array([x[2] for x in lower]),
         upper_mass=np.array([x[0] for x in upper]), upper_com=np.array([x[1] for x in upper]),
         upper_inertia=np.array([x[2] for x in upper]),
-        stroke=np.array(stroke), ujoint_limits=np.array(ulim), arm=arm, cable=cable)
+        stroke=np.array(stroke), ujoint_limits=np.array(ulim), arm=arm, cable=cable,
+        sway_damping=np.array([urdf.joint(j).damping if cable is not None else 0.0
+                               for j in CABLE_JOINTS]))

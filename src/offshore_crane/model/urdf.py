@@ -48,6 +48,8 @@ class Joint:
         axis: ``(3,)`` unit axis in the joint frame (zeros for a fixed joint).
         lower, upper: position limits [m or rad] (``-inf``/``inf`` when absent).
         mimic: name of the mimicked joint, or None.
+        damping: viscous damping of ``<dynamics damping>`` [N·s/m or N·m·s/rad] (0 when
+            absent).
     """
 
     name: str
@@ -60,6 +62,7 @@ class Joint:
     lower: float = -np.inf
     upper: float = np.inf
     mimic: str | None = None
+    damping: float = 0.0
 
 
 @dataclass
@@ -242,5 +245,8 @@ def _parse_joint(el) -> Joint:
         lower = _attr_float(limit, "lower", where, default=0.0)
         upper = _attr_float(limit, "upper", where, default=0.0)
     mimic = el.find("mimic")
+    dyn = el.find("dynamics")
+    damping = _attr_float(dyn, "damping", where, default=0.0) if dyn is not None else 0.0
     return Joint(name, jtype, parent.get("link"), child.get("link"), xyz, rpy_matrix(rpy),
-                 axis, lower, upper, mimic.get("joint") if mimic is not None else None)
+                 axis, lower, upper, mimic.get("joint") if mimic is not None else None,
+                 damping)

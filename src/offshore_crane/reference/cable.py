@@ -45,6 +45,7 @@ class _Pendulum:
         self.mass = float(sum(model.inertias[j].mass for j in range(model.njoints)
                               if j >= jid(CABLE_JOINTS[0])))
         self.g = np.asarray(g, dtype=float)
+        self.damping = np.asarray(model.damping)[self.sway_v]      # URDF <dynamics damping>
 
     def state(self, q9, qd9, qdd9, y, phidd=(0.0, 0.0)):
         m = self.model
@@ -64,7 +65,7 @@ class _Pendulum:
         M = pin.crba(self.model, self.data, x)
         i, j = self.sway_v
         m11, m12, m22 = M[i, i], M[min(i, j), max(i, j)], M[j, j]
-        b1, b2 = tau[i], tau[j]
+        b1, b2 = tau[[i, j]] + self.damping * y[2:4]
         det = m11 * m22 - m12 * m12
         out[0:2] = y[2:4]
         out[2] = (m12 * b2 - m22 * b1) / det
@@ -128,7 +129,7 @@ def forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
     pin.rneaInParallel(1, pool, Qt, Vt, At, tau)
     cond = np.empty(n)
     rnea.project(tau, G, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, bool(checks), X, cond)
-    F[:, 4:6] = tau[P.sway_v].T
+    F[:, 4:6] = tau[P.sway_v].T + P.damping * Y[:, 2:4]
     model, data = P.model, P.data
     for k in range(n):
         x, v, a = P.state(q[k], qd[k], qdd[k], Y[k, 0:4], Y[k, 4:6])
