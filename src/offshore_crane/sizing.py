@@ -248,8 +248,8 @@ def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
         bad = ~np.isfinite(a)
         if bad.any():
             i, j = np.argwhere(bad)[0]
-            raise InputError(f"envelope: {name}[{i}, {j}] = {a[i, j]!r} is not finite",
-                             name=name, index=int(i))
+            raise InputError(f"envelope: {name}[{i}, {j}] = {float(a[i, j])!r} is not "
+                             "finite", name=name, index=int(i))
     if arm is None:
         arm = not np.isnan(X[:, :3]).all()
     if legs is None:
@@ -261,7 +261,8 @@ def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
         i, j = np.argwhere(bad)[0]
         col = np.flatnonzero(present)[j]
         raise InputError(f"envelope: X[{i}, {col}] ({ACTUATORS[col]}) = "
-                         f"{F[i, col]!r} is not finite", name=ACTUATORS[col], index=int(i))
+                         f"{float(F[i, col])!r} is not finite", name=ACTUATORS[col],
+                         index=int(i))
     p, v = actuator_motion(robot, q, qd, legs=bool(legs))
     p[:, ~present], v[:, ~present] = np.nan, np.nan
     power = F * v
@@ -333,7 +334,7 @@ def gumbel_fit(maxima) -> tuple[float, float]:
             f"{x.size}: run more seeds", seeds=int(x.size), minimum=MIN_SEEDS)
     if not np.isfinite(x).all():
         i = int(np.flatnonzero(~np.isfinite(x))[0])
-        raise InputError(f"gumbel_fit: maxima[{i}] = {x[i]!r} is not finite",
+        raise InputError(f"gumbel_fit: maxima[{i}] = {float(x[i])!r} is not finite",
                          name="maxima", index=i)
     m, s = float(x.mean()), float(x.std())
     if s == 0.0 or s <= 1e-14 * abs(m):

@@ -63,7 +63,7 @@ VERDICT_COLUMNS = ("seeds", "failed", "record_s", "exposure_s", "basis", "error"
 MANIFEST = "_manifest.json"
 MANIFEST_FORMAT = "offshore-crane sweep results"
 #: Seconds to wait for a Dask scheduler before calling it unreachable.
-CONNECT_TIMEOUT = 5.0
+CONNECT_TIMEOUT = 3.0
 #: Default Dask ``LocalCluster`` size (``--scheduler local``) when ``workers`` is not given.
 LOCAL_WORKERS = 2
 
@@ -507,6 +507,12 @@ class ResultsStore:
                                      "scene": {"name": self.scene_name,
                                                "hash": self.digest},
                                      "grids": []}
+        for name in os.listdir(self.path):          # a killed run's half-written row
+            if name.startswith(".oc-") and name.endswith(".tmp"):
+                try:
+                    os.unlink(os.path.join(self.path, name))
+                except OSError:
+                    pass
         if grid.as_dict() not in manifest["grids"]:
             manifest["grids"].append(grid.as_dict())
             write_text(os.path.join(self.path, MANIFEST), json.dumps(manifest, indent=1))
