@@ -93,8 +93,7 @@ def operability_diagram(target, table, title: str = "", operability=None) -> Non
             mesh = ax.pcolormesh(tp, hs, shown, shading="nearest", cmap="RdYlGn_r",
                                  norm=norm)
             if np.nanmin(shown) < 1.0 < np.nanmax(shown):
-                cs = ax.contour(tp, hs, shown, levels=[1.0], colors="k", linewidths=2)
-                ax.clabel(cs, fmt={1.0: "100 %"}, fontsize=8)
+                ax.contour(tp, hs, shown, levels=[1.0], colors="k", linewidths=2)
         else:
             T, H = np.meshgrid(tp, hs)
             mesh = ax.scatter(T.ravel(), H.ravel(), c=shown.ravel(), cmap="RdYlGn_r",
@@ -103,7 +102,7 @@ def operability_diagram(target, table, title: str = "", operability=None) -> Non
             for j in range(len(tp)):
                 if math.isnan(U[i, j]):
                     continue
-                label = ("×" if np.isinf(U[i, j]) else
+                label = ("× failed" if np.isinf(U[i, j]) else
                          f"{who[i, j]}\n{100 * U[i, j]:.0f} %" if who[i, j] else "")
                 ax.annotate(label, (tp[j], hs[i]), ha="center", va="center", fontsize=7)
         ax.set_xlabel("Tp [s] (full scale)")
@@ -115,6 +114,6 @@ def operability_diagram(target, table, title: str = "", operability=None) -> Non
     if mesh is not None:
         bar = fig.colorbar(mesh, ax=axes[0].tolist(), shrink=0.9)
         bar.set_label("worst utilisation over actuators (1 = 100 %)")
-    if title:
-        fig.suptitle(title, fontsize=10)
+    fig.suptitle((f"{title}; " if title else "") + "black line: 100 % contour; labels: "
+                 "governing actuator", fontsize=10)
     save_figure(fig, target)

@@ -59,7 +59,8 @@ SEA_KEYS = ("hs", "tp", "heading", "scale", "seed")
 CASE_COLUMNS = (("case_id", "string"), ("status", "string"), ("error_type", "string"),
                 ("error", "string"), ("warnings", "int64"))
 #: Columns of :func:`verdicts` besides the parameters and the utilisations.
-VERDICT_COLUMNS = ("seeds", "failed", "record_s", "exposure_s", "basis", "error")
+VERDICT_COLUMNS = ("seeds", "failed", "record_s", "exposure_s", "basis", "error_type",
+                   "error")
 MANIFEST = "_manifest.json"
 MANIFEST_FORMAT = "offshore-crane sweep results"
 #: Seconds to wait for a Dask scheduler before calling it unreachable.
@@ -781,7 +782,8 @@ def verdicts(df, scene, exposure: float | None = None):
         ``pandas.DataFrame``: the group's parameters, ``seeds``, ``failed`` (seeds whose
         case failed), ``basis`` (``gumbel``, ``observed`` or ``failed``), ``record_s``,
         ``exposure_s``, ``{actuator}_util`` and ``worst_util`` (inf when a seed failed:
-        not operable), ``governing``, ``governing_capacity``, ``error`` (the first).
+        not operable), ``governing``, ``governing_capacity``, ``error_type`` and
+        ``error`` (of the first failed seed, else empty).
     """
     from .conventions import ACTUATORS
     from .sizing import CAPACITIES, EXPOSURE, MIN_SEEDS, most_probable_maximum
@@ -803,8 +805,10 @@ def verdicts(df, scene, exposure: float | None = None):
                     if sea and len(ok) else math.nan)
         row.update(seeds=n, failed=n - len(ok), record_s=record_s,
                    exposure_s=exposure if gumbel else math.nan,
-                   basis="failed" if len(ok) < n else ("gumbel" if gumbel else "observed"),
-                   error=g.loc[g["status"] != "ok", "error"].iloc[0] if len(ok) < n else "")
+                   basis="failed" if len(ok) < n else ("gumbel" if gumbel else "observed"))
+        bad = g[g["status"] != "ok"]
+        row.update(error_type=bad["error_type"].iloc[0] if len(bad) else "",
+                   error=bad["error"].iloc[0] if len(bad) else "")
         util = np.full((9, len(CAPACITIES)), np.nan)
         for k, a in enumerate(ACTUATORS):
             for c, cap in enumerate(CAPACITIES):

@@ -113,7 +113,7 @@ def run(args) -> int:
         text = ("failed" if math.isinf(worst) else "—" if math.isnan(worst)
                 else f"{100 * worst:.1f}")
         who = (f"{r['governing']} {r['governing_capacity']}" if r["governing"] else
-               r["error"].split(": ")[-1][:60] if r["error"] else "")
+               f"{r['error_type']}: {r['error'][:72]}..." if r["error"] else "")
         print("".join(f"{r[k]:>14g}" for k in keys)
               + f"{r['seeds']:>7}{r['basis']:>10}{text:>9}  {who}")
     bases = set(v["basis"])
