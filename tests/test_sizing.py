@@ -230,3 +230,21 @@ def test_size_bad_flags(tmp_path, capsys):
         assert main(["size", "--duration", "1", *argv]) == 2
         err = capsys.readouterr().err
         assert match in err and err.count("\n") == 1
+
+
+def test_actuator_motion_equals_kinematics_legs(robot):
+    """The envelope's lean leg evaluation (lengths and rates only) gives exactly what the
+    full leg kinematics gives, on perturbed Table 1 states."""
+    from offshore_crane import kinematics
+
+    t = np.linspace(0.0, 5.0, 301)
+    q, qd, _ = trajectories.table1(t)
+    rng = np.random.default_rng(5)
+    q = q + 0.01 * rng.standard_normal(q.shape)
+    qd = qd + 0.1 * rng.standard_normal(qd.shape)
+    p, v = sizing.actuator_motion(robot, q, qd)
+    legs = kinematics.legs(robot, q, qd)
+    np.testing.assert_array_equal(p[:, 3:], legs.length)
+    np.testing.assert_array_equal(v[:, 3:], legs.rate)
+    np.testing.assert_array_equal(p[:, :3], q[:, 6:])
+    np.testing.assert_array_equal(v[:, :3], qd[:, 6:])

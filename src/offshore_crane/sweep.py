@@ -368,11 +368,14 @@ def _failed_row(exc: BaseException) -> dict:
     return row
 
 
-def run_case(scene, params: dict, backend: str = "auto") -> dict:
+def run_case(scene, params: dict, backend: str = "auto", timing: dict | None = None) -> dict:
     """One case: the row of :func:`row_schema` (``case_id``, the case's values, its
     status, error and envelope). A library error (workspace, singularity, simulation
     stopped, missing capability) is recorded in the row (``status = "failed"``,
-    ``error_type``, ``error``) instead of raised; the row's other numbers are then NaN."""
+    ``error_type``, ``error``) instead of raised; the row's other numbers are then NaN.
+    ``timing`` (a dict), when given, receives ``compute``: the case's own computation
+    (trajectory and dynamics, :attr:`CaseRun.seconds`) [s] — never part of the row, which
+    holds only what is reproducible."""
     import warnings
 
     row = {"case_id": case_id(params), **params}
@@ -386,6 +389,8 @@ def run_case(scene, params: dict, backend: str = "auto") -> dict:
             done = None
     if done is not None:
         row.update(status="ok", error_type="", error="", **done.envelope.row())
+    if timing is not None:
+        timing["compute"] = done.seconds if done is not None else 0.0
     from .kinematics.workspace import OffshoreCraneWarning
 
     row["warnings"] = sum(issubclass(w.category, OffshoreCraneWarning) for w in caught)
@@ -393,11 +398,14 @@ def run_case(scene, params: dict, backend: str = "auto") -> dict:
 
 
 def _task(payload):
-    """What a worker runs: ``(scene, params, backend)`` → ``(case_id, row, seconds)``."""
+    """What a worker runs: ``(scene, params, backend)`` → ``(case_id, row, seconds,
+    compute seconds)``: the run time of :func:`run_case` whole and of the case's own
+    computation [s]."""
     scene, params, backend = payload
+    timing: dict = {}
     t0 = time.perf_counter()
-    row = run_case(scene, params, backend)
-    return row["case_id"], row, time.perf_counter() - t0
+    row = run_case(scene, params, backend, timing)
+    return row["case_id"], row, time.perf_counter() - t0, timing["compute"]
 
 
 def row_schema(grid: Grid):
@@ -541,7 +549,7 @@ class ResultsStore:
         import pyarrow.parquet as pq
 
         names = sorted(self.done() if ids is None else set(ids) & self.done())
-        tables = [pq.read_table(self.part(c), schema=schema) for c in names]
+        tables = [pq.ParquetFile(self.part(c)).read().cast(schema) for c in names]
         return pa.concat_tables(tables) if tables else schema.empty_table()
 
 
@@ -551,7 +559,10 @@ def _parquet_bytes(rows: list, schema) -> bytes:
 
     table = pa.Table.from_pylist(rows, schema=schema)
     sink = pa.BufferOutputStream()
-    pq.write_table(table, sink)
+    # one row: no compression, dictionaries or statistics (they cost ~1 ms a part and
+    # save nothing); a reader merging the parts may rewrite them compacted
+    pq.write_table(table, sink, compression="none", use_dictionary=False,
+                   write_statistics=False)
     return sink.getvalue().to_pybytes()
 
 
@@ -651,8 +662,10 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             keep the rows in memory only.
         progress: Show a progress bar (tqdm) on standard error.
         stats: A dict filled with ``cases``, ``skipped``, ``ran``, ``failed``,
-            ``seconds`` (wall time of the dispatch) and ``case_seconds`` (each case's run
-            time in its worker, ``run_case`` whole) — for benchmarks.
+            ``seconds`` (wall time from the dispatch to the last row written),
+            ``case_seconds`` (each case's run time in its worker, :func:`run_case` whole)
+            and ``compute_seconds`` (each case's own computation: trajectory and
+            dynamics) — for benchmarks.
         backend: Kernels of every case (``"auto"``: compiled when Numba is installed),
             resolved once here so that every worker runs the same code.
         where: The grid's name in messages when it is a dict.
@@ -695,7 +708,7 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
         client, cluster = connect(scheduler, workers)
     rows: dict = {}
     info = {"cases": len(set(ids)), "skipped": len(set(ids) & finished), "ran": 0,
-            "failed": 0, "case_seconds": []}
+            "failed": 0, "case_seconds": [], "compute_seconds": []}
     try:
         if store is not None:
             store.create(grid)
@@ -714,13 +727,14 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             bar = tqdm.tqdm(total=len(pending), unit="case", file=sys.stderr,
                             desc="sweep", leave=False)
         try:
-            for cid, row, seconds in results:
+            for cid, row, seconds, compute in results:
                 if store is not None:
                     store.write(row, schema)
                 rows[cid] = row
                 info["ran"] += 1
                 info["failed"] += row["status"] != "ok"
                 info["case_seconds"].append(seconds)
+                info["compute_seconds"].append(compute)
                 if bar is not None:
                     bar.update()
         finally:
@@ -734,19 +748,20 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             cluster.close()
     if stats is not None:
         stats.update(info)
-    if store is not None:
-        table = store.read(schema, ids)
-    else:
-        table = _table(pa_rows=[rows[c] for c in dict.fromkeys(ids)], schema=schema)
+    fresh = [rows[c] for c in dict.fromkeys(ids) if c in rows]   # rows of this run, held
+    table = _table(fresh, schema)
+    if store is not None and len(fresh) < len(set(ids)):         # and those run before
+        pa = _install_hint("pyarrow", "A sweep's results (Parquet)")
+        table = pa.concat_tables([table, store.read(schema, set(ids) - set(rows))])
     df = table.to_pandas()
     order = {cid: i for i, cid in enumerate(ids)}
     df.insert(0, "case", df["case_id"].map(order).astype("int64"))
     return df.sort_values("case", kind="stable").reset_index(drop=True)
 
 
-def _table(pa_rows, schema):
+def _table(rows, schema):
     pa = _install_hint("pyarrow", "A sweep's results (Parquet)")
-    return pa.Table.from_pylist(pa_rows, schema=schema)
+    return pa.Table.from_pylist(rows, schema=schema)
 
 
 def read_results(out):
