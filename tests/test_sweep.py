@@ -124,6 +124,21 @@ def test_rows_bit_identical_serial_joblib_dask(tmp_path):
             np.testing.assert_array_equal(got[c], ref[c], err_msg=c)
 
 
+def test_remote_scheduler_address(tmp_path):
+    """A scheduler given by its address (here a LocalCluster's tcp:// address, on
+    loopback): the kernels are warmed up on its workers one at a time, and the rows are
+    those of a serial run."""
+    distributed = pytest.importorskip("distributed")
+    scene = scenes.load_scene(_scene(tmp_path))
+    grid = {"hs": [1.0, 2.0]}
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None, host="127.0.0.1") as cluster:
+        remote = sweep.run(scene, grid, scheduler=cluster.scheduler_address)
+    ref, got = _bits(sweep.run(scene, grid)), _bits(remote)
+    for c in ref:
+        np.testing.assert_array_equal(got[c], ref[c], err_msg=c)
+
+
 def test_failing_cases_are_recorded(tmp_path):
     """A record that leaves the workspace (scale too small) and a cable the build cannot
     model are failed rows with their errors; the other cases run."""

@@ -646,6 +646,14 @@ def _warm_up(scene) -> None:
         warm_up_simulation()
 
 
+def _warm_workers(client, scene) -> None:
+    """Load (or compile) the kernels on a remote cluster's workers one at a time, so
+    that workers sharing a cache never compile it at once (the first compiles, the others
+    load)."""
+    for address in sorted(client.scheduler_info()["workers"]):
+        client.run(_warm_up, scene, workers=[address])
+
+
 def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=None, *,
         progress: bool = False, stats: dict | None = None, backend: str = "auto",
         where: str = "grid"):
@@ -714,6 +722,8 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             store.create(grid)
         if pending:
             _warm_up(scene)
+            if client is not None and cluster is None:
+                _warm_workers(client, scene)
         t0 = time.perf_counter()
         if client is not None:
             results = _dask(pending, client)
