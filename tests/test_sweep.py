@@ -363,3 +363,16 @@ def test_imports_stay_lazy():
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           env={**os.environ, "PYTHONPATH": str(SRC)})
     assert proc.returncode == 0, proc.stderr
+
+
+def test_kane_sweep_imports_neither_pinocchio_nor_matplotlib(tmp_path):
+    """A sweep of a Kane scene without --plot loads only what it runs (its warm-up too)."""
+    scene = _scene(tmp_path)
+    code = ("import sys; from offshore_crane import sweep; "
+            f"df = sweep.run({str(scene)!r}, {{'hs': [1.0]}}); "
+            "assert (df['status'] == 'ok').all(); "
+            "bad = [m for m in ('pinocchio', 'matplotlib') if m in sys.modules]; "
+            "assert not bad, bad")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(SRC)})
+    assert proc.returncode == 0, proc.stderr

@@ -359,7 +359,8 @@ def _simulate(scene, robot, traj, limits: bool):
                     limits=limits, t0=float(traj.t[0]))
 
 
-def _failed_row(exc: BaseException) -> dict:
+def _failed_row() -> dict:
+    """The envelope columns of a failed case: NaN, 0 and empty strings."""
     from .sizing import row_columns
 
     row = {}
@@ -385,7 +386,7 @@ def run_case(scene, params: dict, backend: str = "auto", timing: dict | None = N
             done = record(case_scene(scene, params), backend=backend, threads=1)
         except OffshoreCraneError as exc:
             row.update(status="failed", error_type=type(exc).__name__, error=str(exc),
-                       **_failed_row(exc))
+                       **_failed_row())
             done = None
     if done is not None:
         row.update(status="ok", error_type="", error="", **done.envelope.row())
@@ -634,12 +635,21 @@ def _dask(payloads, client):
 
 
 def _warm_up(scene) -> None:
-    """Compile or load the kernels this sweep's cases use, once, in this process."""
-    from .dynamics import numba_available, warm_up
+    """Compile or load, once in this process, the kernels this sweep's cases use: the
+    inverse dynamics of the scene's first method (and Kane's, which a simulated case
+    uses for its condition numbers), the simulation loop for a scene with ``[control]``
+    (:func:`offshore_crane.dynamics.warm_up` would also load Pinocchio for the RNEA
+    path, which a Kane sweep never uses)."""
+    from . import scenes
+    from .dynamics import numba_available, solve
 
     if not numba_available():
         return
-    warm_up()
+    robot = scenes.load_robot(scene)
+    q = np.zeros((1, 9))
+    q[0, 2] = float(robot.home_height or 0.5)
+    for method in dict.fromkeys((scene.methods[0], "kane")):
+        solve(robot, q, 0 * q, 0 * q, method=method, backend="numba", limits=False)
     if scene.control:
         from .simulate import warm_up as warm_up_simulation
 
@@ -703,7 +713,7 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
         raise InputError(f"workers = {workers!r}: must be an integer ≥ 1", name="workers")
     scheduler = _check_scheduler(scheduler)
     backend = resolve_backend(backend)
-    pd = _install_hint("pandas", "A sweep's results table")
+    _install_hint("pandas", "A sweep's results table")
     schema = row_schema(grid)
     cases = grid.cases()
     ids = [case_id(c) for c in cases]
