@@ -17,10 +17,12 @@ from __future__ import annotations
 from .dynamics import inverse_dynamics
 from .dynamics.forward import (actuation_matrix, bias_forces, equations_of_motion,
                                forward_dynamics, mass_matrix)
-from .errors import (BackendMissingError, ConstraintResidualError, DescriptionError,
-                     InputError, ModelError, NumericalError, OffshoreCraneError, OutputError,
-                     SceneError, SeaStateError, SeaWorkspaceError, SimulationError,
-                     SingularConfigurationError, TrajectoryError, WorkspaceError)
+from .errors import (BackendMissingError, CapabilityMissingError, ConstraintResidualError,
+                     DescriptionError, GridError, InputError, InsufficientSeedsError,
+                     ModelError, NumericalError, OffshoreCraneError, OutputError,
+                     ResultsDirectoryError, SceneError, SchedulerError, SeaStateError,
+                     SeaWorkspaceError, SimulationError, SingularConfigurationError,
+                     TrajectoryError, WorkspaceError)
 from .conventions import ACTUATORS, ACTUATOR_UNITS, GRAVITY
 from .kinematics.workspace import OffshoreCraneWarning, Thresholds
 from .model import Robot, load_robot
@@ -36,12 +38,14 @@ __all__ = ["load_robot", "inverse_dynamics", "forward_dynamics", "mass_matrix",
            "OffshoreCraneError", "InputError", "TrajectoryError", "SceneError", "ModelError",
            "DescriptionError", "WorkspaceError", "SingularConfigurationError",
            "NumericalError", "ConstraintResidualError", "SimulationError", "OutputError",
-           "SeaStateError", "SeaWorkspaceError", "BackendMissingError"]
+           "SeaStateError", "SeaWorkspaceError", "BackendMissingError",
+           "InsufficientSeedsError", "GridError", "ResultsDirectoryError", "SchedulerError",
+           "CapabilityMissingError"]
 
 
 def __getattr__(name):
     if name in ("trajectories", "serial", "scenes", "kinematics", "dynamics", "sea",
-                "operations"):
+                "operations", "sizing", "sweep"):
         import importlib
 
         return importlib.import_module(f".{name}", __name__)

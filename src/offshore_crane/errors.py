@@ -305,3 +305,83 @@ class SlackCableError(OffshoreCraneError, ArithmeticError):
         self.time = time
         self.tension = tension
         self.result = result
+
+
+class InsufficientSeedsError(InputError):
+    """Too few records (seeds) for a Gumbel fit of their maxima
+    (:func:`offshore_crane.sizing.gumbel_fit`).
+
+    Attributes:
+        seeds: How many were given.
+        minimum: How many a fit needs (:data:`offshore_crane.sizing.MIN_SEEDS`).
+    """
+
+    def __init__(self, message: str, seeds: int | None = None, minimum: int | None = None):
+        super().__init__(message, name="seeds")
+        self.seeds = seeds
+        self.minimum = minimum
+
+
+class GridError(InputError):
+    """A sweep's grid (TOML) cannot be used: unreadable, an unknown key, an empty list, a
+    value out of its domain (``hs <= 0``, a robot field's own checks), a key that does not
+    apply to the scene. The message starts with the grid file and names the key and the
+    index of the value, e.g. ``grid.toml: hs[1] = -1: ...``.
+
+    Attributes:
+        path: The grid file as given, or None for a grid given as a dict.
+        key: The grid key (``"hs"``, ``"payload.mass"``), or None for the whole grid.
+        index: Index of the offending value in its list, or None.
+    """
+
+    def __init__(self, message: str, path: str | None = None, key: str | None = None,
+                 index: int | None = None):
+        super().__init__(message, name=key, index=index)
+        self.path = path
+        self.key = key
+
+
+class ResultsDirectoryError(OutputError):
+    """A sweep's results directory cannot be used: it exists but is not a results
+    directory of the same scene (no manifest, another scene's manifest, a file), or its
+    manifest is damaged. Nothing was written.
+
+    Attributes:
+        path: The directory as given. reason: Why, in words.
+    """
+
+
+class SchedulerError(OffshoreCraneError, ConnectionError):
+    """A Dask scheduler cannot be reached (or a local cluster cannot be started).
+
+    Attributes:
+        address: The scheduler address as given (``tcp://host:port`` or ``local``).
+        reason: Why, in words.
+    """
+
+    def __init__(self, message: str, address: str | None = None, reason: str | None = None):
+        super().__init__(message)
+        self.address = address
+        self.reason = reason
+
+    def __str__(self) -> str:                  # OSError's own formatting would add errno
+        return self.args[0]
+
+
+class CapabilityMissingError(OffshoreCraneError, NotImplementedError):
+    """A case needs a capability this installation does not have (the hanging load of a
+    payload on a cable, ``payload.cable_length > 0``, before :mod:`offshore_crane.cable`
+    exists). Raised rather than computing something else silently.
+
+    Attributes:
+        capability: What is missing, in words.
+        field: The dotted robot field that asks for it (``"payload.cable_length"``).
+        value: Its value.
+    """
+
+    def __init__(self, message: str, capability: str | None = None, field: str | None = None,
+                 value: float | None = None):
+        super().__init__(message)
+        self.capability = capability
+        self.field = field
+        self.value = value

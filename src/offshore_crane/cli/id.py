@@ -16,6 +16,17 @@ def add_parser(sub) -> None:
                        "--duration, --rate, --fd-order, --method, --leg-model, --outputs, "
                        "--gravity and the robot (--set is applied on top); flags given "
                        "explicitly override the scene.")
+    add_options(p)
+    p.add_argument("--compare-fidelity", action="store_true",
+                   help="also run every leg model (kane) and print its run time and "
+                   "largest deviation from 'full' per actuator")
+    p.set_defaults(run=run)
+
+
+def add_options(p, plot_help: str = "write a figure like the paper's Fig. 3 (PNG, PDF, "
+                "SVG)") -> None:
+    """The flags of ``id`` (scene, trajectory, method, robot, checks, --out, --plot),
+    shared with ``size``."""
     p.add_argument("--scene", metavar="FILE.toml",
                    help="scene file: sub-systems, leg model, payload, gravity, trajectory, "
                    "outputs, methods (see scenes/)")
@@ -41,7 +52,7 @@ def add_parser(sub) -> None:
     p.add_argument("--fd-order", type=int, choices=(2, 4, 6),
                    help="order of the central differences for a CSV trajectory (default 4)")
     p.add_argument("--out", help="write the actuator forces to this CSV")
-    p.add_argument("--plot", help="write a figure like the paper's Fig. 3 (PNG, PDF, SVG)")
+    p.add_argument("--plot", help=plot_help)
     add_robot_options(p)
     p.add_argument("--gravity", type=float, nargs=3, metavar=("GX", "GY", "GZ"),
                    help="gravity in the base frame [m/s²] (default 0 0 -9.81)")
@@ -60,10 +71,6 @@ def add_parser(sub) -> None:
                    "and mark the samples")
     p.add_argument("--substeps", type=int, help="RK4 steps of the swing per sample interval "
                    "(default 1)")
-    p.add_argument("--compare-fidelity", action="store_true",
-                   help="also run every leg model (kane) and print its run time and "
-                   "largest deviation from 'full' per actuator")
-    p.set_defaults(run=run)
 
 
 def _thresholds(args):

@@ -1,0 +1,146 @@
+"""``offshore-crane size``: the envelope of one run against the actuators' capacities.
+
+Runs the scene as ``id`` does (the same flags; a scene with ``[control]`` is simulated),
+then prints per actuator the peak push and pull with their times, the RMS, the peak
+speed, the peak and mean absolute power and the stroke used, the worst condition
+numbers, and the utilisation of every capacity of the robot description (and the
+scene's ``[actuators]``). For a sea, ``--seeds N`` runs N seeds and, from 5 seeds, judges
+the most probable maximum over ``--exposure`` hours (Gumbel fit). Exit status 1 when a
+utilisation exceeds 100 % (or ``--method both`` disagrees), 0 otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..errors import InputError
+
+
+def add_parser(sub) -> None:
+    from . import id as id_command
+
+    doc = __doc__.splitlines()
+    p = sub.add_parser("size", help="actuator envelope and utilisation of one run",
+                       description=doc[0].split(": ", 1)[1] + " " + " ".join(
+                           line.strip() for line in doc[2:9]))
+    id_command.add_options(p, plot_help="write the per-actuator utilisation chart to this "
+                           "figure (PNG, PDF, SVG)")
+    p.add_argument("--seeds", type=int, default=1, metavar="N",
+                   help="sea scenes: run N seeds from the scene's [sea] seed (default 1); "
+                   "from 5 the verdict rests on the Gumbel most probable maximum")
+    p.add_argument("--exposure", type=float, default=3.0, metavar="HOURS",
+                   help="full-scale exposure of the most probable maximum [h] (default 3)")
+    p.add_argument("--json", action="store_true",
+                   help="print the envelopes and the verdict as JSON on standard output "
+                   "(instead of the tables)")
+    p.set_defaults(run=run)
+
+
+def _clean(x):
+    """JSON-safe: NaN and ±inf become null; NumPy scalars and arrays plain."""
+    import numpy as np
+
+    if isinstance(x, dict):
+        return {k: _clean(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple, np.ndarray)):
+        return [_clean(v) for v in x]
+    if isinstance(x, (float, np.floating)):
+        return float(x) if math.isfinite(x) else None
+    if isinstance(x, np.integer):
+        return int(x)
+    return x
+
+
+def run(args) -> int:
+    import json
+    import sys
+
+    from .. import scenes, sweep
+    from ..conventions import ACTUATORS
+    from ..sizing import CAPACITIES, format_envelope, format_verdict, verdict
+    from . import plan
+    from .id import RELATIVE_LIMIT, _scene, _thresholds
+
+    if args.seeds < 1:
+        raise InputError(f"--seeds {args.seeds}: must be ≥ 1", name="--seeds")
+    if not (math.isfinite(args.exposure) and args.exposure > 0):
+        raise InputError(f"--exposure {args.exposure:g}: must be a positive number of hours",
+                         name="--exposure")
+    scene = _scene(args)
+    sea = scene.trajectory == "sea"
+    if args.seeds > 1 and not sea:
+        raise InputError(f"--seeds {args.seeds}: seeds draw random seas, but the trajectory "
+                         f"is {scene.trajectory!r} (deterministic): use a sea scene",
+                         name="--seeds")
+    if args.seeds > 1 and args.out:
+        raise InputError("--out writes the forces of one record: give --seeds 1 with it",
+                         name="--out")
+    outputs, say = plan(args, scene)
+    if args.json:
+        say = lambda *a: print(*a, file=sys.stderr)     # noqa: E731 (stdout holds JSON)
+    robot = scenes.load_robot(scene)
+    backend = args.backend or "auto"
+    options = dict(backend=backend, threads=args.threads, limits=not args.no_limits,
+                   thresholds=_thresholds(args))
+    first = int(scene.sea.get("seed", 0)) if sea else None
+    runs = []
+    for s in range(args.seeds):
+        case = sweep.case_scene(scene, {"seed": first + s}) if sea else scene
+        runs.append(sweep.record(case, robot, **options))
+    exposure = args.exposure * 3600.0
+    v = verdict([r.envelope for r in runs], scale=scene.sea["scale"] if sea else None,
+                exposure=exposure)
+    head = runs[0]
+    status = 1 if v.exceeded else 0
+    compared = []
+    if len(scene.methods) > 1 and not scene.control:
+        done = scenes.run(scene, robot, head.trajectory, limits=options["limits"],
+                          thresholds=options["thresholds"], backend=backend,
+                          threads=args.threads)
+        for m, diff, scale, rel, i, j in scenes.compare_methods(done):
+            ok = rel <= RELATIVE_LIMIT
+            compared.append({"method": m, "max_abs_diff": diff, "relative": rel,
+                             "ok": ok})
+            status = status if ok else 1
+    env = head.envelope
+    if args.json:
+        worst, who, cap = v.worst()
+        doc = {"scene": scene.name, "kind": head.kind, "samples": env.samples,
+               "duration_s": env.duration,
+               "seeds": [first + s for s in range(args.seeds)] if sea else None,
+               "envelopes": [r.envelope.row() for r in runs],
+               "verdict": {"basis": v.basis, "describe": v.describe(), "seeds": v.seeds,
+                           "exposure_s": v.exposure, "record_s": v.record,
+                           "peaks": v.peaks,
+                           "utilisation": {a: dict(zip(CAPACITIES, v.utilisation[k]))
+                                           for k, a in enumerate(ACTUATORS)
+                                           if env.present[k]},
+                           "worst": {"utilisation": worst, "actuator": who,
+                                     "capacity": cap},
+                           "exceeded": v.exceeded},
+               "comparison": compared}
+        print(json.dumps(_clean(doc), indent=1, ensure_ascii=False))
+    else:
+        where = f" ({args.scene})" if args.scene else ""
+        say(f"offshore-crane size: scene {scene.name}{where}: {scene.describe()}")
+        say(f"{head.kind} of {head.trajectory.name}, {env.samples} samples, "
+            f"t = {head.t[0]:.2f}..{head.t[-1]:.2f} s"
+            + (f"; envelope of seed {first} (of {args.seeds})" if sea else ""))
+        say(format_envelope(env))
+        say()
+        say(format_verdict(v, env.present))
+        for c in compared:
+            say(f"kane vs {c['method']}: relative max |ΔX| = {c['relative']:.3e} "
+                f"({'OK' if c['ok'] else 'FAIL'}, limit {RELATIVE_LIMIT:g})")
+    if "--out" in outputs:
+        from ..report import write_csv
+
+        write_csv(outputs["--out"], head.t, head.X)
+        say(f"wrote {args.out}")
+    if "--plot" in outputs:
+        from ..sizing_plots import utilisation_chart
+
+        utilisation_chart(outputs["--plot"], v.utilisation,
+                          title=f"{scene.name}: utilisation ({v.describe()})")
+        say(f"wrote {args.plot}")
+    return status

@@ -1,0 +1,187 @@
+"""``offshore-crane sweep``: a scene over a grid of sea states and robot parameters.
+
+Every case of the grid (the product of its lists) runs the scene and yields one row: its
+values, its envelope against the actuators' capacities, its status (a failing case
+records its error and the sweep goes on). Cases run on joblib workers (``--workers``) or
+a Dask cluster (``--scheduler``); with ``--out`` the rows are stored as they finish (a
+Parquet dataset; rerun to resume). Then one verdict per case over its seeds, the
+operability over a wave scatter diagram (``--scatter``), and the diagrams (``--plot``).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+
+from ..errors import InputError
+
+
+def add_parser(sub) -> None:
+    from . import add_robot_options
+
+    doc = __doc__.splitlines()
+    p = sub.add_parser("sweep", help="sizing over a grid of sea states and parameters",
+                       description=doc[0].split(": ", 1)[1] + " " + " ".join(
+                           line.strip() for line in doc[2:8]))
+    p.add_argument("--scene", metavar="FILE.toml", required=True,
+                   help="the scene every case runs (a sea scene for hs, tp, heading, "
+                   "scale, seed)")
+    p.add_argument("--grid", metavar="GRID.toml", required=True,
+                   help="lists of values: hs, tp, heading, scale, seed and robot fields by "
+                   "their dotted names (see scenes/sweep_grid.toml)")
+    p.add_argument("--workers", type=int, metavar="N",
+                   help="parallel worker processes (default 1: serially; with --scheduler "
+                   "local the cluster's size, default 2)")
+    p.add_argument("--scheduler", metavar="ADDRESS|local",
+                   help="run the cases on Dask: 'local' starts a LocalCluster, "
+                   "tcp://HOST:PORT connects to a running scheduler")
+    p.add_argument("--out", metavar="RESULTS_DIR",
+                   help="store one Parquet row per case as it finishes; rerun with the same "
+                   "directory to resume (finished cases are skipped)")
+    p.add_argument("--csv", metavar="FILE.csv", help="also write every row to this CSV")
+    p.add_argument("--plot", metavar="DIR",
+                   help="write the operability diagram(s) and the utilisation chart of the "
+                   "worst case into this directory")
+    p.add_argument("--scatter", metavar="FILE.csv",
+                   help="a wave scatter diagram (Hs x Tp occurrences): print the "
+                   "operability in percent of time per heading and overall")
+    p.add_argument("--exposure", type=float, default=3.0, metavar="HOURS",
+                   help="full-scale exposure of the most probable maximum [h] (default 3)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_robot_options(p)
+    p.set_defaults(run=run)
+
+
+def _plot_dir(given: str | None) -> str | None:
+    """``--plot DIR``: an existing directory, or a new one whose parent exists (made
+    after the checks, before the sweep)."""
+    from ..errors import OutputError
+
+    if given is None:
+        return None
+    if os.path.exists(given) and not os.path.isdir(given):
+        raise OutputError(f"--plot {given}: exists and is not a directory: give a "
+                          "directory for the figures", path=given, reason="not a directory")
+    parent = os.path.dirname(os.path.abspath(given))
+    if not os.path.isdir(parent):
+        raise OutputError(f"--plot {given}: directory {os.path.dirname(given) or '.'} does "
+                          "not exist: create it first", path=given, reason="no parent")
+    return given
+
+
+def _label(values: dict) -> str:
+    return ", ".join(f"{k} = {v:g}" for k, v in values.items())
+
+
+def run(args) -> int:
+    import sys
+
+    from .. import scenes, sweep
+    from ..io import plan_outputs
+    from ..sizing import CAPACITIES
+    from . import robot_scene
+
+    if args.workers is not None and args.workers < 1:
+        raise InputError(f"--workers {args.workers}: must be ≥ 1", name="--workers")
+    if not (math.isfinite(args.exposure) and args.exposure > 0):
+        raise InputError(f"--exposure {args.exposure:g}: must be a positive number of hours",
+                         name="--exposure")
+    scene = robot_scene(args, scenes.load_scene(args.scene))
+    grid = sweep.check_grid(scene, sweep.load_grid(args.grid), args.grid)
+    scatter = sweep.load_scatter(args.scatter) if args.scatter else None
+    planned = plan_outputs({"--csv": args.csv}, [args.scene, args.grid, args.scatter])
+    plot_dir = _plot_dir(args.plot)
+    if args.out is not None:
+        sweep.ResultsStore.open(args.out, scene)            # refuse before running
+    progress = not args.no_progress and sys.stderr.isatty()
+    stats: dict = {}
+    df = sweep.run(scene, grid, workers=args.workers or 1, scheduler=args.scheduler,
+                   out=args.out, progress=progress, stats=stats)
+    print(f"offshore-crane sweep: scene {scene.name} ({args.scene}), {len(df)} cases "
+          f"({stats['skipped']} already in {args.out}, " if args.out else
+          f"offshore-crane sweep: scene {scene.name} ({args.scene}), {len(df)} cases (",
+          end="")
+    print(f"{stats['ran']} run in {stats.get('seconds', 0.0):.2f} s, "
+          f"{int((df['status'] != 'ok').sum())} failed)")
+    exposure = args.exposure * 3600.0
+    v = sweep.verdicts(df, scene, exposure)
+    keys = sweep.group_keys(df)
+    head = "".join(f"{k:>14}" for k in keys)
+    print(f"{head}{'seeds':>7}{'basis':>10}{'worst %':>9}  governing")
+    for _, r in v.iterrows():
+        worst = r["worst_util"]
+        text = ("failed" if math.isinf(worst) else "—" if math.isnan(worst)
+                else f"{100 * worst:.1f}")
+        who = (f"{r['governing']} {r['governing_capacity']}" if r["governing"] else
+               f"{r['error_type']}: {r['error'][:72]}..." if r["error"] else "")
+        print("".join(f"{r[k]:>14g}" for k in keys)
+              + f"{r['seeds']:>7}{r['basis']:>10}{text:>9}  {who}")
+    bases = set(v["basis"])
+    if "observed" in bases:
+        from ..sizing import MIN_SEEDS
+
+        print(f"(observed: fewer than {MIN_SEEDS} seeds or no sea, the largest observed "
+              "peak; gumbel: most probable maximum over "
+              f"{args.exposure:g} h full scale)")
+    op = None
+    if scatter is not None:
+        op = sweep.operability(v, scatter, scene)
+        print(f"operability over {args.scatter} (a cell is operable below the limiting "
+              "Hs of its Tp; headings equally likely overall):")
+        for _, r in op.iterrows():
+            others = {k: r[k] for k in op.columns if k not in
+                      ("heading", "operability_pct", "uncovered_pct")}
+            where = (_label(others) + ", ") if others else ""
+            what = "overall" if math.isnan(r["heading"]) else f"heading {r['heading']:g}°"
+            print(f"  {where}{what}: {r['operability_pct']:.1f} % of the time"
+                  + (f" ({r['uncovered_pct']:.1f} % of the time outside the swept Tp)"
+                     if r["uncovered_pct"] > 0 else ""))
+    if "--csv" in planned:
+        from ..io import write_text
+
+        write_text(planned["--csv"], df.to_csv(index=False))
+        print(f"wrote {args.csv}")
+    if plot_dir is not None:
+        _plots(plot_dir, df, v, op, scene, CAPACITIES)
+    return 0
+
+
+def _plots(plot_dir, df, v, op, scene, capacities) -> None:
+    import numpy as np
+
+    from .. import sweep
+    from ..conventions import ACTUATORS
+    from ..sizing_plots import operability_diagram, utilisation_chart
+
+    os.makedirs(plot_dir, exist_ok=True)
+    table = v.copy()
+    for key in ("hs", "tp", "heading"):
+        if key not in table.columns:
+            table[key] = float(scene.sea.get(key, math.nan))
+    others = [k for k in sweep.group_keys(table) if k not in ("hs", "tp", "heading")]
+    combos = table.groupby(others, sort=False) if others else [((), table)]
+    for values, g in combos:
+        values = values if isinstance(values, tuple) else (values,)
+        label = dict(zip(others, values))
+        name = "operability" + "".join(f"-{k}={val:g}" for k, val in label.items())
+        path = os.path.join(plot_dir, f"{name}.png")
+        percent = None
+        if op is not None:
+            mask = np.ones(len(op), bool)
+            for k, val in label.items():
+                mask &= op[k].to_numpy() == val
+            sel = op[mask & op["heading"].notna().to_numpy()]
+            percent = dict(zip(sel["heading"], sel["operability_pct"]))
+        operability_diagram(path, g, title=f"{scene.name}: worst utilisation"
+                            + (f" ({_label(label)})" if label else ""), operability=percent)
+        print(f"wrote {path}")
+    ok = df[df["status"] == "ok"]
+    if len(ok):
+        r = ok.loc[ok["worst_util"].idxmax()]
+        util = np.array([[r[f"{a}_util_{c}"] for c in capacities] for a in ACTUATORS])
+        params = {k: r[k] for k in sweep.group_keys(df) + (["seed"] if "seed" in df else [])}
+        path = os.path.join(plot_dir, "utilisation-worst-case.png")
+        utilisation_chart(path, util, title=f"worst case ({_label(params)}): "
+                          f"{r['governing']} {r['governing_capacity']} at "
+                          f"{100 * r['worst_util']:.1f} %")
+        print(f"wrote {path}")

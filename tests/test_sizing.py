@@ -1,0 +1,250 @@
+"""Envelopes, Gumbel most probable maxima and verdicts (offshore_crane.sizing), and the
+``size`` command.
+
+References are independent of the code under test: the forces come from ``id --out``'s
+CSV, the arm speeds from Table 1's analytic rates, the leg lengths from the description's
+anchors (|O2 + R s_i − P_i|, written out here) and the leg rates from central differences
+of those lengths, the Gumbel fit from SciPy's ``gumbel_r.fit``.
+"""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import offshore_crane as oc
+from offshore_crane import sizing, trajectories
+from offshore_crane.cli import main
+from offshore_crane.errors import InputError, InsufficientSeedsError
+
+SEA_SCENE = """
+name = "small sea"
+[payload]
+mass = 2.0
+offset = [0.0, 0.0, -0.05]
+[trajectory]
+source = "sea"
+duration = 5.0
+rate = 50.0
+[sea]
+hs = 2.5
+tp = 8.0
+heading = 90.0
+scale = 20.0
+seed = 3
+highpass = 0.2
+"""
+
+
+def _rot(q):
+    """R_base_platform = Rz(q6) Ry(q5) Rx(q4), (N, 3, 3), written out independently."""
+    r, p, y = q[:, 3], q[:, 4], q[:, 5]
+    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
+    return np.stack([np.stack([cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr], -1),
+                     np.stack([sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr], -1),
+                     np.stack([-sp, cp * sr, cp * cr], -1)], -2)
+
+
+def _leg_lengths(robot, q):
+    S = robot.spec.p_platform_S                      # (6, 3) platform frame [m]
+    P = robot.spec.p_base_P                          # (6, 3) base frame [m]
+    p_S = q[:, None, :3] + np.einsum("nij,lj->nli", _rot(q), S)
+    return np.linalg.norm(p_S - P[None], axis=-1)    # (N, 6) [m]
+
+
+def _size_json(argv, capsys):
+    status = main(["size", *argv, "--json"])
+    out = capsys.readouterr().out
+    return status, json.loads(out)
+
+
+def test_size_equals_what_id_out_csv_gives(tmp_path, capsys):
+    """Peaks (push and pull apart, with times), RMS, speeds, powers and strokes of
+    ``size --json`` recomputed from ``id --out``'s CSV and independent kinematics."""
+    csv = tmp_path / "x.csv"
+    assert main(["id", "--duration", "3", "--rate", "100", "--out", str(csv)]) == 0
+    capsys.readouterr()
+    status, doc = _size_json(["--duration", "3", "--rate", "100"], capsys)
+    env = doc["envelopes"][0]
+    data = np.loadtxt(csv, delimiter=",", skiprows=1)
+    t, X = data[:, 0], data[:, 1:]
+    robot = oc.load_robot()
+    q, qd, _ = trajectories.table1(t)
+    h = 1e-6                                         # central difference of lengths [s]
+    rate = (_leg_lengths(robot, trajectories.table1(t + h)[0])
+            - _leg_lengths(robot, trajectories.table1(t - h)[0])) / (2 * h)
+    v = np.column_stack([qd[:, 6:9], rate])
+    pos = np.column_stack([q[:, 6:9], _leg_lengths(robot, q)])
+    caps = robot.capacities
+    for k, a in enumerate(oc.ACTUATORS):
+        x = X[:, k]
+        # CSV holds 17 significant digits: the forces round-trip exactly
+        assert env[f"{a}_peak_push"] == max(x.max(), 0.0)
+        assert env[f"{a}_peak_pull"] == max((-x).max(), 0.0)
+        if x.max() > 0:
+            assert env[f"{a}_t_push"] == t[np.argmax(x)]
+        if x.min() < 0:
+            assert env[f"{a}_t_pull"] == t[np.argmin(x)]
+        # same sum in another order: a few ulps
+        assert env[f"{a}_rms"] == pytest.approx(np.sqrt(np.mean(x ** 2)), rel=1e-13)
+        # leg rates by differences (h = 1e-6 s: truncation ~1e-12, rounding ~1e-10 m/s)
+        assert env[f"{a}_peak_speed"] == pytest.approx(np.abs(v[:, k]).max(), rel=1e-8)
+        assert env[f"{a}_peak_power"] == pytest.approx(np.abs(x * v[:, k]).max(), rel=1e-8)
+        assert env[f"{a}_mean_abs_power"] == pytest.approx(np.abs(x * v[:, k]).mean(),
+                                                           rel=1e-8)
+        assert env[f"{a}_stroke_min"] == pytest.approx(pos[:, k].min(), rel=1e-13)
+        assert env[f"{a}_stroke_max"] == pytest.approx(pos[:, k].max(), rel=1e-13)
+        assert env[f"{a}_util_push"] == pytest.approx(env[f"{a}_peak_push"]
+                                                      / caps.push_max[k], rel=1e-15)
+        assert env[f"{a}_util_speed"] == pytest.approx(env[f"{a}_peak_speed"]
+                                                       / caps.speed_max[k], rel=1e-15)
+        assert env[f"{a}_util_power"] is None       # lab.toml gives no power limit
+    assert status == 0 and doc["verdict"]["exceeded"] is False
+    assert doc["verdict"]["basis"] == "observed"
+
+
+def test_size_exit_1_when_a_capacity_is_exceeded(capsys):
+    """A scene override of one leg's push capacity below its peak: exit 1, that leg named
+    as governing; a power limit shows up as a utilisation."""
+    status, doc = _size_json(["--duration", "2", "--set", "actuators.Fl3.push_max=10",
+                              "--set", "actuators.T1.power_max=4"], capsys)
+    assert status == 1
+    w = doc["verdict"]["worst"]
+    assert (w["actuator"], w["capacity"]) == ("Fl3", "push") and w["utilisation"] > 1
+    env = doc["envelopes"][0]
+    assert env["T1_util_power"] == pytest.approx(env["T1_peak_power"] / 4, rel=1e-15)
+    status = main(["size", "--duration", "2", "--set", "actuators.Fl3.push_max=10"])
+    out = capsys.readouterr().out
+    assert status == 1 and "Fl3" in out and "EXCEEDED" in out
+
+
+def test_size_seeds_gumbel(tmp_path, capsys):
+    """Five seeds of a sea: the verdict rests on the Gumbel most probable maximum over
+    3 h, from the per-seed peaks, and says so."""
+    scene = tmp_path / "sea.toml"
+    scene.write_text(SEA_SCENE)
+    status, doc = _size_json(["--scene", str(scene), "--seeds", "5"], capsys)
+    v = doc["verdict"]
+    assert v["basis"] == "gumbel" and v["seeds"] == 5 and doc["seeds"] == [3, 4, 5, 6, 7]
+    record = 5.0 * math.sqrt(20.0)
+    assert v["record_s"] == pytest.approx(record, rel=1e-15)
+    peaks = [e["Fl6_peak_push"] for e in doc["envelopes"]]
+    assert v["peaks"]["push"][8] == pytest.approx(
+        sizing.most_probable_maximum(peaks, record, 3 * 3600.0), rel=1e-15)
+    assert v["peaks"]["push"][8] > max(peaks)       # 3 h » 5 records of 22 s
+    assert "Gumbel, maximum likelihood, 5 seeds" in v["describe"]
+
+
+def test_gumbel_fit_matches_scipy():
+    st = pytest.importorskip("scipy.stats")
+    rng = np.random.default_rng(7)
+    for n, loc, scale in ((5, 3.0, 0.5), (12, -40.0, 7.0), (200, 1e4, 3e2)):
+        x = st.gumbel_r.rvs(loc=loc, scale=scale, size=n, random_state=rng)
+        mu, beta = sizing.gumbel_fit(x)
+        mu_ref, beta_ref = st.gumbel_r.fit(x)
+        # both maximum likelihood; SciPy solves the same equation to ~1e-10
+        assert mu == pytest.approx(mu_ref, rel=1e-8, abs=1e-8 * scale)
+        assert beta == pytest.approx(beta_ref, rel=1e-8)
+        n_rec = 3 * 3600.0 / 120.0
+        assert sizing.most_probable_maximum(x, 120.0) == pytest.approx(
+            mu_ref + beta_ref * math.log(n_rec), rel=1e-8)
+
+
+def test_gumbel_mode_of_the_exposure_maximum():
+    """The most probable maximum of n records is the mode of their maximum, where a
+    Gumbel's distribution function is exp(-1): simulated exposures (n = 50 records of
+    Gumbel(0, 1)) stay below it e^-1 of the time."""
+    rng = np.random.default_rng(11)
+    x = rng.gumbel(size=20000)
+    mpm = sizing.most_probable_maximum(x, 1.0, 50.0)
+    assert mpm == pytest.approx(math.log(50.0), abs=0.03)   # fit error ~1/sqrt(20000)
+    exposures = rng.gumbel(size=(20000, 50)).max(axis=1)
+    below = float((exposures <= mpm).mean())
+    # binomial noise sqrt(p (1 - p) / 20000) = 0.0034, fit error ~0.03 * density 0.37
+    assert below == pytest.approx(math.exp(-1.0), abs=0.02)
+
+
+def test_too_few_seeds_and_bad_exposure():
+    with pytest.raises(InsufficientSeedsError, match="at least 5 per-record maxima"):
+        sizing.gumbel_fit([1.0, 2.0, 3.0, 4.0])
+    with pytest.raises(InputError, match="exposure 10 s is shorter than one record"):
+        sizing.most_probable_maximum([1.0, 2.0, 3.0, 4.0, 5.0], 20.0, 10.0)
+    with pytest.raises(InputError, match="maxima\\[2\\] = nan"):
+        sizing.gumbel_fit([1.0, 2.0, math.nan, 4.0, 5.0])
+    assert sizing.gumbel_fit([2.0] * 6) == (2.0, 0.0)
+
+
+def test_verdict_falls_back_to_observed_below_min_seeds(robot):
+    t = np.linspace(0.0, 2.0, 101)
+    q, qd, qdd = trajectories.table1(t)
+    X = oc.inverse_dynamics(robot, q, qd, qdd)
+    envs = [sizing.envelope(robot, t, q, qd, X * s) for s in (1.0, 1.5, 1.2)]
+    v = sizing.verdict(envs, scale=20.0)
+    assert v.basis == "observed" and v.seeds == 3
+    assert "fewer than 5 seeds, no Gumbel fit" in v.describe()
+    np.testing.assert_array_equal(v.peaks["push"], envs[1].peak_push)
+
+
+def test_envelope_absent_actuators_and_conditions(robot):
+    """Arm columns NaN (no arm evaluated): the arm rows are NaN, never 0; worst
+    condition numbers with their times."""
+    t = np.linspace(0.0, 1.0, 51)
+    q, qd, qdd = trajectories.table1(t)
+    res = oc.dynamics.solve(robot, q, qd, qdd)
+    X = res.X.copy()
+    X[:, :3] = np.nan
+    env = sizing.envelope(robot, t, q, qd, X, sizing.conditions(res))
+    assert np.isnan(env.utilisation[:3]).all() and not np.isnan(env.utilisation[3:]).all()
+    k = int(np.argmax(res.condition))
+    assert env.kappa["leg"] == res.condition[k] and env.t_kappa["leg"] == t[k]
+    assert env.row()["T1_rms"] != env.row()["T1_rms"]        # NaN
+
+
+@pytest.mark.parametrize("change, match", [
+    (lambda t, q, qd, X: (t, q[:-1], qd, X), r"q has shape \(50, 9\); expected \(51, 9\)"),
+    (lambda t, q, qd, X: (t, np.where(np.arange(51)[:, None] == 7, np.nan, q), qd, X),
+     r"q\[7, 0\] = nan is not finite"),
+    (lambda t, q, qd, X: (t, q, qd, np.where(np.arange(51)[:, None] == 4, np.inf, X)),
+     r"X\[4, 0\] \(T1\) = inf is not finite"),
+])
+def test_envelope_bad_inputs(robot, change, match):
+    t = np.linspace(0.0, 1.0, 51)
+    q, qd, qdd = trajectories.table1(t)
+    X = oc.inverse_dynamics(robot, q, qd, qdd)
+    with pytest.raises(InputError, match=match):
+        sizing.envelope(robot, *change(t, q, qd, X))
+
+
+def test_size_cable_is_refused_not_ignored(capsys):
+    status = main(["size", "--duration", "1", "--set", "payload.mass=2",
+                   "--set", "payload.cable_length=0.5"])
+    err = capsys.readouterr().err
+    assert status == 2 and err.count("\n") == 1
+    assert "payload.cable_length = 0.5 m asks for the hanging load" in err
+
+
+def test_size_bad_flags(tmp_path, capsys):
+    for argv, match in ((["--seeds", "3"], "deterministic"), (["--seeds", "0"], "≥ 1"),
+                        (["--exposure", "-1"], "positive number of hours")):
+        assert main(["size", "--duration", "1", *argv]) == 2
+        err = capsys.readouterr().err
+        assert match in err and err.count("\n") == 1
+
+
+def test_actuator_motion_equals_kinematics_legs(robot):
+    """The envelope's lean leg evaluation (lengths and rates only) gives exactly what the
+    full leg kinematics gives, on perturbed Table 1 states."""
+    from offshore_crane import kinematics
+
+    t = np.linspace(0.0, 5.0, 301)
+    q, qd, _ = trajectories.table1(t)
+    rng = np.random.default_rng(5)
+    q = q + 0.01 * rng.standard_normal(q.shape)
+    qd = qd + 0.1 * rng.standard_normal(qd.shape)
+    p, v = sizing.actuator_motion(robot, q, qd)
+    legs = kinematics.legs(robot, q, qd)
+    np.testing.assert_array_equal(p[:, 3:], legs.length)
+    np.testing.assert_array_equal(v[:, 3:], legs.rate)
+    np.testing.assert_array_equal(p[:, :3], q[:, 6:])
+    np.testing.assert_array_equal(v[:, :3], qd[:, 6:])

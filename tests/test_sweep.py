@@ -1,0 +1,378 @@
+"""Sweeps (offshore_crane.sweep and ``offshore-crane sweep``): grids and their errors,
+rows bit-identical serially / on joblib workers / on a Dask LocalCluster, the resumable
+store (a killed sweep rerun gives every case exactly once), failing cases recorded, the
+results directory and scheduler refused before anything is written, verdicts and the
+scatter-diagram operability against hand computations.
+
+Cases are short model-scale sea records (5 s at 50 Hz: ~5 ms each) so that the file runs
+in well under a minute on two cores; the kill test uses longer ones.
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pyarrow")
+pytest.importorskip("pandas")
+
+from offshore_crane import scenes, sweep                      # noqa: E402
+from offshore_crane.cli import main                           # noqa: E402
+from offshore_crane.errors import GridError, ResultsDirectoryError  # noqa: E402
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+SCENE = """
+name = "sweep test"
+[payload]
+mass = 2.0
+offset = [0.0, 0.0, -0.05]
+[trajectory]
+source = "sea"
+duration = {duration}
+rate = {rate}
+[sea]
+hs = 2.5
+tp = 8.0
+heading = 90.0
+scale = 20.0
+seed = 1
+highpass = 0.2
+"""
+
+
+def _scene(tmp_path, duration=5.0, rate=50.0, name="scene.toml", **extra):
+    path = tmp_path / name
+    text = SCENE.format(duration=duration, rate=rate)
+    for key, value in extra.items():
+        text = text.replace(f"{key} = ", f"{key} = {value}  # was ", 1)
+    path.write_text(text)
+    return path
+
+
+def _grid(tmp_path, text, name="grid.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def _bits(df):
+    """Every column as comparable bits: floats by their int64 view (NaN payloads too)."""
+    out = {}
+    for c in df.columns:
+        a = df[c].to_numpy()
+        out[c] = a.astype(np.float64).view(np.int64) if a.dtype.kind == "f" else a.astype(str)
+    return out
+
+
+# --------------------------------------------------------------------------- grids
+@pytest.mark.parametrize("text, match", [
+    ("hs = [1.0]\nbogus = [1]\n", "unknown grid key 'bogus'"),
+    ("hs = []\n", r"hs = \[\]: the list is empty"),
+    ("hs = [1.0, -1.0]\n", r"hs\[1\] = -1: \[sea\] hs = -1.0 m must be > 0"),
+    ("tp = 8.0\n", "tp = 8: must be a list of values"),
+    ("seed = [0, -2]\n", r"seed\[1\] = -2: must be an integer ≥ 0"),
+    ("hs = [1.0, 1.0]\n", "names a value twice"),
+    ('"payload.mass" = [1.0, -2.0]\n', r"payload.mass\[1\] = -2: .*negative"),
+    ('payload_mass = [1.0]\n"payload.mass" = [2.0]\n', "name the same robot field"),
+    ("heading = ['x']\n", r"heading\[0\] = \"x\": must be a finite number"),
+])
+def test_grid_errors(tmp_path, text, match):
+    scene = scenes.load_scene(_scene(tmp_path))
+    with pytest.raises(GridError, match=match):
+        sweep.check_grid(scene, sweep.load_grid(_grid(tmp_path, text)), "grid.toml")
+
+
+def test_grid_sea_key_needs_a_sea_scene(tmp_path):
+    with pytest.raises(GridError, match="a sea key, but the scene .* is not a sea"):
+        sweep.check_grid(scenes.Scene(duration=1.0), {"hs": [1.0]})
+
+
+def test_grid_product_order_and_names(tmp_path):
+    scene = scenes.load_scene(_scene(tmp_path))
+    grid = sweep.check_grid(scene, sweep.load_grid(_grid(tmp_path, (
+        "seed = [0, 1]\nhs = [1.0, 2.0]\npayload.mass = [0, 3]\n"))))
+    assert grid.keys == ("payload.mass", "hs", "seed")          # robot slowest, seed fastest
+    cases = grid.cases()
+    assert len(cases) == 8 and cases[1] == {"payload.mass": 0.0, "hs": 1.0, "seed": 1}
+    assert len({sweep.case_id(c) for c in cases}) == 8
+
+
+# --------------------------------------------------------------------------- backends
+def test_rows_bit_identical_serial_joblib_dask(tmp_path):
+    """The same rows, bit for bit, serially, on 2 joblib (loky) workers and on a Dask
+    LocalCluster of 2 workers."""
+    pytest.importorskip("joblib")
+    pytest.importorskip("distributed")
+    scene = scenes.load_scene(_scene(tmp_path))
+    grid = {"hs": [1.5, 3.0], "seed": [0, 1], "payload.mass": [1.0]}
+    serial = sweep.run(scene, grid, workers=1)
+    loky = sweep.run(scene, grid, workers=2)
+    dask = sweep.run(scene, grid, workers=2, scheduler="local")
+    assert len(serial) == 4 and (serial["status"] == "ok").all()
+    assert list(serial["case"]) == [0, 1, 2, 3]
+    ref = _bits(serial)
+    for other in (loky, dask):
+        assert list(other.columns) == list(serial.columns)
+        got = _bits(other)
+        for c in ref:
+            np.testing.assert_array_equal(got[c], ref[c], err_msg=c)
+
+
+def test_remote_scheduler_address(tmp_path):
+    """A scheduler given by its address (here a LocalCluster's tcp:// address, on
+    loopback): the kernels are warmed up on its workers one at a time, and the rows are
+    those of a serial run."""
+    distributed = pytest.importorskip("distributed")
+    scene = scenes.load_scene(_scene(tmp_path))
+    grid = {"hs": [1.0, 2.0]}
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None, host="127.0.0.1") as cluster:
+        remote = sweep.run(scene, grid, scheduler=cluster.scheduler_address)
+    ref, got = _bits(sweep.run(scene, grid)), _bits(remote)
+    for c in ref:
+        np.testing.assert_array_equal(got[c], ref[c], err_msg=c)
+
+
+def test_failing_cases_are_recorded(tmp_path):
+    """A record that leaves the workspace (scale too small) and a cable the build cannot
+    model are failed rows with their errors; the other cases run."""
+    scene = scenes.load_scene(_scene(tmp_path))
+    df = sweep.run(scene, {"scale": [2.0, 20.0], "payload.cable_length": [0.0, 0.5]})
+    status = dict(zip(zip(df["payload.cable_length"], df["scale"]), df["status"]))
+    assert status == {(0.0, 2.0): "failed", (0.0, 20.0): "ok", (0.5, 2.0): "failed",
+                      (0.5, 20.0): "failed"}
+    row = df[(df["payload.cable_length"] == 0.5) & (df["scale"] == 20.0)].iloc[0]
+    assert row["error_type"] == "CapabilityMissingError"
+    assert "hanging load" in row["error"] and np.isnan(row["worst_util"])
+    row = df[(df["payload.cable_length"] == 0.0) & (df["scale"] == 2.0)].iloc[0]
+    assert row["error_type"] == "SeaWorkspaceError" and "fits from scale" in row["error"]
+    v = sweep.verdicts(df, scene)
+    assert (v["basis"] == "failed").sum() == 3 and np.isinf(v["worst_util"]).sum() == 3
+
+
+def test_controlled_scene_simulates(tmp_path):
+    """A scene with [control] runs the forward simulation; the envelope is of the applied
+    forces, the condition numbers of the simulated motion."""
+    path = tmp_path / "ctl.toml"
+    path.write_text(SCENE.format(duration=0.5, rate=50.0)
+                    + '[control]\nlaw = "computed-torque"\nkp = 400.0\nkd = 40.0\n')
+    scene = scenes.load_scene(path)
+    done = sweep.record(scene)
+    assert done.kind == "simulation" and len(done.t) == 501     # every 1 ms step
+    np.testing.assert_array_equal(done.X, done.simulation.X)
+    assert done.envelope.peak_push[3] == max(done.simulation.X[:, 3].max(), 0.0)
+    assert np.isfinite(done.envelope.kappa["leg"])
+
+
+# --------------------------------------------------------------------------- the store
+def test_resume_skips_finished_cases(tmp_path):
+    scene = scenes.load_scene(_scene(tmp_path))
+    out = tmp_path / "res"
+    stats = {}
+    first = sweep.run(scene, {"hs": [1.0, 2.0]}, out=out, stats=stats)
+    assert stats["ran"] == 2
+    before = {p.name: p.stat().st_mtime_ns for p in out.iterdir()}
+    again = sweep.run(scene, {"hs": [1.0, 2.0, 3.0]}, out=out, stats=stats)
+    assert (stats["skipped"], stats["ran"]) == (2, 1) and len(again) == 3
+    for name, mtime in before.items():
+        if name.startswith("case-"):
+            assert (out / name).stat().st_mtime_ns == mtime        # not rewritten
+    for c in first.columns:
+        np.testing.assert_array_equal(_bits(again.iloc[:2])[c], _bits(first)[c])
+    manifest = json.loads((out / "_manifest.json").read_text())
+    assert manifest["grids"] == [{"hs": [1.0, 2.0]}, {"hs": [1.0, 2.0, 3.0]}]
+    assert len(sweep.read_results(out)) == 3                       # a Parquet dataset
+
+
+def test_killed_sweep_rerun_has_every_case_once(tmp_path):
+    """SIGKILL a sweep once some rows exist; the rerun completes with every case exactly
+    once, and the rows of the first run are kept."""
+    scene = _scene(tmp_path, duration=40.0, rate=100.0)
+    grid = _grid(tmp_path, "hs = [1.0, 1.5, 2.0, 2.5]\nseed = [0, 1, 2, 3, 4]\n")
+    out = tmp_path / "res"
+    cmd = [sys.executable, "-m", "offshore_crane", "sweep", "--scene", str(scene), "--grid",
+           str(grid), "--out", str(out), "--no-progress"]
+    env = {**os.environ, "PYTHONPATH": str(SRC)}
+    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 90
+    try:
+        while time.monotonic() < deadline:
+            parts = list(out.glob("case-*.parquet")) if out.exists() else []
+            if len(parts) >= 3 or proc.poll() is not None:
+                break
+            time.sleep(0.02)
+        proc.send_signal(signal.SIGKILL)
+    finally:
+        proc.wait()
+    kept = {p.name for p in out.glob("case-*.parquet")}
+    assert 3 <= len(kept) < 20, "the sweep was not killed midway: make cases longer"
+    rerun = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    assert rerun.returncode == 0, rerun.stderr
+    assert f"{len(kept)} already in" in rerun.stdout
+    parts = {p.name for p in out.glob("case-*.parquet")}
+    assert kept <= parts and len(parts) == 20
+    df = sweep.read_results(out)
+    assert len(df) == 20 and df["case_id"].is_unique
+    assert set(zip(df["hs"], df["seed"])) == {(h, s) for h in (1.0, 1.5, 2.0, 2.5)
+                                              for s in range(5)}
+    assert not list(out.glob(".oc-*.tmp"))
+
+
+def test_out_of_another_scene_is_refused(tmp_path, capsys):
+    grid = _grid(tmp_path, "hs = [1.0]\n")
+    out = tmp_path / "res"
+    assert main(["sweep", "--scene", str(_scene(tmp_path)), "--grid", str(grid),
+                 "--out", str(out), "--no-progress"]) == 0
+    capsys.readouterr()
+    listing = sorted(os.listdir(out))
+    other = _scene(tmp_path, name="other.toml", hs="3.0")
+    assert main(["sweep", "--scene", str(other), "--grid", str(grid), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "holds the results of another scene" in err and err.count("\n") == 1
+    assert sorted(os.listdir(out)) == listing
+    scene = scenes.load_scene(_scene(tmp_path))
+    junk = tmp_path / "junk"
+    junk.mkdir()
+    (junk / "notes.txt").write_text("x")
+    with pytest.raises(ResultsDirectoryError, match="holds files but no sweep manifest"):
+        sweep.run(scene, {"hs": [1.0]}, out=junk)
+    with pytest.raises(ResultsDirectoryError, match="is not a directory"):
+        sweep.run(scene, {"hs": [1.0]}, out=junk / "notes.txt")
+    assert os.listdir(junk) == ["notes.txt"]
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--scheduler", "tcp://127.0.0.1:9"], "cannot reach the Dask scheduler"),
+    (["--scheduler", "127.0.0.1:9"], "give 'local'"),
+    (["--workers", "0"], "--workers 0: must be ≥ 1"),
+])
+def test_cli_errors_write_nothing(tmp_path, capsys, argv, match):
+    grid = _grid(tmp_path, "hs = [1.0, 2.0]\n")
+    out = tmp_path / "res"
+    status = main(["sweep", "--scene", str(_scene(tmp_path)), "--grid", str(grid),
+                   "--out", str(out), *argv])
+    err = capsys.readouterr().err
+    assert status == 2 and match in err and err.count("\n") == 1
+    assert not out.exists()
+
+
+def test_cli_bad_grid_one_line(tmp_path, capsys):
+    grid = _grid(tmp_path, "hs = [0.0]\n")
+    out = tmp_path / "res"
+    assert main(["sweep", "--scene", str(_scene(tmp_path)), "--grid", str(grid),
+                 "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "hs[0] = 0" in err and "must be > 0" in err and err.count("\n") == 1
+    assert not out.exists()
+
+
+# --------------------------------------------------------------------------- verdicts
+def test_verdicts_gumbel_from_rows(tmp_path):
+    """Five seeds: the verdict's utilisation is the Gumbel MPM of the rows' utilisations
+    (equal to the MPM of the peaks over the capacity, the fit being equivariant)."""
+    from offshore_crane import sizing
+
+    scene = scenes.load_scene(_scene(tmp_path))
+    df = sweep.run(scene, {"seed": [0, 1, 2, 3, 4]})
+    v = sweep.verdicts(df, scene)
+    assert len(v) == 1 and v["basis"][0] == "gumbel" and v["seeds"][0] == 5
+    record = 5.0 * np.sqrt(20.0)
+    util = sizing.most_probable_maximum(df["Fl6_util_speed"], record)
+    peak = sizing.most_probable_maximum(df["Fl6_peak_speed"], record)
+    assert util == pytest.approx(peak / 0.5, rel=1e-12)
+    assert v["Fl6_util"][0] >= util
+
+
+def test_limiting_hs_and_operability(tmp_path):
+    pd = pytest.importorskip("pandas")
+    assert sweep.limiting_hs([1, 2, 3], [0.4, 0.8, 1.2]) == pytest.approx(2.5)
+    assert sweep.limiting_hs([1, 2, 3], [0.4, 0.8, 0.9]) == 3.0      # never exceeded
+    assert sweep.limiting_hs([1, 2, 3], [1.1, 0.8, 0.9]) == 0.0      # first crossing
+    assert sweep.limiting_hs([1, 2, 3], [0.5, np.inf, 0.9]) == 1.0   # failed case
+    # utilisation = hs / 2.5 at tp 6, hs / 1.5 at tp 10: limits 2.5 m and 1.5 m
+    rows = [{"hs": h, "tp": tp, "heading": hd, "worst_util": h / lim}
+            for hd, scale in ((90.0, 1.0), (180.0, 2.0)) for tp, lim0 in ((6.0, 2.5),
+                                                                           (10.0, 1.5))
+            for lim in (lim0 * scale,) for h in (1.0, 2.0, 3.0)]
+    table = pd.DataFrame(rows)
+    path = tmp_path / "scatter.csv"
+    path.write_text("# test\nhs_m/tp_s,6,8,10,12\n1.0,1,1,1,1\n2.0,1,1,1,1\n"
+                    "2.8,1,1,1,1\n")
+    scatter = sweep.load_scatter(path)
+    assert scatter.p.sum() == pytest.approx(1.0)
+    op = sweep.operability(table, scatter, scenes.Scene(duration=1.0))
+    by = dict(zip(op["heading"].fillna(-1), op["operability_pct"]))
+    # heading 90: limit at tp 6, 8, 10 = 2.5, 2.0, 1.5 m -> cells (1,6) (2,6) (1,8) (2,8)
+    # (1,10): 5 of 12; tp 12 is outside the swept Tp (not operable)
+    assert by[90.0] == pytest.approx(100 * 5 / 12)
+    # heading 180: limits 5, 4, 3 m clipped to the swept 3 m -> all 9 covered cells
+    assert by[180.0] == pytest.approx(100 * 9 / 12)
+    assert by[-1] == pytest.approx(100 * 7 / 12)
+    assert op["uncovered_pct"].iloc[0] == pytest.approx(100 * 3 / 12)
+
+
+@pytest.mark.parametrize("text, match", [
+    ("hs_m/tp_s,6,8\n1.0,1,x\n", r"line 2, cell 3: 'x' is not a finite number"),
+    ("hs_m/tp_s,6,8\n1.0,1\n", "2 cells, but the header has 3"),
+    ("hs_m/tp_s,8,6\n1.0,1,1\n", "the Tp values of the header must increase"),
+    ("hs_m/tp_s,6,8\n1.0,0,0\n", "every occurrence is 0"),
+])
+def test_scatter_errors(tmp_path, text, match):
+    from offshore_crane.errors import InputError
+
+    path = tmp_path / "s.csv"
+    path.write_text(text)
+    with pytest.raises(InputError, match=match):
+        sweep.load_scatter(path)
+
+
+def test_cli_sweep_plots_csv_and_operability(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    grid = _grid(tmp_path, "hs = [1.0, 4.0]\ntp = [6.0, 9.0]\n")
+    scatter = tmp_path / "s.csv"
+    scatter.write_text("hs_m/tp_s,6,9\n1.0,3,1\n3.0,1,1\n")
+    plots = tmp_path / "plots"
+    assert main(["sweep", "--scene", str(_scene(tmp_path)), "--grid", str(grid),
+                 "--plot", str(plots), "--csv", str(tmp_path / "rows.csv"),
+                 "--scatter", str(scatter), "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    assert "heading 90°:" in out and "overall:" in out
+    assert sorted(os.listdir(plots)) == ["operability.png", "utilisation-worst-case.png"]
+    rows = (tmp_path / "rows.csv").read_text().splitlines()
+    assert len(rows) == 5 and rows[0].startswith("case,case_id,hs,tp,status")
+
+
+def test_imports_stay_lazy():
+    """Importing the package, the new modules and the CLI, and running ``id``, import
+    none of the sweep's optional libraries (nor matplotlib)."""
+    code = ("import sys; import offshore_crane, offshore_crane.sizing, offshore_crane.sweep, "
+            "offshore_crane.cli.size, offshore_crane.cli.sweep; "
+            "from offshore_crane.__main__ import main; "
+            "assert main(['id', '--duration', '1']) == 0; "
+            "assert main(['size', '--duration', '1']) == 0; "
+            "heavy = ('joblib', 'dask', 'distributed', 'pandas', 'pyarrow', 'tqdm', "
+            "'matplotlib', 'pinocchio', 'imageio', 'viser', 'mujoco'); "
+            "bad = [m for m in heavy if m in sys.modules]; assert not bad, bad")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(SRC)})
+    assert proc.returncode == 0, proc.stderr
+
+
+def test_kane_sweep_imports_neither_pinocchio_nor_matplotlib(tmp_path):
+    """A sweep of a Kane scene without --plot loads only what it runs (its warm-up too)."""
+    scene = _scene(tmp_path)
+    code = ("import sys; from offshore_crane import sweep; "
+            f"df = sweep.run({str(scene)!r}, {{'hs': [1.0]}}); "
+            "assert (df['status'] == 'ok').all(); "
+            "bad = [m for m in ('pinocchio', 'matplotlib') if m in sys.modules]; "
+            "assert not bad, bad")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(SRC)})
+    assert proc.returncode == 0, proc.stderr
