@@ -216,12 +216,22 @@ def test_envelope_bad_inputs(robot, change, match):
         sizing.envelope(robot, *change(t, q, qd, X))
 
 
-def test_size_cable_is_refused_not_ignored(capsys):
-    status = main(["size", "--duration", "1", "--set", "payload.mass=2",
-                   "--set", "payload.cable_length=0.5"])
-    err = capsys.readouterr().err
-    assert status == 2 and err.count("\n") == 1
-    assert "payload.cable_length = 0.5 m asks for the hanging load" in err
+def test_size_with_a_cable_equals_id_out(tmp_path, capsys):
+    """A payload on a cable: size runs the swing; its envelope (peaks, sway, tension)
+    equals what id --out's CSV of the same run gives (phi1, phi2, tension columns)."""
+    argv = ["--duration", "3", "--set", "payload.mass=2", "--set", "payload.cable_length=0.5",
+            "--initial-sway", "0.1", "0"]
+    out = tmp_path / "id.csv"
+    assert main(["id", *argv, "--out", str(out)]) == 0
+    capsys.readouterr()
+    status, doc = _size_json(argv, capsys)
+    assert status == 0
+    env = doc["envelopes"][0]
+    data = np.loadtxt(out, delimiter=",", skiprows=1)
+    sway = np.arccos(np.clip(np.cos(data[:, 10]) * np.cos(data[:, 11]), -1, 1))
+    assert env["sway_max"] == sway.max() > 0.09
+    assert (env["tension_min"], env["tension_max"]) == (data[:, 12].min(), data[:, 12].max())
+    assert env["Fl1_peak_push"] == max(data[:, 4].max(), 0.0)
 
 
 def test_size_bad_flags(tmp_path, capsys):

@@ -140,20 +140,30 @@ def test_remote_scheduler_address(tmp_path):
 
 
 def test_failing_cases_are_recorded(tmp_path):
-    """A record that leaves the workspace (scale too small) and a cable the build cannot
-    model are failed rows with their errors; the other cases run."""
-    scene = scenes.load_scene(_scene(tmp_path))
+    """A record that leaves the workspace (scale too small) is a failed row with its error;
+    the other cases run, those with a cable through the swing (sway and tension columns,
+    equal to offshore_crane.cable's own run; NaN without a cable)."""
+    from offshore_crane import cable
+
+    scene = scenes.load_scene(_scene(tmp_path, offset="[0.0, 0.0, 0.0]"))
     df = sweep.run(scene, {"scale": [2.0, 20.0], "payload.cable_length": [0.0, 0.5]})
     status = dict(zip(zip(df["payload.cable_length"], df["scale"]), df["status"]))
     assert status == {(0.0, 2.0): "failed", (0.0, 20.0): "ok", (0.5, 2.0): "failed",
-                      (0.5, 20.0): "failed"}
-    row = df[(df["payload.cable_length"] == 0.5) & (df["scale"] == 20.0)].iloc[0]
-    assert row["error_type"] == "CapabilityMissingError"
-    assert "hanging load" in row["error"] and np.isnan(row["worst_util"])
+                      (0.5, 20.0): "ok"}
     row = df[(df["payload.cable_length"] == 0.0) & (df["scale"] == 2.0)].iloc[0]
     assert row["error_type"] == "SeaWorkspaceError" and "fits from scale" in row["error"]
+    welded = df[(df["payload.cable_length"] == 0.0) & (df["scale"] == 20.0)].iloc[0]
+    assert np.isnan(welded["sway_max"]) and np.isnan(welded["tension_min"])
+    hanging = df[(df["payload.cable_length"] == 0.5) & (df["scale"] == 20.0)].iloc[0]
+    case = sweep.case_scene(scene, {"payload.cable_length": 0.5})
+    robot = scenes.load_robot(case)
+    ref = cable.swing(robot, scenes.load_trajectory(case, robot))
+    assert hanging["sway_max"] == ref.sway_angle.max() > 0
+    assert (hanging["tension_min"], hanging["tension_max"]) == (ref.tension.min(),
+                                                                ref.tension.max())
+    assert hanging["Fl1_rms"] != welded["Fl1_rms"]          # the swing changes the forces
     v = sweep.verdicts(df, scene)
-    assert (v["basis"] == "failed").sum() == 3 and np.isinf(v["worst_util"]).sum() == 3
+    assert (v["basis"] == "failed").sum() == 2 and np.isinf(v["worst_util"]).sum() == 2
 
 
 def test_controlled_scene_simulates(tmp_path):

@@ -17,7 +17,7 @@ from __future__ import annotations
 from .dynamics import inverse_dynamics
 from .dynamics.forward import (actuation_matrix, bias_forces, equations_of_motion,
                                forward_dynamics, mass_matrix)
-from .errors import (BackendMissingError, CapabilityMissingError, ConstraintResidualError,
+from .errors import (BackendMissingError, ConstraintResidualError,
                      DescriptionError, GridError, InputError, InsufficientSeedsError,
                      ModelError, NumericalError, OffshoreCraneError, OutputError,
                      ResultsDirectoryError, SceneError, SchedulerError, SeaStateError,
@@ -39,8 +39,7 @@ __all__ = ["load_robot", "inverse_dynamics", "forward_dynamics", "mass_matrix",
            "DescriptionError", "WorkspaceError", "SingularConfigurationError",
            "NumericalError", "ConstraintResidualError", "SimulationError", "OutputError",
            "SeaStateError", "SeaWorkspaceError", "BackendMissingError",
-           "InsufficientSeedsError", "GridError", "ResultsDirectoryError", "SchedulerError",
-           "CapabilityMissingError"]
+           "InsufficientSeedsError", "GridError", "ResultsDirectoryError", "SchedulerError"]
 
 
 def __getattr__(name):

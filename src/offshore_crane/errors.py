@@ -366,22 +366,3 @@ class SchedulerError(OffshoreCraneError, ConnectionError):
 
     def __str__(self) -> str:                  # OSError's own formatting would add errno
         return self.args[0]
-
-
-class CapabilityMissingError(OffshoreCraneError, NotImplementedError):
-    """A case needs a capability this installation does not have (the hanging load of a
-    payload on a cable, ``payload.cable_length > 0``, before :mod:`offshore_crane.cable`
-    exists). Raised rather than computing something else silently.
-
-    Attributes:
-        capability: What is missing, in words.
-        field: The dotted robot field that asks for it (``"payload.cable_length"``).
-        value: Its value.
-    """
-
-    def __init__(self, message: str, capability: str | None = None, field: str | None = None,
-                 value: float | None = None):
-        super().__init__(message)
-        self.capability = capability
-        self.field = field
-        self.value = value

@@ -19,8 +19,10 @@ of ``X = [T1, T2, Fs, Fl1..Fl6]`` (``docs/conventions.md``):
   never 0.
 
 and for the run: the worst condition number of each singularity kind (leg Jacobian,
-U-joint gimbal, attitude) with its time, and the worst utilisation with the actuator and
-the capacity that govern it.
+U-joint gimbal, attitude) with its time, the worst utilisation with the actuator and
+the capacity that govern it, and with a payload on a cable (:mod:`offshore_crane.cable`)
+the largest sway from the tip's vertical [rad] and the smallest and largest cable
+tension [N] (NaN without a cable).
 
 For a random sea a single record's peak is itself random. :func:`verdict` takes the
 envelopes of the same case under several seeds: with at least :data:`MIN_SEEDS` of them it
@@ -48,6 +50,8 @@ CAPACITIES = ("push", "pull", "speed", "power", "stroke")
 #: Per-actuator quantities of an envelope (``(9,)`` arrays), in row-column order.
 QUANTITIES = ("peak_push", "t_push", "peak_pull", "t_pull", "rms", "peak_speed",
               "peak_power", "mean_abs_power", "stroke_min", "stroke_max")
+#: The hanging load's columns of an envelope (NaN without a cable): [rad], [N], [N].
+CABLE = ("sway_max", "tension_min", "tension_max")
 #: Condition-number kinds of a run (:class:`offshore_crane.dynamics.Result`).
 KINDS = ("leg", "gimbal", "attitude")
 #: Fewest seeds a Gumbel fit is made on: with 5 per-record maxima the maximum-likelihood
@@ -82,6 +86,8 @@ class Envelope:
             capacity given or no such actuator).
         kappa: ``{kind: worst condition number}`` over :data:`KINDS` (NaN: not measured).
         t_kappa: ``{kind: its time [s]}``.
+        sway_max: Largest angle of the cable from the tip's vertical [rad] (NaN: no cable).
+        tension_min, tension_max: The cable's tension range [N] (NaN: no cable).
     """
 
     duration: float
@@ -101,6 +107,9 @@ class Envelope:
     utilisation: np.ndarray
     kappa: dict = field(default_factory=dict)
     t_kappa: dict = field(default_factory=dict)
+    sway_max: float = math.nan
+    tension_min: float = math.nan
+    tension_max: float = math.nan
 
     @property
     def present(self) -> np.ndarray:
@@ -135,6 +144,7 @@ class Envelope:
             out[f"kappa_{kind}"] = float(self.kappa.get(kind, math.nan))
         worst, who, cap = self.worst()
         out.update(worst_util=float(worst), governing=who or "", governing_capacity=cap or "")
+        out.update({k: float(getattr(self, k)) for k in CABLE})
         return out
 
 
@@ -149,6 +159,7 @@ def row_columns() -> list[tuple[str, str]]:
     cols += [(f"kappa_{k}", "float64") for k in KINDS]
     cols += [("worst_util", "float64"), ("governing", "string"),
              ("governing_capacity", "string")]
+    cols += [(k, "float64") for k in CABLE]
     return cols
 
 
@@ -172,7 +183,7 @@ def stroke_ranges(robot) -> np.ndarray:
     for a joint the robot does not have."""
     from .dynamics.constants import robot_arrays
 
-    limits = robot_arrays(robot).limits
+    limits = robot_arrays(robot.without_hanging_payload()).limits   # kinematic: no payload
     out = np.full((9, 2), np.nan)
     out[:, 0], out[:, 1] = -np.inf, np.inf
     arm = np.asarray(limits.arm).reshape(-1, 2)
@@ -231,7 +242,7 @@ def _peak(x: np.ndarray, t: np.ndarray):
 
 
 def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
-             legs: bool | None = None) -> Envelope:
+             legs: bool | None = None, cable=None) -> Envelope:
     """The envelope of one run against ``robot.capacities``.
 
     Args:
@@ -243,6 +254,8 @@ def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
         condition: ``{kind: (N,) condition numbers}`` over :data:`KINDS`, or None.
         arm, legs: Whether the arm / leg actuators exist (default: their X columns are
             not all NaN).
+        cable: The run's :class:`~offshore_crane.cable.CableResult` (a payload on a
+            cable), or None.
 
     Returns:
         :class:`Envelope`.
@@ -311,12 +324,15 @@ def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
         else:
             k = int(np.nanargmax(c))
             kappa[kind], t_kappa[kind] = float(c[k]), float(t[k])
+    hanging = {} if cable is None else dict(
+        sway_max=float(cable.sway_angle.max()), tension_min=float(cable.tension.min()),
+        tension_max=float(cable.tension.max()))
     return Envelope(duration=float(t[-1] - t[0]), samples=N, peak_push=peak_push,
                     t_push=t_push, peak_pull=peak_pull, t_pull=t_pull, rms=rms,
                     peak_speed=peak_speed, peak_power=peak_power,
                     mean_abs_power=mean_abs_power, stroke_min=stroke_min,
                     stroke_max=stroke_max, stroke_range=rng, capacities=capacities,
-                    utilisation=util, kappa=kappa, t_kappa=t_kappa)
+                    utilisation=util, kappa=kappa, t_kappa=t_kappa, **hanging)
 
 
 def conditions(result) -> dict:
@@ -531,6 +547,9 @@ def format_envelope(env: Envelope) -> str:
         if not math.isnan(env.kappa[kind]):
             lines.append(f"worst {kind} condition number: {env.kappa[kind]:.4g} at "
                          f"t = {env.t_kappa[kind]:.2f} s")
+    if not math.isnan(env.sway_max):
+        lines.append(f"hanging load: max sway {env.sway_max:.4g} rad from the tip's "
+                     f"vertical, cable tension {env.tension_min:.4g}..{env.tension_max:.4g} N")
     return "\n".join(lines)
 
 

@@ -15,8 +15,8 @@ is checked before anything runs by the scene's own checks (:class:`GridError` na
 grid file, the key and the index). Each case (:func:`run_case`) runs the scene with the
 case's values: the inverse dynamics (:func:`record`), or the forward simulation when the
 scene has a ``[control]`` section, and its envelope (:func:`offshore_crane.sizing.envelope`).
-A case that fails (workspace, singularity, a diverged simulation, a cable the build cannot
-model) yields a row with its error, and the sweep goes on.
+A case that fails (workspace, singularity, a diverged simulation, a slack cable) yields
+a row with its error, and the sweep goes on.
 
 Determinism: every case runs the compiled kernels (or NumPy when Numba is absent, chosen
 once in the parent) on one thread, from its own values only, so a row is bit-identical
@@ -272,28 +272,6 @@ class CaseRun:
     seconds: float
 
 
-def _hanging_load(scene, robot, trajectory, options):
-    """THE place where a cable plugs in: a payload hanging from ``arm_tip`` on a cable
-    (``payload.cable_length`` L > 0). Until :mod:`offshore_crane.cable` exists, such a
-    case fails with :class:`~offshore_crane.errors.CapabilityMissingError`: the rigid
-    path would weld the payload to the tip and give other forces. The call that replaces
-    this body (its result has ``.X``, ``.sway``, ``.tension``)::
-
-        from . import cable
-        return cable.inverse_dynamics(robot, trajectory.t, trajectory.q, trajectory.qd,
-                                      trajectory.qdd, gravity=scene.gravity)
-    """
-    from .errors import CapabilityMissingError
-
-    L = float(robot.spec.cable_length)
-    raise CapabilityMissingError(
-        f"{scene.where()}: payload.cable_length = {L:g} m asks for the hanging load (a "
-        "payload swinging on a cable, offshore_crane.cable), which this installation does "
-        "not have: set payload.cable_length = 0 (welded) or install a version with the "
-        "cable model", capability="hanging load (offshore_crane.cable)",
-        field="payload.cable_length", value=L)
-
-
 def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads: int = 1,
            limits: bool = True, thresholds=None, method: str | None = None) -> CaseRun:
     """Run one scene and take its envelope: the inverse dynamics of its trajectory
@@ -302,10 +280,14 @@ def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads
     of the applied forces; the condition numbers of the inverse dynamics of the
     simulated motion).
 
+    With a payload on a cable (``payload.cable_length > 0``) the inverse dynamics is the
+    swing's (:func:`offshore_crane.cable.swing`, the scene's ``[cable]`` options) and the
+    envelope gains the largest sway and the tension range; a slack cable fails the case.
+
     Raises:
-        CapabilityMissingError: ``payload.cable_length > 0`` (:func:`_hanging_load`).
-        The errors of the loaders, of :func:`offshore_crane.dynamics.solve` and of
-        :func:`offshore_crane.simulate.simulate`.
+        The errors of the loaders, of :func:`offshore_crane.dynamics.solve`, of
+        :mod:`offshore_crane.cable` (:class:`~offshore_crane.errors.SlackCableError`) and
+        of :func:`offshore_crane.simulate.simulate`.
     """
     from . import scenes
     from .dynamics import solve
@@ -317,8 +299,6 @@ def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads
     t0 = time.perf_counter()
     traj = trajectory or scenes.load_trajectory(scene, robot)
     options = dict(limits=limits, thresholds=thresholds, backend=backend, threads=threads)
-    if robot.spec is not None and robot.spec.cable_length > 0:
-        _hanging_load(scene, robot, traj, options)
     simulation = None
     if scene.control:
         simulation = _simulate(scene, robot, traj, limits)
@@ -327,9 +307,13 @@ def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads
                        outputs=scene.wanted(), t=t, **options)
         kind = "simulation"
     else:
-        result = solve(robot, traj.q, traj.qd, traj.qdd, method or scene.methods[0],
-                       scene.gravity, leg_model=scene.leg_model, outputs=scene.wanted(),
-                       t=traj.t, **options)
+        if robot.hybrid.cable is not None:            # the swing (offshore_crane.cable)
+            result = scenes._swing(scene, robot, traj, method or scene.methods[0],
+                                   limits=limits, thresholds=thresholds)
+        else:
+            result = solve(robot, traj.q, traj.qd, traj.qdd, method or scene.methods[0],
+                           scene.gravity, leg_model=scene.leg_model, outputs=scene.wanted(),
+                           t=traj.t, **options)
         t, q, qd, X = traj.t, traj.q, traj.qd, result.X
         kind = "inverse dynamics"
     seconds = time.perf_counter() - t0
@@ -338,7 +322,8 @@ def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads
     legs = any(n.startswith("Fl") for n in wanted)
     Xw = np.where([n in wanted for n in ("T1", "T2", "Fs", "Fl1", "Fl2", "Fl3", "Fl4",
                                          "Fl5", "Fl6")], X, np.nan)
-    env = envelope(robot, t, q, qd, Xw, conditions(result), arm=arm, legs=legs)
+    env = envelope(robot, t, q, qd, Xw, conditions(result), arm=arm, legs=legs,
+                   cable=getattr(result, "cable", None))
     return CaseRun(scene, robot, traj, kind, t, q, qd, Xw, result, simulation, env, seconds)
 
 
@@ -637,7 +622,8 @@ def _dask(payloads, client):
 def _warm_up(scene) -> None:
     """Compile or load, once in this process, the kernels this sweep's cases use: the
     inverse dynamics of the scene's first method (and Kane's, which a simulated case
-    uses for its condition numbers), the simulation loop for a scene with ``[control]``
+    uses for its condition numbers), the hanging load's kernels, the simulation loop for a
+    scene with ``[control]``
     (:func:`offshore_crane.dynamics.warm_up` would also load Pinocchio for the RNEA
     path, which a Kane sweep never uses)."""
     from . import scenes
@@ -645,11 +631,14 @@ def _warm_up(scene) -> None:
 
     if not numba_available():
         return
-    robot = scenes.load_robot(scene)
+    from .cable import warm_up as warm_up_cable
+
+    robot = scenes.load_robot(scene).without_hanging_payload()
     q = np.zeros((1, 9))
     q[0, 2] = float(robot.home_height or 0.5)
     for method in dict.fromkeys((scene.methods[0], "kane")):
         solve(robot, q, 0 * q, 0 * q, method=method, backend="numba", limits=False)
+    warm_up_cable()            # any case may hang its payload (a grid's cable_length)
     if scene.control:
         from .simulate import warm_up as warm_up_simulation
 
