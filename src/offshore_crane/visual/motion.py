@@ -139,7 +139,7 @@ def read_run(path) -> Motion:
     if bad.any():
         i, j = (int(x) for x in np.argwhere(bad)[0])
         raise TrajectoryError(f"{where}, data row {i + 1}, column {needed[j]}: "
-                              f"{values[i, col[needed[j]]]!r} is not finite (a simulation "
+                              f"{data[i][col[needed[j]]].strip()!r} is not finite (a simulation "
                               "that stopped early keeps every sample it computed: cut the "
                               "file there)", name=needed[j], index=i, path=where)
     t = values[:, col["t_s"]]
