@@ -20,7 +20,8 @@ from .dynamics.forward import (actuation_matrix, bias_forces, equations_of_motio
 from .errors import (BackendMissingError, ConstraintResidualError, DescriptionError,
                      InputError, ModelError, NumericalError, OffshoreCraneError, OutputError,
                      SceneError, SeaStateError, SeaWorkspaceError, SimulationError,
-                     SingularConfigurationError, TrajectoryError, WorkspaceError)
+                     SingularConfigurationError, TrajectoryError, ViewerError,
+                     WorkspaceError)
 from .conventions import ACTUATORS, ACTUATOR_UNITS, GRAVITY
 from .kinematics.workspace import OffshoreCraneWarning, Thresholds
 from .model import Robot, load_robot
@@ -36,7 +37,7 @@ __all__ = ["load_robot", "inverse_dynamics", "forward_dynamics", "mass_matrix",
            "OffshoreCraneError", "InputError", "TrajectoryError", "SceneError", "ModelError",
            "DescriptionError", "WorkspaceError", "SingularConfigurationError",
            "NumericalError", "ConstraintResidualError", "SimulationError", "OutputError",
-           "SeaStateError", "SeaWorkspaceError", "BackendMissingError"]
+           "SeaStateError", "SeaWorkspaceError", "BackendMissingError", "ViewerError"]
 
 
 def __getattr__(name):
