@@ -22,7 +22,7 @@ from .errors import (BackendMissingError, ConstraintResidualError,
                      ModelError, NumericalError, OffshoreCraneError, OutputError,
                      ResultsDirectoryError, SceneError, SchedulerError, SeaStateError,
                      SeaWorkspaceError, SimulationError, SingularConfigurationError,
-                     TrajectoryError, WorkspaceError)
+                     SlackCableError, TrajectoryError, ViewerError, WorkspaceError)
 from .conventions import ACTUATORS, ACTUATOR_UNITS, GRAVITY
 from .kinematics.workspace import OffshoreCraneWarning, Thresholds
 from .model import Robot, load_robot
@@ -39,7 +39,8 @@ __all__ = ["load_robot", "inverse_dynamics", "forward_dynamics", "mass_matrix",
            "DescriptionError", "WorkspaceError", "SingularConfigurationError",
            "NumericalError", "ConstraintResidualError", "SimulationError", "OutputError",
            "SeaStateError", "SeaWorkspaceError", "BackendMissingError",
-           "InsufficientSeedsError", "GridError", "ResultsDirectoryError", "SchedulerError"]
+           "InsufficientSeedsError", "GridError", "ResultsDirectoryError", "SchedulerError",
+           "SlackCableError", "ViewerError"]
 
 
 def __getattr__(name):

@@ -364,5 +364,19 @@ class SchedulerError(OffshoreCraneError, ConnectionError):
         self.address = address
         self.reason = reason
 
+
+class ViewerError(OffshoreCraneError, OSError):
+    """The browser viewer cannot start: its port is in use or out of range.
+
+    Attributes:
+        host: The address it was to listen on.
+        port: The port asked for.
+    """
+
+    def __init__(self, message: str, host: str | None = None, port: int | None = None):
+        super().__init__(message)
+        self.host = host
+        self.port = port
+
     def __str__(self) -> str:                  # OSError's own formatting would add errno
         return self.args[0]

@@ -321,3 +321,51 @@ def signals_as_exceptions():
     finally:
         signal.signal(signal.SIGTERM, previous)
         signal.signal(signal.SIGINT, previous_int)
+
+
+@contextlib.contextmanager
+def output_path(target, suffix: str = ""):
+    """A file path for a writer that needs a path, not a file object (ffmpeg), with the
+    guarantees of :func:`open_output`.
+
+    For a regular file, yields a temporary path beside it (ending in ``suffix``, so that a
+    tool choosing its format by the name sees the right one), renamed over the target
+    once the block completes, removed on any failure or signal. For standard output, a
+    FIFO or a character device, yields a temporary path in the system's temporary
+    directory and copies the finished file to the target.
+
+    Raises:
+        OutputError: the temporary file cannot be made or the rename / copy failed.
+    """
+    import shutil
+    import tempfile
+
+    if not isinstance(target, Target):
+        target = plan_outputs({"output": target})["output"]
+    directory = (os.path.dirname(target.path) or ".") if target.kind == "file" else None
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".oc-", suffix=".tmp" + suffix, dir=directory)
+    except OSError as exc:
+        raise OutputError(f"cannot write in {directory or tempfile.gettempdir()}: "
+                          f"{exc.strerror}", path=target.given,
+                          reason=str(exc.strerror)) from None
+    os.close(fd)
+    try:
+        yield tmp
+        if target.kind == "file":
+            try:
+                mode_bits = stat.S_IMODE(os.stat(target.path).st_mode)
+            except FileNotFoundError:
+                mode_bits = 0o666 & ~_umask()
+            os.chmod(tmp, mode_bits)
+            os.replace(tmp, target.path)
+        else:
+            with open(tmp, "rb") as src, open_output(target, "wb") as dst:
+                shutil.copyfileobj(src, dst)
+    except OSError as exc:
+        if isinstance(exc, (BrokenPipeError, OutputError)):
+            raise
+        raise OutputError(f"cannot write {target.given}: {exc.strerror or exc}",
+                          path=target.given, reason=str(exc.strerror or exc)) from None
+    finally:
+        _remove(tmp)

@@ -21,7 +21,9 @@ from ..errors import InputError, OffshoreCraneError
 SUBCOMMANDS = ("offshore_crane.cli.id", "offshore_crane.cli.motion",
                "offshore_crane.cli.simulate", "offshore_crane.serial.cli",
                "offshore_crane.cli.describe", "offshore_crane.cli.compile",
-               "offshore_crane.cli.size", "offshore_crane.cli.sweep")
+               "offshore_crane.cli.size", "offshore_crane.cli.sweep",
+               "offshore_crane.cli.animate", "offshore_crane.cli.show",
+               "offshore_crane.cli.view")
 
 
 class _Parser(argparse.ArgumentParser):

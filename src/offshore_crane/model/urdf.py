@@ -1,12 +1,16 @@
 """A small, fast URDF reader (standard library only).
 
 It reads what the dynamics needs (links' inertial data, joints' placement, axis, type and
-limits) and nothing else; geometry is left to viewers (yourdfpy, Pinocchio). Parsing the
-expanded robot takes about a millisecond, against about a second to import yourdfpy.
+limits) and the links' visual primitives (box, cylinder, sphere, with their material
+colours) that :mod:`offshore_crane.visual` draws; meshes are skipped (left to viewers such
+as yourdfpy or Pinocchio). Parsing the expanded robot takes about a millisecond, against
+about a second to import yourdfpy.
 
 Frames: a joint's ``origin`` places the joint frame in its parent link frame,
 ``T_parent_joint``; the child link frame coincides with the joint frame at zero joint
-position. A link's ``inertial/origin`` places its centre-of-mass frame in the link frame.
+position. A link's ``inertial/origin`` places its centre-of-mass frame in the link frame; a
+``visual/origin`` places the shape's own frame in the link frame (a cylinder's axis is the
+z axis of that frame, centred on its origin, as URDF specifies).
 """
 
 from __future__ import annotations
@@ -65,15 +69,48 @@ class Joint:
     damping: float = 0.0
 
 
+#: Visual primitives read from ``<visual><geometry>`` (meshes are not read).
+SHAPES = ("box", "cylinder", "sphere")
+
+
+@dataclass(frozen=True)
+class Visual:
+    """One visual primitive of a link.
+
+    Attributes:
+        shape: ``"box"``, ``"cylinder"`` or ``"sphere"``.
+        size: ``(3,)`` box edge lengths [m]; for a cylinder ``(radius, radius, length)``,
+            for a sphere ``(radius, radius, radius)`` [m].
+        xyz: ``(3,)`` origin of the shape's frame in the link frame [m].
+        R: ``(3, 3)`` ``R_link_shape`` from the origin's rpy.
+        rgba: ``(4,)`` colour in 0..1 (the material's, by reference or inline), or None
+            when the visual names no colour.
+        material: Name of the material, or None.
+    """
+
+    shape: str
+    size: np.ndarray
+    xyz: np.ndarray
+    R: np.ndarray
+    rgba: np.ndarray | None = None
+    material: str | None = None
+
+
 @dataclass
 class URDF:
-    """Links' inertials and joints of a URDF, with parent/child maps."""
+    """Links' inertials, visual primitives and joints of a URDF, with parent/child maps.
+
+    Attributes:
+        visuals: ``{link: [Visual, ...]}`` for every link (an empty list when it has no
+            primitive).
+    """
 
     name: str
     inertials: dict[str, Inertial | None]
     joints: dict[str, Joint]
     child_joints: dict[str, list[str]] = field(default_factory=dict)
     parent_joint: dict[str, str] = field(default_factory=dict)
+    visuals: dict[str, list[Visual]] = field(default_factory=dict)
 
     @property
     def root(self) -> str:
@@ -162,7 +199,9 @@ def parse_urdf(text: str) -> URDF:
         raise ModelError(f"the URDF is not well-formed XML: {exc}") from None
     if root.tag != "robot":
         raise ModelError(f"the URDF's root element is <{root.tag}>, expected <robot>")
+    materials = _materials(root)
     inertials: dict[str, Inertial | None] = {}
+    visuals: dict[str, list[Visual]] = {}
     for link in root.findall("link"):
         name = link.get("name")
         if name is None:
@@ -171,6 +210,8 @@ def parse_urdf(text: str) -> URDF:
             raise ModelError(f"the URDF defines link '{name}' twice: give each link a "
                              "unique name", element=name)
         inertials[name] = _parse_inertial(link.find("inertial"), name)
+        visuals[name] = [v for k, el in enumerate(link.findall("visual"))
+                         if (v := _parse_visual(el, name, k, materials)) is not None]
     joints: dict[str, Joint] = {}
     child_joints: dict[str, list[str]] = {}
     parent_joint: dict[str, str] = {}
@@ -190,7 +231,59 @@ def parse_urdf(text: str) -> URDF:
         joints[j.name] = j
         child_joints.setdefault(j.parent, []).append(j.name)
         parent_joint[j.child] = j.name
-    return URDF(root.get("name", ""), inertials, joints, child_joints, parent_joint)
+    return URDF(root.get("name", ""), inertials, joints, child_joints, parent_joint, visuals)
+
+
+def _rgba(el, where: str) -> np.ndarray | None:
+    color = el.find("color") if el is not None else None
+    if color is None or color.get("rgba") is None:
+        return None
+    rgba = _floats(color.get("rgba"), 4, 1.0, where)
+    if np.any(rgba < 0.0) or np.any(rgba > 1.0):
+        raise ModelError(f"{where}: rgba '{color.get('rgba')}' has values outside 0..1",
+                         element=where)
+    return rgba
+
+
+def _materials(root) -> dict[str, np.ndarray]:
+    """The robot-level ``<material name><color rgba/></material>`` definitions."""
+    out = {}
+    for el in root.findall("material"):
+        name = el.get("name")
+        rgba = _rgba(el, f"material '{name}'")
+        if name is not None and rgba is not None:
+            out[name] = rgba
+    return out
+
+
+def _parse_visual(el, link: str, k: int, materials: dict) -> Visual | None:
+    """A link's ``k``-th ``<visual>`` as a :class:`Visual`, or None for a mesh or an
+    empty geometry (not drawn)."""
+    where = f"link '{link}' visual {k + 1}"
+    geometry = el.find("geometry")
+    shape = next((g for g in geometry if g.tag in SHAPES), None) if geometry is not None \
+        else None
+    if shape is None:
+        return None
+    if shape.tag == "box":
+        size = _floats(shape.get("size"), 3, 0.0, where)
+    elif shape.tag == "cylinder":
+        r = _attr_float(shape, "radius", where)
+        size = np.array([r, r, _attr_float(shape, "length", where)])
+    else:
+        size = np.full(3, _attr_float(shape, "radius", where))
+    if not np.all(np.isfinite(size)) or np.any(size < 0.0):
+        raise ModelError(f"{where}: {shape.tag} dimensions {size.tolist()} must be finite "
+                         "and >= 0 m", element=link)
+    origin = el.find("origin")
+    xyz = _floats(origin.get("xyz") if origin is not None else None, 3, 0.0, where)
+    rpy = _floats(origin.get("rpy") if origin is not None else None, 3, 0.0, where)
+    material = el.find("material")
+    name = material.get("name") if material is not None else None
+    rgba = _rgba(material, where)
+    if rgba is None and name is not None:
+        rgba = materials.get(name)
+    return Visual(shape.tag, size, xyz, rpy_matrix(rpy), rgba, name)
 
 
 def _parse_inertial(el, link: str) -> Inertial | None:
