@@ -20,7 +20,8 @@ from ..errors import InputError, OffshoreCraneError
 #: must import nothing heavy at module level (the CLI imports them all to build --help).
 SUBCOMMANDS = ("offshore_crane.cli.id", "offshore_crane.cli.motion",
                "offshore_crane.cli.simulate", "offshore_crane.serial.cli",
-               "offshore_crane.cli.describe", "offshore_crane.cli.compile")
+               "offshore_crane.cli.describe", "offshore_crane.cli.compile",
+               "offshore_crane.cli.export")
 
 
 class _Parser(argparse.ArgumentParser):
