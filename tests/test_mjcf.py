@@ -362,6 +362,16 @@ def test_cli_writes_and_checks(tmp_path, capsys):
     assert m.nu == 9 and m.neq == 6 and m.nkey == 1
 
 
+def test_cli_check_falls_back_to_states_near_home(tmp_path, capsys):
+    """Table 1 leaves the Harib & Srinivasan platform's workspace: --check then compares
+    at seeded states near home."""
+    out = tmp_path / "harib.xml"
+    assert main(["export", "--robot", HARIB, "--mjcf", str(out), "--check"]) == 0
+    text = capsys.readouterr().out
+    assert "states near home (Table 1 leaves this robot's workspace) (50 samples" in text
+    assert "OK, limit" in text and "6 motors" in text
+
+
 def test_cli_scene_gravity_and_pose(tmp_path, capsys):
     scene = tmp_path / "moon.toml"
     scene.write_text('name = "moon"\ngravity = [0.0, 0.0, -1.62]\n')
