@@ -479,4 +479,10 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     q = np.zeros((2, 9))
     q[:, 2] = robot.home_height
     inverse_dynamics(robot, t, q, 0 * q, 0 * q, limits=False)
+    from .cable_simulation import simulate_swing
+    from .control import Controller
+
+    simulate_swing(robot, 2e-3, lambda tt: (q[[0] * len(tt)], 0 * q[[0] * len(tt)],
+                                            0 * q[[0] * len(tt)]),
+                   controller=Controller(anti_sway=0.1), step=1e-3, limits=False)
     return [("hanging-load kernels", time.perf_counter() - t0)]

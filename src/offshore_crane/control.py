@@ -75,6 +75,9 @@ class Controller:
         model: The robot the controller uses (None: the simulated robot itself).
         noise_q, noise_qd: ``(9,)`` standard deviations of the measurement noise [m, rad]
             and [m/s, rad/s] (zeros: none); ``seed`` seeds it.
+        anti_sway: With a payload on a cable: the damping ratio ζ ≥ 0 the anti-sway law
+            adds to the swing (suspension-point velocity feedback through the platform's
+            horizontal reference, :mod:`offshore_crane.cable_simulation`); None: none.
     """
 
     law: str = "computed-torque"
@@ -88,6 +91,7 @@ class Controller:
     noise_q: object = None
     noise_qd: object = None
     seed: int = 0
+    anti_sway: float | None = None
     _arrays: dict = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self):
@@ -114,6 +118,15 @@ class Controller:
         if not self.saturation and (self.lower is not None or self.upper is not None):
             raise InputError("saturation = false with actuator limits lower/upper given: "
                              "drop one of them", name="saturation")
+        if self.anti_sway is not None:
+            z = self.anti_sway
+            if isinstance(z, bool) or not isinstance(z, (int, float)) or not (
+                    math.isfinite(z) and z >= 0.0):
+                raise InputError(f"anti_sway = {z!r}: the damping ratio it adds to the swing "
+                                 "must be a finite number ≥ 0", name="anti_sway")
+            if self.law != "computed-torque":
+                raise InputError(f"anti_sway works through the computed-torque law, not "
+                                 f"{self.law!r}", name="anti_sway")
         noise = []
         for name, value in (("noise_q", self.noise_q), ("noise_qd", self.noise_qd)):
             n = np.zeros(9) if value is None else _gains(name, value, np.zeros(9))

@@ -123,10 +123,10 @@ OPERATION_KEYS = ("waypoints",)
 #: Model-scale record of ``source = "sea"`` when [trajectory] does not say [s], [Hz].
 SEA_DURATION, SEA_RATE = 60.0, 100.0
 CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error", "noise_q",
-                "noise_qd", "seed", "model", "lower", "upper", "saturation")
+                "noise_qd", "seed", "model", "lower", "upper", "saturation", "anti_sway")
 #: [control] keys that are Controller arguments (the others: simulate's).
 CONTROLLER_KEYS = ("law", "kp", "kd", "rate", "lower", "upper", "saturation", "noise_q",
-                   "noise_qd", "seed")
+                   "noise_qd", "seed", "anti_sway")
 #: Where a scene file sets the robot fields it owns besides [robot] (for messages).
 SCENE_FIELDS = {"arm.enabled": "[subsystems] arm", "payload.mass": "[payload] mass",
                 "payload.com": "[payload] offset", "payload.inertia": "[payload] inertia",
@@ -673,6 +673,8 @@ def _control(where: str, data: dict) -> dict:
                                     "m, rad")
     if "rate" in r.table:
         out["rate"] = r.number("rate", unit="Hz", positive=True)
+    if "anti_sway" in r.table:
+        out["anti_sway"] = r.number("anti_sway", unit="damping ratio", minimum=0.0)
     if "step" in r.table:
         out["step"] = r.number("step", unit="s", positive=True)
     if "integrator" in r.table:

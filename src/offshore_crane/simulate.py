@@ -53,6 +53,9 @@ class SimulationResult:
         power: ``(N,)`` actuators' power Σ X_k · (rate of joint k) [W].
         integrator, step: What integrated it and its step [s] (RK4) or tolerances.
         stop: None, or the reason the run stopped early.
+        sway, sway_rate: ``(N, 2)`` with a payload on a cable: φ1, φ2 [rad] and their
+            rates [rad/s] (docs/cable.md); None otherwise.
+        tension: ``(N,)`` the cable's tension [N], or None.
     """
 
     t: np.ndarray
@@ -70,6 +73,9 @@ class SimulationResult:
     step: float = 0.0
     stop: str | None = None
     info: dict = field(default_factory=dict)
+    sway: np.ndarray | None = None
+    sway_rate: np.ndarray | None = None
+    tension: np.ndarray | None = None
 
     @property
     def error(self) -> np.ndarray:
@@ -84,8 +90,10 @@ class SimulationResult:
         arrays = {k: getattr(self, k)[:n] for k in ("t", "q", "qd", "qdd", "q_ref", "qd_ref",
                                                      "X_cmd", "X", "saturated", "energy",
                                                      "power")}
+        cable = {k: None if getattr(self, k) is None else getattr(self, k)[:n]
+                 for k in ("sway", "sway_rate", "tension")}
         return SimulationResult(**arrays, integrator=self.integrator, step=self.step,
-                                stop=self.stop, info=self.info)
+                                stop=self.stop, info=self.info, **cable)
 
 
 # --------------------------------------------------------------------------- compiled
@@ -107,7 +115,7 @@ def _reference_grid(reference, t0: float, h: float, n_steps: int):
 def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=None, *,
              gravity=GRAVITY, step: float = 1e-3, rate: float | None = None,
              integrator: str = "rk4", limits: bool = True, rtol: float = 1e-10,
-             atol: float = 1e-12, t0: float = 0.0) -> SimulationResult:
+             atol: float = 1e-12, t0: float = 0.0, **cable) -> SimulationResult:
     """Simulate the robot from ``(q0, q̇0)`` for ``duration`` seconds.
 
     Args:
@@ -125,6 +133,9 @@ def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=No
         limits: Stop at the first sample outside the workspace.
         rtol, atol: Tolerances of DOP853.
         t0: Start time [s].
+        **cable: With a payload on a cable: ``initial``, ``initial_rate`` (2,) of the
+            sway [rad, rad/s] (:func:`offshore_crane.cable_simulation.simulate_swing`,
+            which then runs).
 
     Returns:
         :class:`SimulationResult`.
@@ -134,6 +145,19 @@ def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=No
         SimulationError: the run stopped early (``error.result`` holds what was computed).
     """
     controller = controller or Controller()
+    if robot.hybrid.cable is not None or cable:
+        if integrator != "rk4":
+            raise InputError(f"integrator {integrator!r}: with a payload on a cable the "
+                             "simulation runs RK4", name="integrator")
+        from .cable_simulation import simulate_swing
+
+        return simulate_swing(robot, duration, reference, q0, qd0, controller,
+                              gravity=gravity, step=step, rate=rate, limits=limits, t0=t0,
+                              **cable)
+    if controller.anti_sway:
+        raise InputError("anti_sway damps the swing of a payload on a cable, but this "
+                         "robot's payload is welded (payload.cable_length = 0)",
+                         name="anti_sway")
     if integrator not in INTEGRATORS:
         raise InputError(f"unknown integrator {integrator!r}: use one of "
                          f"{', '.join(INTEGRATORS)}", name="integrator")

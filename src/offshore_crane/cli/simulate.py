@@ -44,6 +44,12 @@ def add_parser(sub) -> None:
     p.add_argument("--integrator", choices=("rk4", "dop853"), help="default rk4")
     p.add_argument("--initial-error", type=float, nargs=9, metavar="DQ",
                    help="initial state minus the reference's, q1..q9 [m, rad]")
+    p.add_argument("--initial-sway", type=float, nargs=2, metavar=("PHI1", "PHI2"),
+                   help="with a payload on a cable: the sway at the start [rad] (default "
+                   "the scene's [cable] initial, else 0 0)")
+    p.add_argument("--anti-sway", type=float, metavar="ZETA",
+                   help="with a payload on a cable: damping ratio the anti-sway law adds "
+                   "to the swing (computed torque; docs/cable.md)")
     add_robot_options(p)
     p.add_argument("--gravity", type=float, nargs=3, metavar=("GX", "GY", "GZ"))
     p.add_argument("--no-limits", action="store_true", help="do not stop at the workspace "
@@ -87,6 +93,8 @@ def run(args) -> int:
     flags = {k: v for k, v in flags.items() if v is not None}
     if args.no_saturation:
         flags.update(saturation=False, lower=None, upper=None)
+    if args.anti_sway is not None:
+        flags["anti_sway"] = args.anti_sway
     if flags:
         controller = replace(controller, _arrays={}, **flags)
     c = scene.control
@@ -101,12 +109,21 @@ def run(args) -> int:
     error = args.initial_error if args.initial_error is not None else c.get("initial_error")
     if error is not None:
         q0 += np.asarray(error, dtype=float)
+    swing = {}
+    if robot.hybrid.cable is not None:
+        swing = {k: v for k, v in scene.cable.items() if k in ("initial", "initial_rate")}
+        if args.initial_sway is not None:
+            swing["initial"] = tuple(args.initial_sway)
+    elif args.initial_sway is not None:
+        raise InputError("--initial-sway: applies to a payload on a cable; set "
+                         "payload.cable_length > 0 (--set, or the scene's [payload])",
+                         name="--initial-sway")
     stopped = None
     try:
         res = simulate(robot, duration, traj.reference, q0=q0, qd0=qd0, controller=controller,
                        gravity=scene.gravity, step=step, rate=args.rate,
                        integrator=args.integrator or c.get("integrator", "rk4"),
-                       limits=not args.no_limits, t0=float(traj.t[0]))
+                       limits=not args.no_limits, t0=float(traj.t[0]), **swing)
     except SimulationError as exc:
         res, stopped = exc.result, exc
     say(f"offshore-crane simulate: {controller.law} control"
@@ -116,9 +133,14 @@ def run(args) -> int:
     say(summary(res))
     if "--out" in outputs:
         from ..io import write_csv
+        from ..report import CABLE_COLUMNS
 
-        write_csv(outputs["--out"], CSV_HEADER,
-                  np.column_stack([res.t, res.q, res.q_ref, res.X]))
+        if res.sway is None:
+            write_csv(outputs["--out"], CSV_HEADER,
+                      np.column_stack([res.t, res.q, res.q_ref, res.X]))
+        else:
+            write_csv(outputs["--out"], f"{CSV_HEADER},{CABLE_COLUMNS}",
+                      np.column_stack([res.t, res.q, res.q_ref, res.X, res.sway, res.tension]))
         say(f"wrote {args.out}" + (f" ({len(res)} samples, up to the stop)" if stopped else ""))
     if "--plot" in outputs:
         plot(outputs["--plot"], res, title=f"offshore-crane simulate: {traj.name}, "
@@ -146,6 +168,13 @@ def summary(res) -> str:
     for k, (name, unit) in enumerate(zip(ACTUATORS, ACTUATOR_UNITS)):
         lines.append(f"{name:<9}{unit:<5}{np.abs(res.X[:, k]).max():>11.2f}"
                      f"{res.saturated[:, k].sum() * dt:>15.3f}")
+    if res.sway is not None and len(res.t):
+        angle = np.arccos(np.clip(np.cos(res.sway[:, 0]) * np.cos(res.sway[:, 1]), -1, 1))
+        k = int(np.argmax(angle))
+        late = angle[res.t >= res.t[-1] - 1.0].max()
+        lines.append(f"hanging load: max sway {angle[k]:.4g} rad at t = {res.t[k]:.2f} s, "
+                     f"{late:.4g} rad over the last second; cable tension "
+                     f"{np.nanmin(res.tension):.4g}..{np.nanmax(res.tension):.4g} N")
     return "\n".join(lines)
 
 
@@ -158,7 +187,8 @@ def plot(target, res, title: str = "") -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(4, 1, figsize=(8, 10), sharex=True, constrained_layout=True)
+    n = 4 if res.sway is None else 5
+    fig, axes = plt.subplots(n, 1, figsize=(8, 2.5 * n), sharex=True, constrained_layout=True)
     for j in (0, 1, 2, 8):
         axes[0].plot(res.t, res.error[:, j] * 1e3, label=COORDINATES[j])
     axes[0].set_ylabel("error [mm]")
@@ -171,4 +201,10 @@ def plot(target, res, title: str = "") -> None:
     for k in range(3):
         axes[3].plot(res.t, res.X[:, k], label=ACTUATORS[k])
     axes[3].set_ylabel("arm [N·m, N]")
+    if res.sway is not None:
+        import numpy as np
+
+        axes[4].plot(res.t, np.degrees(res.sway[:, 0]), label="phi1")
+        axes[4].plot(res.t, np.degrees(res.sway[:, 1]), label="phi2")
+        axes[4].set_ylabel("sway [deg]")
     finish_figure(fig, axes, target, title)

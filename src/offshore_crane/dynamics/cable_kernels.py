@@ -9,7 +9,11 @@ The formulas are those of :mod:`.formulas` (``tip_motion``, ``pendulum``, ``cabl
   the tip's motion (``tip_motion``) drives the pendulum's equations (``pendulum``);
 - :func:`kane`: Kane's inverse dynamics of the robot with the payload hanging at the
   integrated sway (the cable's pull enters X through the arm pass), with the cable force
-  and the residual of the sway equations (zero up to round-off: a check).
+  and the residual of the sway equations (zero up to round-off: a check);
+- :func:`accelerations` and :func:`computed_torque`: the equations of motion of the 11
+  coordinates (q1..q9, φ1, φ2) by the explicit Kane pass on the chain with the sway
+  joints, ``M a + h = [A X; −c φ̇]``, and the computed-torque law that knows the sway
+  (the forward simulation with the swing, :mod:`offshore_crane.cable_simulation`).
 
 They close over the formulas' hash only (the disk cache keys on it, see
 :mod:`.compiled`).
@@ -24,6 +28,11 @@ from . import compiled as c
 from .formulas import STORE_WIDTH
 
 tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_force
+sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
+explicit_sample, cholesky_solve, solve6 = c.KE.explicit_sample, c.cholesky_solve, c.solve6
+#: One sample at a time from Python (the simulation's law): not inlined (compiles in
+#: seconds rather than the inlined driver's ~20 s, at no cost that matters here).
+kane_sample_call = c.KE.kane_sample
 finite_inputs = c._finite_inputs
 kane_sample, unpack, post, tangent_bounds = c.K.kane_sample, c.unpack, c._post, c.tangent_bounds
 jit = njit(**c.JIT)
@@ -187,7 +196,104 @@ def _make(stamp):
             post(k, q, na, A, rhs6, diag, True, want_cond, want_limits, warn, error,
                  lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 
-    return integrate, kane
+    @jit
+    def accelerations(flat, lay, prism, damp, q, qd, X, g, a, energy):
+        """One state ``q, qd`` (11,) [m, rad, /s] under actuator forces ``X`` (9,):
+        ``a`` (11,) the accelerations of ``M a + h = [A X; −c φ̇]`` (Cholesky of the
+        explicit Kane pass's M; NaN when M is singular) and ``energy`` (2,): kinetic
+        ``½ q̇ᵀ M q̇`` and gravitational ``−g · Σ m c`` [J]. Returns False when M is not
+        positive definite (the attitude singularity, or the sway's cos φ2 = 0)."""
+        if len(stamp) == 0:
+            return False
+        C = unpack(flat, lay, prism)[0]
+        na = C.n_arm
+        n = 6 + na
+        B = np.zeros(n)
+        J = np.empty((6, 6))
+        Mm = np.zeros((n, n))
+        L = np.zeros((n, n))
+        diag = np.zeros((7, 6))
+        store = np.empty((na, STORE_WIDTH))
+        Vw = np.empty((n, 3))
+        Ww = np.empty((n, 3))
+        Vs = np.empty((n, 3))
+        mc = np.empty((1, 3))
+        rhs = np.empty(n)
+        zero = np.zeros(n)
+        gt = (g[0], g[1], g[2])
+        explicit_sample(C, q, qd, zero, gt, True, B, J, Mm, store, Vw, Ww, Vs, diag, mc)
+        for r in range(6):
+            f = -B[r]
+            for l in range(6):
+                f += J[l, r] * X[3 + l]
+            rhs[r] = f
+        for b in range(na - 2):
+            rhs[6 + b] = X[b] - B[6 + b]
+        rhs[n - 2] = -damp[0] * qd[n - 2] - B[n - 2]
+        rhs[n - 1] = -damp[1] * qd[n - 1] - B[n - 1]
+        ok = cholesky_solve(Mm, rhs, n, a, L)
+        kin = 0.0
+        for r in range(n):
+            kin += 0.5 * Mm[r, r] * qd[r] * qd[r]
+            for s_ in range(r):
+                kin += Mm[r, s_] * qd[r] * qd[s_]
+        energy[0] = kin
+        energy[1] = -(g[0] * mc[0, 0] + g[1] * mc[0, 1] + g[2] * mc[0, 2])
+        return ok
+
+    @jit
+    def computed_torque(flat, lay, prism, damp, q, qd, qdd_cmd, g, X):
+        """The actuator forces ``X`` (9,) that give the robot the accelerations
+        ``qdd_cmd`` (9,) at the measured state ``q, qd`` (11,) with its payload swinging:
+        the sway's accelerations from the pendulum's equations under that motion, then
+        Kane's inverse dynamics of the chain with the sway joints. Returns the Stewart
+        system's condition number (inf when singular)."""
+        if len(stamp) == 0:
+            return 0.0
+        C = unpack(flat, lay, prism)[0]
+        na = C.n_arm
+        gt = (g[0], g[1], g[2])
+        qdd = np.empty(6 + na)
+        for j in range(9):
+            qdd[j] = qdd_cmd[j]
+        Rt, w, al, at = tip_motion(C, q, qd, qdd)
+        a1, a2, cos2 = pendulum(C, Rt, w, al, at, gt, q[6 + na - 2], q[6 + na - 1],
+                                qd[6 + na - 2], qd[6 + na - 1], damp[0], damp[1])
+        qdd[6 + na - 2] = a1
+        qdd[6 + na - 1] = a2
+        rows = np.zeros(na)
+        A = np.empty((6, 6))
+        rhs6 = np.empty(6)
+        diag = np.zeros((7, 6))
+        store = np.empty((na, STORE_WIDTH))
+        x = np.empty(6)
+        M = np.empty((6, 13))
+        kane_sample_call(C, q, qd, qdd, gt, False, 0, True, rows, A, rhs6, diag, store)
+        for b in range(3):
+            X[b] = rows[b] if b < na - 2 else 0.0
+        cond = solve6(A, rhs6, x, M, True)
+        for l in range(6):
+            X[3 + l] = x[l]
+        return cond
+
+    @jit
+    def payload(flat, lay, prism, q, qd, pay):
+        """``pay`` (6,): the payload's velocity relative to the tip [m/s] (the sway rates'
+        part, base axes) and its position from the tip [m], at ``q, qd`` (11,)."""
+        if len(stamp) == 0:
+            return
+        C = unpack(flat, lay, prism)[0]
+        na = C.n_arm
+        Rt = tip_motion(C, q, qd, np.zeros(6 + na))[0]
+        L = -C.arm_c[na - 1, 2]
+        e, e1, e2 = sway_direction(q[6 + na - 2], q[6 + na - 1])
+        rate = mv(Rt, scale(axpy(qd[6 + na - 1], e2, scale(e1, qd[6 + na - 2])), L))
+        rho = mv(Rt, scale(e, L))
+        for i in range(3):
+            pay[i] = rate[i]
+            pay[3 + i] = rho[i]
+
+    return integrate, kane, accelerations, computed_torque, payload
 
 
-integrate, kane = _make(c.STAMP)
+integrate, kane, accelerations, computed_torque, payload = _make(c.STAMP)

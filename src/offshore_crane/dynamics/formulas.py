@@ -256,8 +256,9 @@ def kane_sample(C, q, qd, qdd, g, static, leg_model, want_legs, rows, A, rhs, di
 # --------------------------------------------------------------------------- explicit
 def accumulate(B, Mm, Vw, Ww, m, Iw, F, T, want_mass):
     """Add one body's share to ``B_r += v_r·F + ω_r·T`` and, with ``want_mass``,
-    ``M_rs += m v_r·v_s + ω_r·(I_w ω_s)``; ``Vw, Ww`` (9, 3) hold its partials."""
-    for r in range(9):
+    ``M_rs += m v_r·v_s + ω_r·(I_w ω_s)``; ``Vw, Ww`` (n, 3) hold its partials (n = 9,
+    or 11 with the hanging load's sway speeds)."""
+    for r in range(Vw.shape[0]):
         vr, wr = take(Vw, r, 0), take(Ww, r, 0)
         B[r] = B[r] + dot(vr, F) + dot(wr, T)
         if want_mass:
@@ -320,7 +321,7 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
         for k in range(6):
             J[l, k] = dot(u, take(Vs, k, 0))
         # lower link: v_r = ω_r × ρ_lo, ω_r = Ω v_S,r
-        for k in range(9):
+        for k in range(Vw.shape[0]):
             w_r = leg_spin(scale(cross(u, take(Vs, k, 0)), il), u, n, l_h)
             put(Ww, k, 0, w_r)
             put(Vw, k, 0, cross(w_r, rho_lo))
@@ -328,7 +329,7 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
         accumulate(B, Mm, Vw, Ww, C.lo_m[l], Iw, F_lo, body_torque(Rl, mat3(C.leg_I, l), w, al),
                    want_mass)
         # upper link: v_r = v_S,r + ω_r × ρ_up (its inertia is counted with the lower's)
-        for k in range(9):
+        for k in range(Vw.shape[0]):
             put(Vw, k, 0, add(take(Vs, k, 0), cross(take(Ww, k, 0), rho_up)))
             put(Ww, k, 0, zero)
         accumulate(B, Mm, Vw, Ww, C.up_m[l], Iw, F_up, zero, want_mass)
@@ -403,6 +404,13 @@ def tip_motion(C, q, qd, qdd):
     return Rj, omega, alpha, point_acceleration(a, omega, alpha, r)
 
 
+def sway_direction(p1, p2):
+    """The cable's direction from the tip to the payload in tip axes,
+    ``e = Rx(φ1) Ry(φ2) (0, 0, −1)``, and its partials ``∂e/∂φ1``, ``∂e/∂φ2``."""
+    s1, k1, s2, k2 = sin(p1), cos(p1), sin(p2), cos(p2)
+    return (-s2, s1 * k2, -k1 * k2), (0.0 * s1, k1 * k2, s1 * k2), (-k2, -s1 * s2, k1 * s2)
+
+
 def pendulum(C, Rt, omega, alpha, a_t, g, p1, p2, r1, r2, c1, c2):
     """Kane's equations of the sway speeds: ``(φ̈1, φ̈2)`` [rad/s²] and ``cos²φ2``.
 
@@ -418,9 +426,7 @@ def pendulum(C, Rt, omega, alpha, a_t, g, p1, p2, r1, r2, c1, c2):
     m = C.arm_m[b]
     L = -C.arm_c[b, 2]
     s1, k1, s2, k2 = sin(p1), cos(p1), sin(p2), cos(p2)
-    e = (-s2, s1 * k2, -k1 * k2)
-    e1 = (0.0 * s1, k1 * k2, s1 * k2)
-    e2 = (-k2, -s1 * s2, k1 * s2)
+    e, e1, e2 = sway_direction(p1, p2)
     quad = axpy(r2 * r2, (s2, -s1 * k2, k1 * k2),
                 axpy(2.0 * r1 * r2, (0.0 * s1, -k1 * s2, -s1 * s2),
                      scale((0.0 * s1, -s1 * k2, k1 * k2), r1 * r1)))

@@ -177,7 +177,7 @@ def platform_partials(w4, w5, w6, rho, Vw, Ww):
     """Partials of a point at ``rho`` from O2 on the platform: ``v_r = e_r`` (r ≤ 3),
     ``ω_r × ρ`` (r = 4..6 with ω_r = w4, w5, w6), zero for the arm speeds."""
     W = (w4, w5, w6)
-    for r in range(9):
+    for r in range(Vw.shape[0]):
         put(Ww, r, 0, scale(rho, 0.0))
         put(Vw, r, 0, scale(rho, 0.0))
     for r in range(3):
