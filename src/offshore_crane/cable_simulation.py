@@ -72,7 +72,7 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
     from .dynamics import _compiled
     from .dynamics import cable_kernels as ck
     from .dynamics.constants import cable_arrays
-    from .simulate import SimulationResult, _reference_grid
+    from .simulate import SimulationResult, _reference_grid, steps
 
     controller = controller or Controller()
     robot = cable_robot(robot)
@@ -84,16 +84,7 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
     if any(np.any(n) for n in controller.noise):
         raise InputError("measurement noise is not simulated with a payload on a cable: "
                          "leave noise_q, noise_qd at zero", name="noise_q")
-    for name, value in (("duration", duration), ("step", step)):
-        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
-            raise InputError(f"{name} = {value!r} s: must be positive and finite", name=name)
-    n_steps = int(round(duration / step))
-    if n_steps < 1:
-        raise InputError(f"duration {duration} s is shorter than one step {step} s",
-                         name="duration")
-    out_every = _every(rate, step, "output rate", "rate")
-    hold = _every(controller.rate, step, "control rate", "control_rate") \
-        if controller.rate is not None else 0
+    n_steps, out_every, hold = steps(duration, step, rate, controller.rate)
     g = as_gravity(gravity)
     tt, qr, qdr, qddr = _reference_grid(reference, t0, step, n_steps)
     q0 = qr[0].copy() if q0 is None else np.asarray(q0, dtype=float).reshape(9).copy()
@@ -192,21 +183,6 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
         raise SimulationError(f"simulation {res.stop}; the {len(res)} samples computed "
                               "before are kept", time=when, cause=cause, result=res)
     return res
-
-
-def _every(rate, step, what, name) -> int:
-    """Steps per period of ``rate`` [Hz] (1 when None); the period must be a multiple of
-    the step."""
-    if rate is None:
-        return 1
-    ratio = 1.0 / (rate * step) if rate > 0 else np.nan
-    if not (np.isfinite(ratio) and ratio >= 1.0 - 1e-9):
-        raise InputError(f"{what} {rate} Hz is above the integration rate {1.0 / step:g} Hz: "
-                         "lower it or shorten the step", name=name)
-    if abs(ratio - round(ratio)) > 1e-9:
-        raise InputError(f"{what} {rate} Hz: its period must be a multiple of the step "
-                         f"{step} s", name=name)
-    return int(round(ratio))
 
 
 def _stop(ok, y, k1):

@@ -112,6 +112,44 @@ def _reference_grid(reference, t0: float, h: float, n_steps: int):
     return tt, np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd)
 
 
+def steps(duration, step, rate, control_rate) -> tuple[int, int, int]:
+    """``(n_steps, out_every, hold)``: integration steps in ``duration`` [s] at ``step``
+    [s], steps per output sample (output ``rate`` [Hz], None: every step) and per control
+    period (``control_rate`` [Hz], None: 0, the law at every stage).
+
+    Raises:
+        InputError: a non-positive or non-finite duration or step, a duration shorter
+            than a step, a rate whose period is not a whole number of steps, a control
+            rate above the integration rate.
+    """
+    for name, value in (("duration", duration), ("step", step)):
+        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
+            raise InputError(f"{name} = {value!r} s: must be positive and finite", name=name)
+    n_steps = int(round(duration / step))
+    if n_steps < 1:
+        raise InputError(f"duration {duration} s is shorter than one step {step} s",
+                         name="duration")
+    out_every = 1
+    if rate is not None:
+        ratio = 1.0 / (rate * step)
+        if not (np.isfinite(ratio) and abs(ratio - round(ratio)) < 1e-9 and round(ratio) >= 1):
+            raise InputError(f"output rate {rate} Hz: 1/rate must be a multiple of the step "
+                             f"{step} s", name="rate")
+        out_every = int(round(ratio))
+    hold = 0
+    if control_rate is not None:
+        ratio = 1.0 / (control_rate * step)
+        if ratio < 1.0 - 1e-9:
+            raise InputError(f"control rate {control_rate} Hz is above the integration "
+                             f"rate {1.0 / step:g} Hz: lower it or shorten the step",
+                             name="control_rate")
+        if abs(ratio - round(ratio)) > 1e-9:
+            raise InputError(f"control rate {control_rate} Hz: its period must be a "
+                             f"multiple of the step {step} s", name="control_rate")
+        hold = int(round(ratio))
+    return n_steps, out_every, hold
+
+
 def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=None, *,
              gravity=GRAVITY, step: float = 1e-3, rate: float | None = None,
              integrator: str = "rk4", limits: bool = True, rtol: float = 1e-10,
@@ -161,31 +199,7 @@ def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=No
     if integrator not in INTEGRATORS:
         raise InputError(f"unknown integrator {integrator!r}: use one of "
                          f"{', '.join(INTEGRATORS)}", name="integrator")
-    for name, value in (("duration", duration), ("step", step)):
-        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
-            raise InputError(f"{name} = {value!r} s: must be positive and finite", name=name)
-    n_steps = int(round(duration / step))
-    if n_steps < 1:
-        raise InputError(f"duration {duration} s is shorter than one step {step} s",
-                         name="duration")
-    out_every = 1
-    if rate is not None:
-        ratio = 1.0 / (rate * step)
-        if not (np.isfinite(ratio) and abs(ratio - round(ratio)) < 1e-9 and round(ratio) >= 1):
-            raise InputError(f"output rate {rate} Hz: 1/rate must be a multiple of the step "
-                             f"{step} s", name="rate")
-        out_every = int(round(ratio))
-    hold = 0
-    if controller.rate is not None:
-        ratio = 1.0 / (controller.rate * step)
-        if ratio < 1.0 - 1e-9:
-            raise InputError(f"control rate {controller.rate} Hz is above the integration "
-                             f"rate {1.0 / step:g} Hz: lower it or shorten the step",
-                             name="control_rate")
-        if abs(ratio - round(ratio)) > 1e-9:
-            raise InputError(f"control rate {controller.rate} Hz: its period must be a "
-                             f"multiple of the step {step} s", name="control_rate")
-        hold = int(round(ratio))
+    n_steps, out_every, hold = steps(duration, step, rate, controller.rate)
     g = as_gravity(gravity)
     tt, qr, qdr, qddr = _reference_grid(reference, t0, step, n_steps)
     q0 = qr[0].copy() if q0 is None else np.asarray(q0, dtype=float).reshape(9).copy()
