@@ -13,8 +13,12 @@ Integrators:
   (t, t + h/2, t + h) beforehand; with a control rate the law is evaluated at the control
   instants and X held in between (sample-and-hold), otherwise at every stage.
 - ``"dop853"``: SciPy's adaptive ``solve_ivp`` (DOP853, ``rtol``/``atol`` stated in the
-  result), driven from Python: the accuracy reference for RK4 (and the only integrator for
-  a Python controller callable).
+  result), driven from Python: the accuracy reference for RK4.
+
+A controller may also be any Python callable ``law(t, q, qd, q_ref, qd_ref, qdd_ref) ->
+X (9,)`` [s, m, rad, ... → N·m, N]: the same RK4 then runs in Python, one forward-dynamics
+call and one call of the law per stage (slower than the compiled built-in laws; X clipped
+to the robot description's capacities, the time saturated reported).
 
 The simulation stops at the first sample that leaves the workspace, reaches a singular
 configuration (the mass matrix at the attitude singularity) or diverges (a non-finite
@@ -183,6 +187,16 @@ def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=No
         SimulationError: the run stopped early (``error.result`` holds what was computed).
     """
     controller = controller or Controller()
+    if not isinstance(controller, Controller):
+        if not callable(controller):
+            raise InputError(f"controller must be a Controller or a callable law(t, q, qd, "
+                             f"q_ref, qd_ref, qdd_ref) -> X, got {controller!r}",
+                             name="controller")
+        if integrator != "rk4" or robot.hybrid.cable is not None or cable:
+            raise InputError("a Python controller runs with RK4 on a robot without a "
+                             "hanging load", name="controller")
+        return _python_law(robot, duration, reference, q0, qd0, controller, gravity, step,
+                           rate, limits, t0)
     if robot.hybrid.cable is not None or cable:
         if integrator != "rk4":
             raise InputError(f"integrator {integrator!r}: with a payload on a cable the "
@@ -257,6 +271,57 @@ def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=No
         res.stop = f"stopped at t = {when:.6g} s: {cause}"
         raise SimulationError(f"simulation {res.stop}; the {n_done} samples computed before "
                               "are kept", time=when, cause=cause, result=res)
+    return res
+
+
+def _python_law(robot, duration, reference, q0, qd0, law, gravity, step, rate, limits, t0):
+    """RK4 with a Python controller (module docstring): the law and Kane's forward
+    dynamics (:func:`offshore_crane.forward_dynamics`, its one-sample path) at every stage."""
+    from .dynamics.forward import forward_dynamics
+    from .kinematics import legs
+    from .validation import as_samples
+
+    n_steps, out_every, _ = steps(duration, step, rate, None)
+    g = as_gravity(gravity)
+    tt, qr, qdr, qddr = _reference_grid(reference, t0, step, n_steps)
+    y = np.concatenate([qr[0] if q0 is None else np.asarray(q0, float).reshape(9),
+                        qdr[0] if qd0 is None else np.asarray(qd0, float).reshape(9)])
+    lo, hi = Controller().bounds(robot)
+
+    def f(i, y):
+        q, qd = y[:9].copy(), y[9:].copy()
+        X_cmd = as_samples("X returned by the controller", law(tt[i], q, qd, qr[i], qdr[i],
+                                                                qddr[i]))[0][0]
+        X = np.clip(X_cmd, lo, hi)
+        return np.concatenate([qd, forward_dynamics(robot, q, qd, X, gravity=g)]), X_cmd, X
+
+    n_out = n_steps // out_every + 1
+    rec = {k: np.full((n_out, 9), np.nan) for k in ("q", "qd", "qdd", "q_ref", "qd_ref",
+                                                    "X_cmd", "X")}
+    for s in range(n_steps + 1):
+        k1, X_cmd, X = f(2 * s, y)
+        if s % out_every == 0:
+            k = s // out_every
+            rec["q"][k], rec["qd"][k], rec["qdd"][k] = y[:9], y[9:], k1[9:]
+            rec["q_ref"][k], rec["qd_ref"][k] = qr[2 * s], qdr[2 * s]
+            rec["X_cmd"][k], rec["X"][k] = X_cmd, X
+        if s == n_steps:
+            break
+        k2 = f(2 * s + 1, y + 0.5 * step * k1)[0]
+        k3 = f(2 * s + 1, y + 0.5 * step * k2)[0]
+        k4 = f(2 * s + 2, y + step * k3)[0]
+        y = y + step / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+    res = SimulationResult(t=tt[::2][::out_every][:n_out], **rec,
+                           saturated=(rec["X_cmd"] < lo) | (rec["X_cmd"] > hi),
+                           energy=np.full(n_out, np.nan), power=np.full(n_out, np.nan),
+                           integrator="rk4", step=step, info={"controller": "python"})
+    rates = legs(robot, res.q, res.qd).rate
+    res.power = (res.X[:, :3] * res.qd[:, 6:9]).sum(axis=1) + (res.X[:, 3:] * rates).sum(1)
+    if limits:
+        from .dynamics import solve
+
+        zero = np.zeros_like(res.q)
+        solve(robot, res.q, zero, zero, t=res.t, limits=True, checks=False)
     return res
 
 
