@@ -45,7 +45,8 @@ __all__ = ["load_robot", "inverse_dynamics", "forward_dynamics", "mass_matrix",
 
 def __getattr__(name):
     if name in ("trajectories", "serial", "scenes", "kinematics", "dynamics", "sea",
-                "operations", "sizing", "sweep"):
+                "operations", "sizing", "sweep", "cable", "cable_simulation", "visual",
+                "export"):
         import importlib
 
         return importlib.import_module(f".{name}", __name__)
