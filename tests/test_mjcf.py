@@ -369,7 +369,7 @@ def test_cli_scene_gravity_and_pose(tmp_path, capsys):
 @pytest.mark.parametrize("argv, match", [
     (["--mjcf", "{out}.urdf"], "the file type '.urdf' is not one of .xml"),
     ([], "give --mjcf FILE.xml"),
-    (["--mjcf", "{out}.xml", "--pose", "0,0,0.5"], "--pose 0,0,0.5: expected 9 finite"),
+    (["--mjcf", "{out}.xml", "--pose", "0,0,0.5"], "--pose 0,0,0.5: give 9 finite comma-separated"),
     (["--mjcf", "{out}.xml", "--pose", "0,0,0.95,0,0,0,0,0,0"], "outside its range"),
     (["--mjcf", "{out}.xml", "--sway", "0.1,0"], "no hanging load"),
     (["--mjcf", "{out}.xml", "--timestep", "-1"], "timestep -1 s must be"),

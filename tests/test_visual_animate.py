@@ -112,7 +112,7 @@ def test_still_and_cli_show(robot, tmp_path, capsys):
     a = np.asarray(PIL.open(out).convert("RGB"))
     assert a.shape == (300, 400, 3) and orange_pixels(a) > 300
     assert main(["show", "--pose", "1,2,3", "--out", str(tmp_path / "b.png")]) == 2
-    assert "--pose 1,2,3: give 9 comma-separated numbers" in capsys.readouterr().err
+    assert "--pose 1,2,3: give 9 finite comma-separated numbers" in capsys.readouterr().err
 
 
 def simulate_csv(tmp_path):

@@ -155,6 +155,24 @@ def robot_scene(args, scene):
     return with_robot_overrides(scene, parse_set(args.set))
 
 
+def comma_numbers(text: str, n: int, option: str) -> list[float]:
+    """``n`` finite numbers from ``"a,b,c"`` (``--pose``, ``--sway``).
+
+    Raises:
+        InputError: not ``n`` finite comma-separated numbers (naming the option).
+    """
+    import math
+
+    try:
+        values = [float(x) for x in text.replace(" ", "").split(",")]
+    except ValueError:
+        values = []
+    if len(values) != n or not all(math.isfinite(v) for v in values):
+        raise InputError(f"{option} {text}: give {n} finite comma-separated numbers",
+                         name=option)
+    return values
+
+
 def _quiet_stdout() -> None:
     """After a BrokenPipeError: point stdout at /dev/null so that the interpreter's final
     flush does not fail again (the Python documentation's recipe)."""

@@ -47,22 +47,6 @@ def add_parser(sub) -> None:
     p.set_defaults(run=run)
 
 
-def _numbers(text: str | None, n: int, option: str):
-    import numpy as np
-
-    if text is None:
-        return None
-    try:
-        values = np.array([float(x) for x in text.replace(" ", "").split(",")])
-    except ValueError:
-        raise InputError(f"{option} {text}: expected {n} comma-separated numbers",
-                         name=option) from None
-    if values.shape != (n,) or not np.all(np.isfinite(values)):
-        raise InputError(f"{option} {text}: expected {n} finite comma-separated numbers, got "
-                         f"{values.size}", name=option)
-    return values
-
-
 def run(args) -> int:
     import sys
 
@@ -70,13 +54,13 @@ def run(args) -> int:
 
     from .. import scenes
     from ..io import plan_outputs, write_text
-    from . import robot_scene
+    from . import comma_numbers, robot_scene
 
     if args.mjcf is None:
         raise InputError("export: give --mjcf FILE.xml (the only format so far)",
                          name="--mjcf")
-    pose = _numbers(args.pose, 9, "--pose")
-    sway = _numbers(args.sway, 2, "--sway")
+    pose = None if args.pose is None else np.array(comma_numbers(args.pose, 9, "--pose"))
+    sway = None if args.sway is None else np.array(comma_numbers(args.sway, 2, "--sway"))
     scene = robot_scene(args, scenes.load_scene(args.scene) if args.scene else scenes.Scene())
     outputs = plan_outputs({"--mjcf": args.mjcf}, [args.scene, scene.robot_description],
                            {"--mjcf": ("xml",)})

@@ -36,17 +36,6 @@ def add_parser(sub) -> None:
 STILL_FORMATS = ("png", "jpg", "jpeg", "webp", "bmp", "tif", "tiff", "gif")
 
 
-def _numbers(text: str, n: int, option: str) -> list[float]:
-    try:
-        values = [float(x) for x in text.split(",")]
-    except ValueError:
-        values = []
-    if len(values) != n:
-        raise InputError(f"{option} {text}: give {n} comma-separated numbers",
-                         name=option)
-    return values
-
-
 def run(args) -> int:
     import numpy as np
 
@@ -55,7 +44,7 @@ def run(args) -> int:
     from ..visual.animate import still
     from ..visual.poses import has_cable
     from ..visual.render import parse_camera
-    from . import robot_scene
+    from . import comma_numbers, robot_scene
     from .animate import parse_size
 
     width, height = parse_size(args.size)
@@ -63,13 +52,13 @@ def run(args) -> int:
     scene = robot_scene(args, scenes.load_scene(args.scene) if args.scene else scenes.Scene())
     outputs = plan_outputs({"--out": args.out}, [args.scene, scene.robot_description],
                            {"--out": STILL_FORMATS})
-    q = None if args.pose is None else _numbers(args.pose, 9, "--pose")
+    q = None if args.pose is None else comma_numbers(args.pose, 9, "--pose")
     robot = scenes.load_robot(scene)
     if q is None:
         q = [0.0, 0.0, robot.home_height or 0.0] + [0.0] * 6
     sway = None
     if has_cable(robot.description) or args.sway is not None:
-        sway = np.array(_numbers(args.sway or "0,0", 2, "--sway"))
+        sway = np.array(comma_numbers(args.sway or "0,0", 2, "--sway"))
     still(robot, np.array(q), outputs["--out"], width=width, height=height, camera=camera,
           sway=sway, labels=not args.no_labels)
     print(f"wrote {args.out}")
