@@ -1,6 +1,6 @@
 """Controllers of the simulation: computed torque, PD with gravity compensation, PD.
 
-The laws (``docs/simulation.md``):
+The laws (README, "Simulation and control"; with a hanging load, ``docs/cable.md``):
 
 - ``"computed-torque"``: ``X = ID_model(q, q̇, q̈_ref + Kd (q̇_ref − q̇) + Kp (q_ref − q))``
   at the *measured* state, with the controller's own robot model. With an exact model the
