@@ -524,7 +524,62 @@ CASES = [
          r"random states must be at least 1 and at most 10,000,000",
          cli=lambda tmp: ["serial-id", str(_bytes(tmp, "r.urdf", SERIAL)),
                           "--random", "100000000000"]),
+    # ---- the hanging load (issue 14)
+    Case("cable-negative-length", "a negative cable length", oc.DescriptionError,
+         r"payload\.cable_length: -1 m must not be negative",
+         lib=lambda tmp: oc.load_robot(overrides={"payload.mass": 2.0,
+                                                  "payload.cable_length": -1.0}),
+         cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
+                          "payload.cable_length=-1"]),
+    Case("cable-without-mass", "a cable with no payload mass", oc.DescriptionError,
+         r"a cable needs a payload to hang from it",
+         lib=lambda tmp: oc.load_robot(overrides={"payload.cable_length": 0.5}),
+         cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.cable_length=0.5"]),
+    Case("cable-rigid-payload", "a cable with a payload offset", oc.DescriptionError,
+         r"the payload is a point mass at the cable's end",
+         lib=lambda tmp: oc.load_robot(overrides={"payload.mass": 2.0, "payload.com": [0, 0,
+                                                  -0.1], "payload.cable_length": 0.5})),
+    Case("cable-zero-length-argument", "cable.inverse_dynamics(length=0, mass=2)",
+         oc.InputError, r"length = 0\.0 m: the cable needs a finite length > 0",
+         lib=lambda tmp: oc.cable.inverse_dynamics(
+             oc.load_robot(), *_cable_states(), length=0.0, mass=2.0)),
+    Case("cable-nan-sway", "a NaN initial sway", oc.InputError,
+         r"initial must be two finite numbers",
+         lib=lambda tmp: oc.cable.inverse_dynamics(_crane(), *_cable_states(),
+                                                   initial=(np.nan, 0.0)),
+         cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
+                          "payload.cable_length=0.5", "--initial-sway", "nan", "0"]),
+    Case("cable-singular-sway", "an initial sway on the singular set cos(phi2) = 0",
+         oc.InputError, r"lies on the singular set cos\(phi2\) = 0",
+         lib=lambda tmp: oc.cable.inverse_dynamics(_crane(), *_cable_states(),
+                                                   initial=(0.0, np.pi / 2)),
+         cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
+                          "payload.cable_length=0.5", "--initial-sway", "0",
+                          "1.5707963267948966"]),
+    Case("cable-slack", "gravity pointing up: the cable would have to push",
+         oc.SlackCableError, r"the cable goes slack at sample 0",
+         lib=lambda tmp: oc.cable.inverse_dynamics(_crane(), *_cable_states(),
+                                                   gravity=(0, 0, 9.81)),
+         cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
+                          "payload.cable_length=0.5", "--gravity", "0", "0", "9.81"]),
+    Case("cable-rigid-solver", "the rigid inverse dynamics of a robot with a cable",
+         oc.ModelError, r"this robot's payload hangs on a cable",
+         lib=lambda tmp: oc.inverse_dynamics(_crane(), *_states())),
+    Case("cable-flags-without-cable", "--initial-sway on a welded payload", oc.InputError,
+         r"--initial-sway: applies to a payload on a cable",
+         cli=lambda tmp: ["id", "--duration", "1", "--initial-sway", "0.1", "0"]),
 ]
+
+
+def _crane():
+    """The lab robot with 2 kg on a 0.5 m cable."""
+    return oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 0.5})
+
+
+def _cable_states():
+    """``(t, q, qd, qdd)``: 0.1 s of Table 1 at 100 Hz."""
+    t = trajectories.time_grid(0.1, 100.0)
+    return (t, *trajectories.table1(t))
 
 
 def _params(kind):
