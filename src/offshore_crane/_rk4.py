@@ -13,6 +13,7 @@ from .dynamics import compiled as c
 
 explicit_sample, actuator_coordinates = c.KE.explicit_sample, c.KE.actuator_coordinates
 solve6, cholesky_solve, unpack, check = c.solve6, c.cholesky_solve, c.unpack, c._check
+actuation_minus_bias = c.actuation_minus_bias
 tangent_bounds = c.tangent_bounds
 STAMP = c.STAMP
 jit = njit(**c.JIT)
@@ -77,13 +78,7 @@ def _helpers(stamp):
         B[:] = 0.0
         Mm[:] = 0.0
         explicit_sample(C, q, qd, zero, g, True, B, J, Mm, store, Vw, Ww, Vs, diag, mc)
-        for r in range(6):
-            f = -B[r]
-            for l in range(6):
-                f += J[l, r] * X[3 + l]
-            rhs[r] = f
-        for b in range(n - 6):
-            rhs[6 + b] = X[b] - B[6 + b]
+        actuation_minus_bias(B, J, X, n - 6, rhs)
         ok = cholesky_solve(Mm, rhs, n, x, L)
         for j in range(9):
             qdd[j] = x[j] if j < n else 0.0

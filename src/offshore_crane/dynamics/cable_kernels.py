@@ -30,6 +30,7 @@ from .formulas import STORE_WIDTH
 tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_force
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
 explicit_sample, cholesky_solve, solve6 = c.KE.explicit_sample, c.cholesky_solve, c.solve6
+actuation_minus_bias = c.actuation_minus_bias
 #: One sample at a time from Python (the simulation's law): not inlined (compiles in
 #: seconds rather than the inlined driver's ~20 s, at no cost that matters here).
 kane_sample_call = c.KE.kane_sample
@@ -222,13 +223,7 @@ def _make(stamp):
         zero = np.zeros(n)
         gt = (g[0], g[1], g[2])
         explicit_sample(C, q, qd, zero, gt, True, B, J, Mm, store, Vw, Ww, Vs, diag, mc)
-        for r in range(6):
-            f = -B[r]
-            for l in range(6):
-                f += J[l, r] * X[3 + l]
-            rhs[r] = f
-        for b in range(na - 2):
-            rhs[6 + b] = X[b] - B[6 + b]
+        actuation_minus_bias(B, J, X, na - 2, rhs)
         rhs[n - 2] = -damp[0] * qd[n - 2] - B[n - 2]
         rhs[n - 1] = -damp[1] * qd[n - 1] - B[n - 1]
         ok = cholesky_solve(Mm, rhs, n, a, L)

@@ -306,6 +306,21 @@ def _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error
 
 
 @njit(**JIT)
+def actuation_minus_bias(B, J, X, n_act, rhs):
+    """The right-hand side ``A X − h`` of the equations of motion ``M q̈ + h = A X``:
+    ``rhs[r] = Σ_l J[l, r] Fl_l − B[r]`` (r < 6, ``Aᵀ`` of the legs) and
+    ``rhs[6 + b] = X[b] − B[6 + b]`` for the ``n_act`` arm actuators; ``B`` is Kane's
+    ``h`` (the explicit pass at q̈ = 0), ``J`` the leg-length Jacobian, ``X`` (9,)."""
+    for r in range(6):
+        f = -B[r]
+        for l in range(6):
+            f += J[l, r] * X[3 + l]
+        rhs[r] = f
+    for b in range(n_act):
+        rhs[6 + b] = X[b] - B[6 + b]
+
+
+@njit(**JIT)
 def cholesky_solve(Mm, b, n, x, L):
     """``x = M⁻¹ b`` for the symmetric positive definite leading ``n x n`` block of
     ``Mm`` (lower triangle read) by Cholesky factorisation into ``L``; False (and NaN
@@ -469,13 +484,7 @@ def _make(stamp):
                     for l in range(6):
                         Aout[k, r, 3 + l] = J[l, r]
             if want_qdd:
-                for r in range(6):
-                    f = -B[r]
-                    for l in range(6):
-                        f += J[l, r] * X[k, 3 + l]
-                    rhs[r] = f
-                for b in range(na):
-                    rhs[6 + b] = X[k, b] - B[6 + b]
+                actuation_minus_bias(B, J, X[k], na, rhs)
                 ok = cholesky_solve(Mm, rhs, n, x, L)
                 for j in range(9):
                     qdd[k, j] = x[j] if j < n else np.nan
