@@ -300,6 +300,22 @@ def read_text(path, what: str = "file") -> str:
                          f"is not UTF-8: save the {what} as UTF-8 text", name=where) from None
 
 
+def read_toml(path, what: str = "file") -> dict:
+    """The TOML document of ``path`` (:func:`read_text`, then parsed).
+
+    Raises:
+        InputError: the file cannot be read, is not UTF-8, or is not valid TOML (naming
+            the file).
+    """
+    import tomllib
+
+    where = os.fspath(path)
+    try:
+        return tomllib.loads(read_text(where, what))
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{where}: not valid TOML: {exc}", name=where) from None
+
+
 @contextlib.contextmanager
 def signals_as_exceptions():
     """In the main thread: SIGTERM raises :class:`Terminated`, SIGINT KeyboardInterrupt

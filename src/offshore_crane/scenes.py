@@ -845,18 +845,14 @@ def load_scene(path) -> Scene:
         SceneError: unreadable file, invalid TOML, unknown section or key, bad value; the
             message names the file and the key.
     """
-    import tomllib
-
     from .errors import InputError
-    from .io import read_text
+    from .io import read_toml
 
     where = os.fspath(path)
     try:
-        data = tomllib.loads(read_text(where, "scene file"))
+        data = read_toml(where, "scene file")
     except InputError as exc:
         raise SceneError(str(exc), path=where) from None
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"{where}: not valid TOML: {exc}", path=where) from None
     return scene_from_dict(data, where, Path(where).parent)
 
 

@@ -121,18 +121,14 @@ def load_grid(path) -> dict:
     Raises:
         GridError: unreadable file, invalid TOML.
     """
-    import tomllib
-
     from .errors import InputError
-    from .io import read_text
+    from .io import read_toml
 
     where = os.fspath(path)
     try:
-        data = tomllib.loads(read_text(where, "grid file"))
+        data = read_toml(where, "grid file")
     except InputError as exc:
         raise GridError(str(exc), path=where) from None
-    except tomllib.TOMLDecodeError as exc:
-        raise GridError(f"{where}: not valid TOML: {exc}", path=where) from None
     return _flatten(data, where)
 
 
