@@ -115,7 +115,6 @@ def _quintic_midpoints(t, q, qd, qdd, sub: int):
     """The motion at the ``2 sub − 1`` interior stage points of each interval (spacing
     ``h / 2``, ``h = Δt / sub``) by quintic Hermite interpolation of ``q, q̇, q̈`` at the
     interval's ends; returns the whole stage grid ``(2 sub (N − 1) + 1, 9)`` × 3."""
-    N = len(t)
     dt = np.diff(t)[:, None, None]                         # (N-1, 1, 1)
     s = (np.arange(2 * sub + 1) / (2 * sub))[None, :, None]   # (1, 2 sub + 1, 1)
     s2, s3, s4, s5 = s ** 2, s ** 3, s ** 4, s ** 5

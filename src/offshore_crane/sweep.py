@@ -771,7 +771,7 @@ def _table(rows, schema):
 
 def read_results(out):
     """Every row of a results directory as a ``pandas.DataFrame`` (for a notebook)."""
-    pd = _install_hint("pandas", "A sweep's results table")
+    _install_hint("pandas", "A sweep's results table")     # to_pandas needs it
     ds = _install_hint("pyarrow.dataset", "A sweep's results (Parquet)")
     return ds.dataset(os.fspath(out), format="parquet").to_table().to_pandas()
 

@@ -7,8 +7,6 @@ their URDF names, and the legs are numbered.
 
 from __future__ import annotations
 
-from ..errors import InputError
-
 
 def add_parser(sub) -> None:
     from . import add_robot_options

@@ -31,7 +31,7 @@ class _Pendulum:
     """Pinocchio's model of the robot with the sway joints, and its indices."""
 
     def __init__(self, robot, g):
-        self.pin = pin = require("pinocchio", "pin", "The hanging load's Pinocchio reference")
+        self.pin = require("pinocchio", "pin", "The hanging load's Pinocchio reference")
         model = robot.pinocchio_model.copy()
         model.gravity.linear = np.asarray(g, dtype=float)
         self.model, self.data = model, model.createData()

@@ -73,7 +73,7 @@ def _legend(color_by: str, scale: float):
 
     def draw(d, r, k):
         ss = r.ss
-        W, H = r.width * ss, r.height * ss
+        W = r.width * ss
         w, h = 120 * ss, 10 * ss
         x0, y0 = W - w - 14 * ss, 22 * ss
         x = np.linspace(-1.0, 1.0, w) if color_by == "force" else np.linspace(0.0, 1.0, w)
@@ -244,7 +244,7 @@ def _labels(names):
             d.text((o[0] + 6 * ss, o[1] - 16 * ss), name, fill=(10, 10, 10), font=font,
                    stroke_width=2 * ss, stroke_fill=(255, 255, 255))
         for i in range(1, 7):                      # leg numbers beside each leg's middle
-            lo, up = f"leg{i}_lower", f"leg{i}_upper"
+            lo = f"leg{i}_lower"
             if lo not in P.links:
                 continue
             mid = (P.p[k, P.index(lo)] + P.p[k, P.index(f"leg{i}_tip")]) / 2.0

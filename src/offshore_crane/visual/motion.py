@@ -32,7 +32,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..conventions import ACTUATOR_UNITS, ACTUATORS, COORDINATES
-from ..errors import InputError, ModelError, TrajectoryError
+from ..errors import InputError, TrajectoryError
 
 #: Columns of a run's CSV that :func:`read_run` reads (others are ignored if known).
 FORCE_COLUMNS = tuple(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS, ACTUATOR_UNITS))
