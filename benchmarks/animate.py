@@ -1,7 +1,7 @@
 """Benchmark of ``offshore-crane animate``: a 60 s run at 30 fps (1,800 frames), 640 x 480,
 MP4 — the issue's target is <= 30 s on the project's 2-core machine.
 
-Times the whole library call (:func:`offshore_crane.visual.animate.animate`: forces by
+Times the whole library call (:func:`offshore_crane.outputs.visual.animate.animate`: forces by
 inverse dynamics for ``--color-by force``, link poses, drawing, H.264 encoding by ffmpeg
 in its own process, atomic write) on the example sea-state scene, with and without the
 legs coloured by force, and splits one run into its stages. The machine's other load is
@@ -27,8 +27,8 @@ sys.path.insert(0, str(ROOT / "src"))
 import numpy as np  # noqa: E402
 
 from offshore_crane import scenes  # noqa: E402
-from offshore_crane.visual import animate as an  # noqa: E402
-from offshore_crane.visual import motion as mo  # noqa: E402
+from offshore_crane.outputs.visual import animate as an  # noqa: E402
+from offshore_crane.outputs.visual import motion as mo  # noqa: E402
 
 TARGET_S = 30.0
 FPS, DURATION, SIZE = 30.0, 60.0, (640, 480)
@@ -52,8 +52,8 @@ def mine() -> float:
 
 def stages(robot, motion, gravity) -> dict:
     """One run split: forces, poses, drawing alone (no encoding)."""
-    from offshore_crane.visual.poses import link_poses
-    from offshore_crane.visual.render import Renderer
+    from offshore_crane.outputs.visual.poses import link_poses
+    from offshore_crane.outputs.visual.render import Renderer
 
     out = {}
     t0 = time.perf_counter()

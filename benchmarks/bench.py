@@ -37,7 +37,7 @@ SIZES = (1, 10_000, 100_000, 1_000_000)
 def trajectory(n: int):
     """``n`` samples of Table 1 at 100 Hz (analytic derivatives), repeated past 20π s."""
     t = np.arange(n) / 100.0
-    return oc.trajectories.table1(t)
+    return oc.motion.trajectories.table1(t)
 
 
 def timed(fn, budget: float, least: int = 5, most: int = 200) -> list[float]:

@@ -61,7 +61,8 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
 
     import offshore_crane as oc
-    from offshore_crane import cable, scenes
+    from offshore_crane import scenes
+    from offshore_crane.dynamics import cable
 
     scene = _scene(args.hours, args.rate, args.scale, args.length, args.zeta)
     robot = scenes.load_robot(scene)

@@ -6,7 +6,7 @@ rotated pose:
 - the agreement of MuJoCo's forward dynamics with ours at our exact states under our
   inverse-dynamics X: per coordinate, max |q̈_MuJoCo - q̈_ours| over the largest
   acceleration the loop constraints produce (``MujocoForward.agreement``), its maximum
-  over the coordinates, against ``offshore_crane.export.mjcf.AGREEMENT``;
+  over the coordinates, against ``offshore_crane.outputs.export.mjcf.AGREEMENT``;
 - what a 1 % and a 3 % error in the upper leg links' mass gives in the same measure (the
   comparison's resolution);
 - the drift of the platform over 1 s of MuJoCo simulation from the keyframe 'hold'
@@ -22,9 +22,9 @@ import time
 import numpy as np
 
 import offshore_crane as oc
-from offshore_crane import trajectories
-from offshore_crane.export import mjcf
-from offshore_crane.kinematics import legs
+from offshore_crane.motion import trajectories
+from offshore_crane.outputs.export import mjcf
+from offshore_crane.robot.kinematics import legs
 
 HARIB = "models/descriptions/harib_srinivasan_2003.toml"
 

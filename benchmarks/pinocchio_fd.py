@@ -81,8 +81,8 @@ def main(argv=None) -> int:
     import pinocchio as pin
 
     robot = oc.load_robot()
-    t = oc.trajectories.time_grid()
-    q, qd, qdd = oc.trajectories.table1(t)
+    t = oc.motion.trajectories.time_grid()
+    q, qd, qdd = oc.motion.trajectories.table1(t)
     step = max(1, len(t) // args.samples)
     q, qd, qdd = q[::step][:args.samples], qd[::step][:args.samples], qdd[::step][:args.samples]
     n = len(q)
@@ -152,8 +152,8 @@ def main(argv=None) -> int:
     ours_single = np.median(d)
     rows.append(("Kane forward_dynamics, one sample per call", d.sum(axis=1) / n, d,
                  error_of(fd(robot, q, qd, X), qdd, scale)))
-    tb = oc.trajectories.time_grid(100.0, 100.0)[:10_000]           # N = 10^4
-    qb, qdb, qddb = oc.trajectories.table1(tb)
+    tb = oc.motion.trajectories.time_grid(100.0, 100.0)[:10_000]           # N = 10^4
+    qb, qdb, qddb = oc.motion.trajectories.table1(tb)
     Xb = oc.inverse_dynamics(robot, qb, qdb, qddb)
     d = per_batch(lambda: fd(robot, qb, qdb, Xb), len(tb), args.repeats)
     ours_batch = np.median(d)
@@ -161,13 +161,13 @@ def main(argv=None) -> int:
                  error_of(fd(robot, qb, qdb, Xb), qddb, np.abs(fd(robot, qb, qdb,
                                                                  0 * Xb)).max())))
 
-    from offshore_crane.simulate import simulate
+    from offshore_crane.simulation.rigid import simulate
 
-    simulate(robot, 0.01, oc.trajectories.table1)                   # load the loop
+    simulate(robot, 0.01, oc.motion.trajectories.table1)                   # load the loop
     walls = []
     for _ in range(max(1, args.repeats // 2)):
         t0 = time.perf_counter()
-        simulate(robot, 60.0, oc.trajectories.table1, step=1e-3)
+        simulate(robot, 60.0, oc.motion.trajectories.table1, step=1e-3)
         walls.append(time.perf_counter() - t0)
     rtf = 60.0 / min(walls)
     kp, kd = 400.0, 40.0                    # the built-in computed torque's default gains
@@ -177,7 +177,7 @@ def main(argv=None) -> int:
                                    + kp * (q_ref - q))
 
     t0 = time.perf_counter()
-    simulate(robot, 10.0, oc.trajectories.table1, step=1e-3, controller=python_law)
+    simulate(robot, 10.0, oc.motion.trajectories.table1, step=1e-3, controller=python_law)
     rtf_python = 10.0 / (time.perf_counter() - t0)
 
     base = np.median(ref)

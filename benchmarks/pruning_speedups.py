@@ -28,10 +28,11 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
 import offshore_crane as oc  # noqa: E402
-from offshore_crane import scenes, trajectories  # noqa: E402
+from offshore_crane import scenes
+from offshore_crane.motion import trajectories
 from offshore_crane.dynamics import REGISTRY, numba_available, solve  # noqa: E402
 from offshore_crane.dynamics.kernels import Options  # noqa: E402
-from offshore_crane.kinematics.formulas import MASSLESS  # noqa: E402
+from offshore_crane.robot.kinematics.formulas import MASSLESS  # noqa: E402
 
 G = np.array([0.0, 0.0, -9.81])
 ARM = ("T1", "T2", "Fs")
@@ -135,9 +136,9 @@ def main() -> int:
     print(f"\nimports skipped (extra time of a fresh interpreter, median of {n}):")
     for module in ("pinocchio", "matplotlib.pyplot", "xacro", "yourdfpy"):
         print(f"  {module:<20}{import_cost(module, n) * 1e3:>9.1f} ms")
-    from offshore_crane.model import Robot
-    from offshore_crane.model.description import resolve
-    from offshore_crane.model.xacro_cache import expand
+    from offshore_crane.robot import Robot
+    from offshore_crane.robot.description import resolve
+    from offshore_crane.robot.xacro_cache import expand
 
     spec = resolve()
     data = spec.xacro_data()

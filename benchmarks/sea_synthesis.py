@@ -1,6 +1,6 @@
 """Benchmark of the sea-state synthesis (issue 12) and of the inverse dynamics on its output.
 
-1. ``offshore_crane.sea.ship_motion`` on a 3-hour full-scale record at 100 Hz
+1. ``offshore_crane.motion.sea.ship_motion`` on a 3-hour full-scale record at 100 Hz
    (1 080 000 samples; motion, velocity and acceleration of the six DOFs of the supply
    vessel, Hs 2.5 m, Tp 8 s, beam seas). Reference timed in the same run: the bare
    inverse real FFT of the same size (18 channels of length L), the floor of the method.
@@ -26,7 +26,7 @@ import time
 import numpy as np
 
 import offshore_crane as oc
-from offshore_crane import sea
+from offshore_crane.motion import sea
 
 HS, TP, HEADING = 2.5, 8.0, 90.0      # [m], [s], [deg]: beam seas
 DURATION, RATE = 3 * 3600.0, 100.0    # full-scale record [s], [Hz]
@@ -78,7 +78,7 @@ def main(argv=None) -> int:
          "   (incl. workspace check)")
     ident = timed(lambda: oc.inverse_dynamics(robot, traj.q, traj.qd, traj.qdd),
                   args.repeats)
-    tq = oc.trajectories.table1(np.arange(n) / RATE)
+    tq = oc.motion.trajectories.table1(np.arange(n) / RATE)
     ref = timed(lambda: oc.inverse_dynamics(robot, *tq), args.repeats)
     line("inverse_dynamics (Kane) on it", ident,
          f"   {min(ident) / n * 1e6:.2f} us/sample")

@@ -1,4 +1,4 @@
-"""Benchmark of ``offshore_crane.sweep``: per-case overhead and the speed-up of 2 workers.
+"""Benchmark of ``offshore_crane.studies.sweep``: per-case overhead and the speed-up of 2 workers.
 
     PYTHONPATH=src python benchmarks/sweep.py [--cases 240] [--heavy 24] [--repeat 3]
 
@@ -35,7 +35,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from offshore_crane import scenes, sweep  # noqa: E402
+from offshore_crane import scenes
+from offshore_crane.studies import sweep
 
 SCENE = ROOT / "scenes" / "sweep_crane.toml"
 

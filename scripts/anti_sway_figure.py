@@ -5,7 +5,7 @@
 The lab robot holds its home pose under computed torque; its 2 kg payload hangs on a 1 m
 cable and starts 0.1 rad off. Without the law the swing keeps its amplitude; with
 ``anti_sway = 0.3`` the platform gives way along the load's relative velocity and the
-swing decays like e^{-0.3 ω0 t} (offshore_crane.cable_simulation, docs/cable.md).
+swing decays like e^{-0.3 ω0 t} (offshore_crane.simulation.swing, docs/cable.md).
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ def main(argv=None) -> int:
     import matplotlib.pyplot as plt
 
     import offshore_crane as oc
-    from offshore_crane.control import Controller
-    from offshore_crane.report import save_figure
+    from offshore_crane.simulation.control import Controller
+    from offshore_crane.outputs.report import save_figure
 
     robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 1.0})
     home = np.zeros(9)

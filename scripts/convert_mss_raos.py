@@ -9,7 +9,7 @@ draught 6.0 m, and read into MSS by ``HYDRO/veres2vessel.m`` / ``read_veres_TF.m
 Usage (no download: give the path of the extracted ``supply.mat``)::
 
     python scripts/convert_mss_raos.py PATH/TO/supply.mat \\
-        [--out src/offshore_crane/data/vessels/supply.csv]
+        [--out src/offshore_crane/motion/data/vessels/supply.csv]
 
 What the MSS structure holds (checked by this script): ``vessel.motionRAO.w`` (36
 frequencies [rad/s]), ``vessel.headings`` (36 headings [rad], 0:10:350 deg; MSS mirrored

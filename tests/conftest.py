@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane import trajectories
+from offshore_crane.motion import trajectories
 
 
 @pytest.fixture(scope="session")
@@ -30,9 +30,9 @@ _COMPILE: dict = {}
 def pytest_sessionstart(session):
     """Compile (or load) the Numba kernels once, timed: on a fresh clone (CI) this is the
     cold compile of everything the tests need, reported at the end of the run."""
-    from offshore_crane.cable import warm_up as warm_up_cable
+    from offshore_crane.dynamics.cable import warm_up as warm_up_cable
     from offshore_crane.dynamics import warm_up
-    from offshore_crane.simulate import warm_up as warm_up_simulation
+    from offshore_crane.simulation.rigid import warm_up as warm_up_simulation
 
     t0 = time.perf_counter()
     _COMPILE["parts"] = warm_up() + warm_up_simulation() + warm_up_cable()

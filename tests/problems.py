@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from offshore_crane.kinematics import legs
+from offshore_crane.robot.kinematics import legs
 
 #: Sampling box of the random states [m, rad]: Table 1's range with margins.
 Q_LOW = np.array([-0.06, -0.06, 0.44, -0.45, -0.45, -0.45, -np.pi, -1.9, -0.19])

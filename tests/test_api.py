@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane import trajectories
+from offshore_crane.motion import trajectories
 
 
 def test_single_sample_shape(robot):

@@ -24,9 +24,9 @@ import pytest
 
 import offshore_crane as oc
 from offshore_crane import scenes
-from offshore_crane import trajectories
+from offshore_crane.motion import trajectories
 from offshore_crane.__main__ import main
-from offshore_crane.kinematics.workspace import Thresholds
+from offshore_crane.robot.kinematics.workspace import Thresholds
 from offshore_crane.dynamics import solve
 
 PREFIX = "offshore-crane: error: "
@@ -169,8 +169,8 @@ def _urdf_with(link, **attrs):
 
 def _validate(link, **attrs):
     def run(tmp):
-        from offshore_crane.model.urdf import parse_urdf
-        from offshore_crane.model.validate import validate
+        from offshore_crane.robot.urdf import parse_urdf
+        from offshore_crane.robot.validate import validate
 
         validate(parse_urdf(_urdf_with(link, **attrs)))
     return run
@@ -541,24 +541,24 @@ CASES = [
                                                   -0.1], "payload.cable_length": 0.5})),
     Case("cable-zero-length-argument", "cable.inverse_dynamics(length=0, mass=2)",
          oc.InputError, r"length = 0\.0 m: the cable needs a finite length > 0",
-         lib=lambda tmp: oc.cable.inverse_dynamics(
+         lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(
              oc.load_robot(), *_cable_states(), length=0.0, mass=2.0)),
     Case("cable-nan-sway", "a NaN initial sway", oc.InputError,
          r"initial must be two finite numbers",
-         lib=lambda tmp: oc.cable.inverse_dynamics(_crane(), *_cable_states(),
+         lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(_crane(), *_cable_states(),
                                                    initial=(np.nan, 0.0)),
          cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
                           "payload.cable_length=0.5", "--initial-sway", "nan", "0"]),
     Case("cable-singular-sway", "an initial sway on the singular set cos(phi2) = 0",
          oc.InputError, r"lies on the singular set cos\(phi2\) = 0",
-         lib=lambda tmp: oc.cable.inverse_dynamics(_crane(), *_cable_states(),
+         lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(_crane(), *_cable_states(),
                                                    initial=(0.0, np.pi / 2)),
          cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
                           "payload.cable_length=0.5", "--initial-sway", "0",
                           "1.5707963267948966"]),
     Case("cable-slack", "gravity pointing up: the cable would have to push",
          oc.SlackCableError, r"the cable goes slack at sample 0",
-         lib=lambda tmp: oc.cable.inverse_dynamics(_crane(), *_cable_states(),
+         lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(_crane(), *_cable_states(),
                                                    gravity=(0, 0, 9.81)),
          cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
                           "payload.cable_length=0.5", "--gravity", "0", "0", "9.81"]),

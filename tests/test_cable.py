@@ -1,4 +1,4 @@
-"""The hanging load (offshore_crane.cable): physics checks, Kane against Pinocchio, errors.
+"""The hanging load (offshore_crane.dynamics.cable): physics checks, Kane against Pinocchio, errors.
 
 References that share nothing with the code under test: the small-oscillation solution of
 a pendulum, its energy, the equilibrium of a pendulum in a uniformly accelerated frame,
@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane import cable
+from offshore_crane.dynamics import cable
 from offshore_crane.errors import (InputError, ModelError, SingularConfigurationError,
                                    SlackCableError)
-from offshore_crane.kinematics.workspace import OffshoreCraneWarning, Thresholds
-from offshore_crane.trajectories import table1, time_grid
+from offshore_crane.robot.kinematics.workspace import OffshoreCraneWarning, Thresholds
+from offshore_crane.motion.trajectories import table1, time_grid
 
 G = 9.81
 MASS, LENGTH = 2.0, 0.5

@@ -1,4 +1,4 @@
-"""The forward simulation with the hanging load (offshore_crane.cable_simulation): the
+"""The forward simulation with the hanging load (offshore_crane.simulation.swing): the
 11 coordinates' equations of motion against the swing of the inverse dynamics (another
 formulation: the pendulum's own equations on the tip's motion), energy, the anti-sway law
 against the damping ratio it promises, stops and bad input."""
@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane import cable
-from offshore_crane.control import Controller
+from offshore_crane.dynamics import cable
+from offshore_crane.simulation.control import Controller
 from offshore_crane.errors import InputError, SimulationError
-from offshore_crane.trajectories import table1, time_grid
+from offshore_crane.motion.trajectories import table1, time_grid
 
 MASS, LENGTH, G = 2.0, 0.5, 9.81
 

@@ -32,7 +32,7 @@ def test_id_both_writes_csv_and_plot(tmp_path, capsys):
 
 
 def test_id_from_csv(tmp_path, capsys):
-    from offshore_crane import trajectories
+    from offshore_crane.motion import trajectories
 
     t = np.arange(0, 2.0, 0.01)
     q, _, _ = trajectories.table1(t)

@@ -24,12 +24,13 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane import scenes, trajectories
+from offshore_crane import scenes
+from offshore_crane.motion import trajectories
 from offshore_crane.dynamics import solve
 from offshore_crane.errors import DescriptionError
-from offshore_crane.model import Robot
-from offshore_crane.model import description as desc
-from offshore_crane.model.overrides import ALIASES, conflicts, normalise, parse_set
+from offshore_crane.robot import Robot
+from offshore_crane.robot import description as desc
+from offshore_crane.robot.overrides import ALIASES, conflicts, normalise, parse_set
 
 import description_cases as dc
 

@@ -97,7 +97,7 @@ def test_output_equal_to_an_input_or_another_output(tmp_path):
 
 
 def test_cli_refuses_to_overwrite_its_input(tmp_path, capsys):
-    from offshore_crane import trajectories
+    from offshore_crane.motion import trajectories
 
     t = np.arange(0, 1.0, 0.01)
     path = tmp_path / "traj.csv"

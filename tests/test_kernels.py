@@ -16,7 +16,7 @@ import offshore_crane as oc
 from conftest import relative_error
 from offshore_crane.dynamics import PYTHON_MAX, REGISTRY, solve
 from offshore_crane.dynamics.kernels import Options
-from offshore_crane.kinematics.formulas import FULL, MASSLESS, THIN_ROD
+from offshore_crane.robot.kinematics.formulas import FULL, MASSLESS, THIN_ROD
 from problems import random_states
 
 G = np.array([0.0, 0.0, -9.81])
@@ -46,7 +46,7 @@ def test_python_floats_equal_numpy_arrays(robot, leg_model):
 def test_chunking_does_not_change_results(robot, chunk):
     from offshore_crane.dynamics.constants import robot_arrays
     from offshore_crane.dynamics.kernels import allocate, run_numpy
-    from offshore_crane.kinematics.workspace import new_health
+    from offshore_crane.robot.kinematics.workspace import new_health
 
     q, qd, qdd = random_states(robot, 300, seed=4)
     ref = _run(robot, "numpy", q, qd, qdd, Options())[0]

@@ -1,7 +1,7 @@
 """Kinematics checked independently: loop closure in Pinocchio, finite differences.
 
 Two implementations meet here: the formulas of the Kane kernels
-(:func:`offshore_crane.kinematics.legs`) and the RNEA reference's loop closure
+(:func:`offshore_crane.robot.kinematics.legs`) and the RNEA reference's loop closure
 (:mod:`offshore_crane.reference.rnea`, Newton on each leg's chain); Pinocchio's own
 forward kinematics checks the reference, finite differences check the formulas.
 """
@@ -10,7 +10,7 @@ import numpy as np
 import pinocchio as pin
 
 from offshore_crane.conventions import LEG_JOINTS
-from offshore_crane.kinematics import legs as leg_kinematics
+from offshore_crane.robot.kinematics import legs as leg_kinematics
 from offshore_crane.reference.rnea import tree_states
 from problems import random_states
 
@@ -46,7 +46,7 @@ def test_loops_close_in_pinocchio(robot):
 
 def test_leg_rates_are_derivatives(robot):
     """Central differences of l(t) and θ(t) along a smooth path reproduce l̇, l̈, θ̇, θ̈."""
-    from offshore_crane.trajectories import table1
+    from offshore_crane.motion.trajectories import table1
 
     h = 1e-4
     t = np.linspace(0.0, 30.0, 61)

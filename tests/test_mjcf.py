@@ -5,7 +5,7 @@ Tolerances:
 - placements (MuJoCo bodies vs Pinocchio frames, loop sites): 1e-12 m / 1e-12. Both
   evaluate the same rigid transforms in float64, a chain of ~6 products of numbers of
   order 1: round-off is ~1e-15; 1e-12 leaves three decades.
-- accelerations: :data:`offshore_crane.export.mjcf.AGREEMENT` = 5e-4 of the largest
+- accelerations: :data:`offshore_crane.outputs.export.mjcf.AGREEMENT` = 5e-4 of the largest
   acceleration the loop constraints produce, per coordinate. MuJoCo's loop constraints
   are soft: their regulariser makes the constraint forces err by ~(1 - d)/d = 1e-4 of
   themselves; measured 6.4e-5 along Table 1 with the model written at home, up to 2.1e-4
@@ -22,9 +22,10 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane import conventions, spatial, trajectories
+from offshore_crane import conventions, spatial
+from offshore_crane.motion import trajectories
 from offshore_crane.cli import main
-from offshore_crane.export import mjcf
+from offshore_crane.outputs.export import mjcf
 
 from problems import random_states
 
@@ -263,7 +264,7 @@ def test_hanging_load_matches_our_swing_along_table1():
     equal to the prescribed q̈ and to our sway accelerations, within the soft
     constraints' tolerance (the sway: the same AGREEMENT, relative to the largest sway
     acceleration)."""
-    from offshore_crane import cable
+    from offshore_crane.dynamics import cable
 
     hung = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 0.5})
     model = mjcf.export(hung, sway=(0.0, 0.0))

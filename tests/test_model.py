@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane.model import xacro_arguments
-from offshore_crane.model.urdf import parse_urdf
+from offshore_crane.robot import xacro_arguments
+from offshore_crane.robot.urdf import parse_urdf
 
 BODIES = (["platform"] + [f"leg{i}_{s}" for i in range(1, 7) for s in ("lower", "upper")]
           + ["arm_column", "arm_link1", "arm_link2", "arm_slider"])
@@ -78,8 +78,8 @@ def test_every_number_is_an_argument():
 def test_cache_is_reused(tmp_path, monkeypatch):
     """A cache hit returns the stored URDF; an edited entry is rebuilt with a warning
     (tests/test_model_loading.py covers the cache in detail)."""
-    from offshore_crane.model.description import resolve
-    from offshore_crane.model.xacro_cache import CacheWarning, expand
+    from offshore_crane.robot.description import resolve
+    from offshore_crane.robot.xacro_cache import CacheWarning, expand
 
     monkeypatch.setenv("OFFSHORE_CRANE_CACHE", str(tmp_path))
     data = resolve(overrides={"arm.column.mass": 6.0}).xacro_data()
@@ -93,7 +93,7 @@ def test_cache_is_reused(tmp_path, monkeypatch):
 
 
 def test_table1_within_strokes_and_far_from_singularities(robot, table1):
-    from offshore_crane.kinematics import legs as leg_kinematics
+    from offshore_crane.robot.kinematics import legs as leg_kinematics
 
     _, q, qd, qdd = table1
     legs = leg_kinematics(robot, q, qd, qdd)

@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane import model
-from offshore_crane.model import xacro_cache
-from offshore_crane.model.description import resolve
-from offshore_crane.model.xacro_cache import CacheWarning, expand
+from offshore_crane import robot as model
+from offshore_crane.robot import xacro_cache
+from offshore_crane.robot.description import resolve
+from offshore_crane.robot.xacro_cache import CacheWarning, expand
 
 THREADS = 8
 ROUNDS = 10

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from offshore_crane.errors import SeaStateError
-from offshore_crane.operations import Operation, operation
+from offshore_crane.motion.operations import Operation, operation
 
 WAYPOINTS = [[1.0, 0.0, 0.0, 0.0],
              [4.0, 1.5, -0.5, 0.1],     # slew out, telescope

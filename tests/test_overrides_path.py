@@ -1,7 +1,7 @@
 """Issue 10, family 7 / issue 11: one path for every robot override.
 
 Scene ``[robot]``, ``[payload]``, ``[subsystems] arm``, ``--robot`` and ``--set`` all reach
-the robot through :mod:`offshore_crane.model.overrides` and the description's checks; a
+the robot through :mod:`offshore_crane.robot.overrides` and the description's checks; a
 ``--set`` that contradicts the scene is an error (exit status 2, one line), never a silent
 choice.
 """
@@ -137,7 +137,7 @@ def test_describe_writes_the_yaml_the_xacro_reads(tmp_path, capsys):
     """`describe` prints the resolved description; expanding the xacro with it gives the
     URDF load_robot builds (same overrides)."""
     import yaml
-    from offshore_crane.model.xacro_cache import run_xacro
+    from offshore_crane.robot.xacro_cache import run_xacro
 
     out = tmp_path / "lab.yaml"
     assert main(["describe", "--set", "platform_mass=55", "--out", str(out)]) == 0

@@ -7,11 +7,11 @@ import pytest
 
 import offshore_crane as oc
 from offshore_crane.conventions import LEG_JOINTS
-from offshore_crane.kinematics import legs as leg_kinematics
-from offshore_crane.kinematics import formulas
+from offshore_crane.robot.kinematics import legs as leg_kinematics
+from offshore_crane.robot.kinematics import formulas
 from offshore_crane.reference.rnea import tree_states
 from offshore_crane.spatial import attitude_matrix
-from offshore_crane.trajectories import table1
+from offshore_crane.motion.trajectories import table1
 
 G = 9.81
 

@@ -17,15 +17,15 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane.model.overrides import normalise
+from offshore_crane.robot.overrides import normalise
 from conftest import relative_error
 from offshore_crane import scenes
 from offshore_crane.__main__ import main
 from offshore_crane import dynamics
 from offshore_crane.dynamics import REGISTRY, solve
 from offshore_crane.dynamics.kernels import Options
-from offshore_crane.kinematics import legs as leg_kinematics
-from offshore_crane.kinematics.formulas import FULL, MASSLESS
+from offshore_crane.robot.kinematics import legs as leg_kinematics
+from offshore_crane.robot.kinematics.formulas import FULL, MASSLESS
 from offshore_crane.errors import SceneError
 from problems import random_states
 
@@ -238,7 +238,7 @@ def test_options_passed_to_the_kernel(robot, monkeypatch):
 def test_kane_scene_imports_nothing_heavy(name, tmp_path, monkeypatch):
     """Warm URDF cache, Kane only, no --plot: neither Pinocchio, matplotlib, yourdfpy nor
     xacro is imported."""
-    from offshore_crane.model import description, xacro_cache
+    from offshore_crane.robot import description, xacro_cache
 
     monkeypatch.setenv("OFFSHORE_CRANE_CACHE", str(tmp_path))
     path = SCENES / f"{name}.toml"
@@ -368,7 +368,7 @@ def test_scenes_built_in_python_are_checked(build, key, match):
 
 
 def test_csv_trajectory_scene(tmp_path):
-    from offshore_crane import trajectories
+    from offshore_crane.motion import trajectories
 
     t = np.arange(0.0, 2.0, 0.01)
     trajectories.write_csv(tmp_path / "motion.csv", t, trajectories.table1(t)[0])
@@ -429,7 +429,7 @@ def test_cli_flags_override_the_scene(capsys):
     assert "APPROXIMATE: thin-rod legs" in out
     assert "\nT1 " in out and "\nFl2 " in out and "\nFl1 " not in out
     robot = oc.load_robot(platform_mass=50)
-    from offshore_crane import trajectories
+    from offshore_crane.motion import trajectories
 
     t = trajectories.time_grid(1.0, 50.0)
     X = solve(robot, *trajectories.table1(t), gravity=(0, 0, -9.0),

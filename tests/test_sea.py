@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane import sea
+from offshore_crane.motion import sea
 from offshore_crane.errors import InputError, SeaStateError, SeaWorkspaceError
 
 G = 9.81                    # [m/s²], the vessel data's gravity (VERES header: 9.81)
@@ -416,7 +416,7 @@ def test_sea_motion_source_at_stage_times(robot):
     q, qd, qdd = source(traj.t[k])
     for a, b in ((q, traj.q[k]), (qd, traj.qd[k]), (qdd, traj.qdd[k])):
         np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * max(1.0, np.abs(b).max()))
-    np.testing.assert_allclose(traj.q[:, 6:], oc.operations.operation(traj.t, ops)[0])
+    np.testing.assert_allclose(traj.q[:, 6:], oc.motion.operations.operation(traj.t, ops)[0])
     assert source(2.5)[0].shape == (9,)
 
 

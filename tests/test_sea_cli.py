@@ -11,7 +11,9 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane import scenes, sea, trajectories
+from offshore_crane import scenes
+from offshore_crane.motion import sea
+from offshore_crane.motion import trajectories
 from offshore_crane.__main__ import main
 from offshore_crane.errors import SceneError, SeaStateError
 

@@ -22,7 +22,8 @@ from offshore_crane.errors import InputError, ModelError
 from offshore_crane.spatial import attitude_matrix, rpy_matrix
 
 pin = pytest.importorskip("pinocchio")
-from offshore_crane.serial import cli, reference  # noqa: E402  (needs pinocchio)
+from offshore_crane.serial import reference
+from offshore_crane.cli import serial_id as cli
 
 ROBOTS_DIR = Path(importlib.metadata.distribution("example-robot-data").locate_file(
     "cmeel.prefix/share/example-robot-data/robots"))

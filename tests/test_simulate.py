@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane.control import CT_OMEGA, Controller
+from offshore_crane.simulation.control import CT_OMEGA, Controller
 from offshore_crane.errors import InputError, SimulationError
-from offshore_crane.simulate import simulate
-from offshore_crane.trajectories import table1
+from offshore_crane.simulation.rigid import simulate
+from offshore_crane.motion.trajectories import table1
 
 
 def _start():
@@ -209,7 +209,7 @@ def test_saturation_at_the_description_capacities(tmp_path):
     the saturated flags exactly where the command lies outside, and a command inside the
     limits applied unchanged."""
     from offshore_crane import scenes
-    from offshore_crane.simulate import simulate
+    from offshore_crane.simulation.rigid import simulate
 
     path = tmp_path / "sat.toml"
     path.write_text("[actuators]\nFl = { push_max = 180.0, pull_max = 120.0 }\n"

@@ -1,4 +1,4 @@
-"""Envelopes, Gumbel most probable maxima and verdicts (offshore_crane.sizing), and the
+"""Envelopes, Gumbel most probable maxima and verdicts (offshore_crane.studies.sizing), and the
 ``size`` command.
 
 References are independent of the code under test: the forces come from ``id --out``'s
@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane import sizing, trajectories
+from offshore_crane.studies import sizing
+from offshore_crane.motion import trajectories
 from offshore_crane.cli import main
 from offshore_crane.errors import InputError, InsufficientSeedsError
 
@@ -245,7 +246,7 @@ def test_size_bad_flags(tmp_path, capsys):
 def test_actuator_motion_equals_kinematics_legs(robot):
     """The envelope's lean leg evaluation (lengths and rates only) gives exactly what the
     full leg kinematics gives, on perturbed Table 1 states."""
-    from offshore_crane import kinematics
+    from offshore_crane.robot import kinematics
 
     t = np.linspace(0.0, 5.0, 301)
     q, qd, _ = trajectories.table1(t)

@@ -48,10 +48,10 @@ from hypothesis import strategies as st
 
 import offshore_crane as oc
 from conftest import relative_error
-from offshore_crane import trajectories
-from offshore_crane.kinematics.workspace import OffshoreCraneWarning, Thresholds
+from offshore_crane.motion import trajectories
+from offshore_crane.robot.kinematics.workspace import OffshoreCraneWarning, Thresholds
 from offshore_crane.dynamics import extended, solve
-from offshore_crane.model import xacro_arguments
+from offshore_crane.robot import xacro_arguments
 from problems import Q_HIGH, Q_LOW
 
 EPS = np.finfo(float).eps

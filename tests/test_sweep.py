@@ -1,4 +1,4 @@
-"""Sweeps (offshore_crane.sweep and ``offshore-crane sweep``): grids and their errors,
+"""Sweeps (offshore_crane.studies.sweep and ``offshore-crane sweep``): grids and their errors,
 rows bit-identical serially / on joblib workers / on a Dask LocalCluster, the resumable
 store (a killed sweep rerun gives every case exactly once), failing cases recorded, the
 results directory and scheduler refused before anything is written, verdicts and the
@@ -22,7 +22,8 @@ import pytest
 pytest.importorskip("pyarrow")
 pytest.importorskip("pandas")
 
-from offshore_crane import scenes, sweep                      # noqa: E402
+from offshore_crane import scenes
+from offshore_crane.studies import sweep
 from offshore_crane.cli import main                           # noqa: E402
 from offshore_crane.errors import GridError, ResultsDirectoryError  # noqa: E402
 
@@ -142,8 +143,8 @@ def test_remote_scheduler_address(tmp_path):
 def test_failing_cases_are_recorded(tmp_path):
     """A record that leaves the workspace (scale too small) is a failed row with its error;
     the other cases run, those with a cable through the swing (sway and tension columns,
-    equal to offshore_crane.cable's own run; NaN without a cable)."""
-    from offshore_crane import cable
+    equal to offshore_crane.dynamics.cable's own run; NaN without a cable)."""
+    from offshore_crane.dynamics import cable
 
     scene = scenes.load_scene(_scene(tmp_path, offset="[0.0, 0.0, 0.0]"))
     df = sweep.run(scene, {"scale": [2.0, 20.0], "payload.cable_length": [0.0, 0.5]})
@@ -287,7 +288,7 @@ def test_cli_bad_grid_one_line(tmp_path, capsys):
 def test_verdicts_gumbel_from_rows(tmp_path):
     """Five seeds: the verdict's utilisation is the Gumbel MPM of the rows' utilisations
     (equal to the MPM of the peaks over the capacity, the fit being equivariant)."""
-    from offshore_crane import sizing
+    from offshore_crane.studies import sizing
 
     scene = scenes.load_scene(_scene(tmp_path))
     df = sweep.run(scene, {"seed": [0, 1, 2, 3, 4]})
@@ -362,7 +363,7 @@ def test_cli_sweep_plots_csv_and_operability(tmp_path, capsys):
 def test_imports_stay_lazy():
     """Importing the package, the new modules and the CLI, and running ``id``, import
     none of the sweep's optional libraries (nor matplotlib)."""
-    code = ("import sys; import offshore_crane, offshore_crane.sizing, offshore_crane.sweep, "
+    code = ("import sys; import offshore_crane, offshore_crane.studies.sizing, offshore_crane.studies.sweep, "
             "offshore_crane.cli.size, offshore_crane.cli.sweep; "
             "from offshore_crane.__main__ import main; "
             "assert main(['id', '--duration', '1']) == 0; "
@@ -378,7 +379,7 @@ def test_imports_stay_lazy():
 def test_kane_sweep_imports_neither_pinocchio_nor_matplotlib(tmp_path):
     """A sweep of a Kane scene without --plot loads only what it runs (its warm-up too)."""
     scene = _scene(tmp_path)
-    code = ("import sys; from offshore_crane import sweep; "
+    code = ("import sys; from offshore_crane.studies import sweep; "
             f"df = sweep.run({str(scene)!r}, {{'hs': [1.0]}}); "
             "assert (df['status'] == 'ok').all(); "
             "bad = [m for m in ('pinocchio', 'matplotlib') if m in sys.modules]; "

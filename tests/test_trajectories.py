@@ -1,4 +1,4 @@
-"""Tests of offshore_crane.trajectories: Table 1, finite differences, CSV files, load()."""
+"""Tests of offshore_crane.motion.trajectories: Table 1, finite differences, CSV files, load()."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from offshore_crane.errors import TrajectoryError
-from offshore_crane.trajectories import (
+from offshore_crane.motion.trajectories import (
     CSV_COLUMNS,
     DEFAULT_RATE,
     TABLE1_PERIOD,

@@ -1,5 +1,5 @@
 """Pictures: the renderer, GIF / MP4 animations, the still, the run CSV reader and the
-command line's bad inputs (offshore_crane.visual, offshore-crane animate / show)."""
+command line's bad inputs (offshore_crane.outputs.visual, offshore-crane animate / show)."""
 
 import subprocess
 import sys
@@ -9,9 +9,9 @@ import pytest
 
 import offshore_crane as oc
 from offshore_crane.__main__ import main
-from offshore_crane.visual import animate as an
-from offshore_crane.visual import motion as mo
-from offshore_crane.visual import poses, render
+from offshore_crane.outputs.visual import animate as an
+from offshore_crane.outputs.visual import motion as mo
+from offshore_crane.outputs.visual import poses, render
 
 PIL = pytest.importorskip("PIL.Image")
 
@@ -52,7 +52,7 @@ def test_projection_is_a_pinhole(robot):
 
 def test_gif_has_the_requested_frames(robot, tmp_path):
     out = tmp_path / "a.gif"
-    traj = oc.trajectories.load("table1", duration=2.0, rate=50.0)
+    traj = oc.motion.trajectories.load("table1", duration=2.0, rate=50.0)
     done = an.animate(robot, mo.from_trajectory(traj), str(out), fps=10, duration=1.5,
                       width=160, height=120)
     im = PIL.open(out)
@@ -79,7 +79,7 @@ def test_speed_and_frame_times():
 def test_mp4_frames(robot, tmp_path):
     iio = pytest.importorskip("imageio_ffmpeg")
     out = tmp_path / "a.mp4"
-    traj = oc.trajectories.load("table1", duration=2.0, rate=50.0)
+    traj = oc.motion.trajectories.load("table1", duration=2.0, rate=50.0)
     done = an.animate(robot, mo.from_trajectory(traj), out, fps=20, duration=1.0,
                       width=160, height=120, color_by="force")
     assert done.frames == 21
@@ -186,7 +186,7 @@ def test_library_rejects_unknown_suffix(robot):
 
 def test_missing_extra_gives_install_hint(robot, tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "imageio_ffmpeg", None)     # import fails
-    traj = oc.trajectories.load("table1", duration=1.0, rate=20.0)
+    traj = oc.motion.trajectories.load("table1", duration=1.0, rate=20.0)
     with pytest.raises(oc.BackendMissingError, match=r"pip install offshore-crane\[animate\]"):
         an.animate(robot, mo.from_trajectory(traj), tmp_path / "a.mp4", fps=5,
                    width=64, height=48)
@@ -212,10 +212,10 @@ def test_nothing_heavy_at_import_and_for_a_gif(tmp_path):
 def test_the_hanging_load_swings_in_the_pictures(tmp_path):
     """A payload on a cable is drawn where the swing puts it: the frames of a run with
     an initial sway differ from those of the same run hanging still."""
-    from offshore_crane import cable
-    from offshore_crane.visual import motion as mo
-    from offshore_crane.visual.animate import frames
-    from offshore_crane.trajectories import table1, time_grid
+    from offshore_crane.dynamics import cable
+    from offshore_crane.outputs.visual import motion as mo
+    from offshore_crane.outputs.visual.animate import frames
+    from offshore_crane.motion.trajectories import table1, time_grid
 
     robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 0.5})
     t = time_grid(1.0, 50.0)

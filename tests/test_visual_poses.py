@@ -1,4 +1,4 @@
-"""Link poses from q (offshore_crane.visual.poses): closed loops, Pinocchio's forward
+"""Link poses from q (offshore_crane.outputs.visual.poses): closed loops, Pinocchio's forward
 kinematics on the equivalent tree as the independent reference, batch = per sample,
 the cable convention, errors."""
 
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane.visual import poses
+from offshore_crane.outputs.visual import poses
 
 #: Tolerances. Loop closure: the leg angles come from atan2 of the same vectors that the
 #: tree composes back, so the cut frames meet to a few ulps of the ~0.5 m lever arms
@@ -118,7 +118,7 @@ def test_errors(robot):
 
 
 def test_urdf_visuals_parsed_with_material_colours():
-    from offshore_crane.model.urdf import parse_urdf
+    from offshore_crane.robot.urdf import parse_urdf
 
     text = """<robot name="r"><material name="red"><color rgba="1 0 0 1"/></material>
       <link name="a"><visual><origin xyz="0 0 0.5" rpy="0 0 1.5707963267948966"/>

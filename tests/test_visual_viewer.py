@@ -1,4 +1,4 @@
-"""The browser viewer (offshore_crane.visual.viewer, offshore-crane view).
+"""The browser viewer (offshore_crane.outputs.visual.viewer, offshore-crane view).
 
 The browser test drives Debian's Chromium (``/usr/bin/chromium``, ``/usr/bin/chromedriver``,
 never a downloaded driver) headless with WebGL on SwiftShader, and asserts on the
@@ -18,7 +18,7 @@ import pytest
 
 import offshore_crane as oc
 from offshore_crane.__main__ import main
-from offshore_crane.visual import motion as mo
+from offshore_crane.outputs.visual import motion as mo
 
 CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
 REQUIRED = os.environ.get("OFFSHORE_CRANE_BROWSER_TEST") == "required"
@@ -50,14 +50,14 @@ def orange(a: np.ndarray) -> np.ndarray:
 
 
 def shown_motion(robot):
-    traj = oc.trajectories.load("table1", duration=4.0, rate=50.0)
+    traj = oc.motion.trajectories.load("table1", duration=4.0, rate=50.0)
     m = mo.from_trajectory(traj)
     return mo.at(m, mo.frame_times(m, 10.0))
 
 
 @pytest.fixture
 def viewer(robot):
-    from offshore_crane.visual.viewer import Viewer
+    from offshore_crane.outputs.visual.viewer import Viewer
 
     browser_or_skip()
     v = Viewer(robot, shown_motion(robot), port=0, play=False)
@@ -136,7 +136,7 @@ def test_port_out_of_range(capsys):
 
 
 def test_missing_viser_gives_install_hint(robot, monkeypatch):
-    from offshore_crane.visual.viewer import Viewer
+    from offshore_crane.outputs.visual.viewer import Viewer
 
     monkeypatch.setitem(sys.modules, "viser", None)
     with pytest.raises(oc.BackendMissingError, match=r"pip install offshore-crane\[view\]"):
@@ -147,7 +147,7 @@ def test_quaternions_against_rotation_matrices():
     """Round trip through the standard quaternion-to-matrix formula, including the four
     branches (rotations by ~pi about x, y, z and small ones)."""
     from offshore_crane.spatial import axis_angle_matrix
-    from offshore_crane.visual.viewer import quaternions
+    from offshore_crane.outputs.visual.viewer import quaternions
 
     rng = np.random.default_rng(8)
     axes = rng.normal(size=(400, 3))

@@ -1,53 +1,62 @@
-"""offshore-crane: inverse dynamics of a 9-DOF Stewart-platform + SCARA crane robot.
+"""offshore-crane: dynamics of a 9-DOF Stewart-platform + SCARA crane robot.
 
 Quick start::
 
     import offshore_crane as oc
+    from offshore_crane.motion import trajectories
     robot = oc.load_robot()                      # models/descriptions/lab.toml -> URDF
-    q, qd, qdd = oc.trajectories.table1(t)       # (N, 9) each
+    t = trajectories.time_grid(10.0, 100.0)      # (N,) [s]
+    q, qd, qdd = trajectories.table1(t)          # (N, 9) each
     X = oc.inverse_dynamics(robot, q, qd, qdd)   # (N, 9): T1, T2 [N·m], Fs, Fl1..Fl6 [N]
     qdd2 = oc.forward_dynamics(robot, q, qd, X)  # (N, 9), = qdd to round-off
-    run = oc.simulate(robot, 10.0, oc.trajectories.table1, controller=oc.Controller())
+    run = oc.simulate(robot, 10.0, trajectories.table1, controller=oc.Controller())
 
-Heavy dependencies (pinocchio, matplotlib, xacro, yourdfpy) are imported only when used.
+The package is a pipeline of columns, each a sub-package (``docs/architecture.md``):
+``robot`` → ``motion`` → ``dynamics`` (``reference`` checks it) → ``simulation`` →
+``scenes`` → ``studies`` → ``outputs``, with ``serial`` (any URDF chain) beside them and
+``errors`` (every exception, rooted at :class:`~offshore_crane.errors.OffshoreCraneError`)
+on the ground floor. Sub-packages and heavy dependencies (pinocchio, matplotlib, xacro,
+yourdfpy) are imported only when used.
 """
 
 from __future__ import annotations
 
-from .dynamics import inverse_dynamics
-from .dynamics.forward import (actuation_matrix, bias_forces, equations_of_motion,
-                               forward_dynamics, mass_matrix)
-from .errors import (BackendMissingError, ConstraintResidualError,
-                     DescriptionError, GridError, InputError, InsufficientSeedsError,
-                     ModelError, NumericalError, OffshoreCraneError, OutputError,
-                     ResultsDirectoryError, SceneError, SchedulerError, SeaStateError,
-                     SeaWorkspaceError, SimulationError, SingularConfigurationError,
-                     SlackCableError, TrajectoryError, ViewerError, WorkspaceError)
-from .conventions import ACTUATORS, ACTUATOR_UNITS, GRAVITY
-from .kinematics.workspace import OffshoreCraneWarning, Thresholds
-from .model import Robot, load_robot
-from .control import Controller
-from .simulate import SimulationResult, simulate     # the function (the module: sys.modules)
+import importlib
+
+from offshore_crane.dynamics import Result, inverse_dynamics
+from offshore_crane.dynamics.forward import (EquationsOfMotion, actuation_matrix,
+                                             bias_forces, forward_dynamics, mass_matrix)
+from offshore_crane.robot import Robot, load_robot
+from offshore_crane.simulation import Controller, SimulationResult, simulate
 
 __version__ = "0.1.0"
 
-__all__ = ["load_robot", "inverse_dynamics", "forward_dynamics", "mass_matrix",
-           "bias_forces", "actuation_matrix", "equations_of_motion", "simulate",
-           "SimulationResult", "Controller", "trajectories", "Robot", "ACTUATORS",
-           "ACTUATOR_UNITS", "GRAVITY", "Thresholds", "OffshoreCraneWarning",
-           "OffshoreCraneError", "InputError", "TrajectoryError", "SceneError", "ModelError",
-           "DescriptionError", "WorkspaceError", "SingularConfigurationError",
-           "NumericalError", "ConstraintResidualError", "SimulationError", "OutputError",
-           "SeaStateError", "SeaWorkspaceError", "BackendMissingError",
-           "InsufficientSeedsError", "GridError", "ResultsDirectoryError", "SchedulerError",
-           "SlackCableError", "ViewerError"]
+__all__ = ["load_robot", "Robot", "inverse_dynamics", "forward_dynamics", "mass_matrix",
+           "bias_forces", "actuation_matrix", "simulate", "Controller", "Result",
+           "CableResult", "EquationsOfMotion", "SimulationResult"]
+
+#: The columns, loaded on first use as ``oc.<name>``.
+SUBPACKAGES = ("errors", "conventions", "robot", "motion", "dynamics", "reference",
+               "simulation", "scenes", "studies", "outputs", "serial", "cli")
+
+#: Names kept importable from the top for compatibility (not in ``__all__``): the
+#: exceptions (their home is :mod:`offshore_crane.errors`) and a few constants.
+_COMPATIBLE = {"ACTUATORS": "conventions", "ACTUATOR_UNITS": "conventions",
+               "GRAVITY": "conventions", "Thresholds": "robot.kinematics.workspace",
+               "OffshoreCraneWarning": "robot.kinematics.workspace",
+               "equations_of_motion": "dynamics.forward", "CableResult": "dynamics.cable"}
 
 
-def __getattr__(name):
-    if name in ("trajectories", "serial", "scenes", "kinematics", "dynamics", "sea",
-                "operations", "sizing", "sweep", "cable", "cable_simulation", "visual",
-                "export"):
-        import importlib
-
-        return importlib.import_module(f".{name}", __name__)
+def __getattr__(name: str):
+    if name in SUBPACKAGES:
+        return importlib.import_module(f"{__name__}.{name}")
+    if name in _COMPATIBLE:
+        return getattr(importlib.import_module(f"{__name__}.{_COMPATIBLE[name]}"), name)
+    errors = importlib.import_module(f"{__name__}.errors")
+    if name.endswith("Error") and hasattr(errors, name):
+        return getattr(errors, name)
     raise AttributeError(f"module 'offshore_crane' has no attribute '{name}'")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__) | set(SUBPACKAGES))

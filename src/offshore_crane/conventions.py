@@ -52,6 +52,6 @@ INERTIA_RTOL = 1e-6
 #: (:func:`offshore_crane.dynamics.quick_backend`).
 NUMBA_MIN = 500_000
 
-#: Wave spectra of :mod:`offshore_crane.sea` (here so that the command line lists them
+#: Wave spectra of :mod:`offshore_crane.motion.sea` (here so that the command line lists them
 #: without importing the sea module).
 SPECTRA = ("jonswap", "pierson-moskowitz")

@@ -214,7 +214,7 @@ class BackendMissingError(OffshoreCraneError, ImportError):
 class SeaStateError(InputError):
     """A sea state, a vessel's RAO table or a crane operation cannot be used.
 
-    Raised by :mod:`offshore_crane.sea` and :mod:`offshore_crane.operations` for values out
+    Raised by :mod:`offshore_crane.motion.sea` and :mod:`offshore_crane.motion.operations` for values out
     of their domain (``Hs <= 0``, ``gamma < 1``, a heading the RAO table does not cover,
     a waypoint outside a joint's limits) and for malformed RAO files; the message of a file
     error starts with ``file, line N, column C``.
@@ -238,7 +238,7 @@ class SeaStateError(InputError):
 class SeaWorkspaceError(WorkspaceError):
     """A Froude-scaled ship motion leaves the robot's workspace (leg stroke, U-joint).
 
-    Raised by :func:`offshore_crane.sea.platform_trajectory`; the message names the sample,
+    Raised by :func:`offshore_crane.motion.sea.platform_trajectory`; the message names the sample,
     the leg and the value at the requested scale, and the smallest scale at which the whole
     record fits, or says that no scale fits because the rotations alone leave the workspace.
 
@@ -287,7 +287,7 @@ class SlackCableError(OffshoreCraneError, ArithmeticError):
     """The hanging payload's cable went slack: the tension it would need is ≤ 0, so the
     pendulum model (an inextensible cable, taut) no longer holds there.
 
-    Raised by :mod:`offshore_crane.cable` at the first such sample (unless asked to warn
+    Raised by :mod:`offshore_crane.dynamics.cable` at the first such sample (unless asked to warn
     and mark the samples instead).
 
     Attributes:
@@ -295,7 +295,7 @@ class SlackCableError(OffshoreCraneError, ArithmeticError):
         time: Its time [s].
         tension: The tension the model gives there [N] (≤ 0).
         result: The run up to (not including) that sample, every sample computed before it
-            kept (a :class:`~offshore_crane.cable.CableResult`).
+            kept (a :class:`~offshore_crane.dynamics.cable.CableResult`).
     """
 
     def __init__(self, message: str, index: int | None = None, time: float | None = None,
@@ -309,11 +309,11 @@ class SlackCableError(OffshoreCraneError, ArithmeticError):
 
 class InsufficientSeedsError(InputError):
     """Too few records (seeds) for a Gumbel fit of their maxima
-    (:func:`offshore_crane.sizing.gumbel_fit`).
+    (:func:`offshore_crane.studies.sizing.gumbel_fit`).
 
     Attributes:
         seeds: How many were given.
-        minimum: How many a fit needs (:data:`offshore_crane.sizing.MIN_SEEDS`).
+        minimum: How many a fit needs (:data:`offshore_crane.studies.sizing.MIN_SEEDS`).
     """
 
     def __init__(self, message: str, seeds: int | None = None, minimum: int | None = None):

@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import InputError, OutputError
+from offshore_crane.errors import InputError, OutputError
 
 #: Rows per block of :func:`write_csv` (a large output is streamed, so an interrupted
 #: write is realistic and memory stays bounded).

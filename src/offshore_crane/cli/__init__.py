@@ -13,13 +13,13 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..errors import InputError, OffshoreCraneError
+from offshore_crane.errors import InputError, OffshoreCraneError
 
 #: Modules adding sub-commands: each has ``add_parser(subparsers)``, which registers its
 #: parser with ``set_defaults(run=...)``; ``run(args) -> int`` is its exit status. They
 #: must import nothing heavy at module level (the CLI imports them all to build --help).
 SUBCOMMANDS = ("offshore_crane.cli.id", "offshore_crane.cli.motion",
-               "offshore_crane.cli.simulate", "offshore_crane.serial.cli",
+               "offshore_crane.cli.simulate", "offshore_crane.cli.serial_id",
                "offshore_crane.cli.describe", "offshore_crane.cli.compile",
                "offshore_crane.cli.size", "offshore_crane.cli.sweep",
                "offshore_crane.cli.animate", "offshore_crane.cli.show",
@@ -66,8 +66,8 @@ def main(argv=None) -> int:
     """
     import warnings
 
-    from ..io import Terminated, signals_as_exceptions
-    from ..kinematics.workspace import OffshoreCraneWarning
+    from offshore_crane.io import Terminated, signals_as_exceptions
+    from offshore_crane.robot.kinematics.workspace import OffshoreCraneWarning
 
     def one_line(message, category, filename, lineno, file=None, line=None):
         print(f"offshore-crane: warning: {message}", file=sys.stderr)
@@ -103,7 +103,7 @@ def plan(args, scene):
         function that prints the command's report (to standard error when an output goes
         to standard output).
     """
-    from ..io import FIGURE_FORMATS, plan_outputs
+    from offshore_crane.io import FIGURE_FORMATS, plan_outputs
 
     inputs = [args.scene, scene.trajectory if scene.trajectory != "table1" else None,
               scene.robot_description]
@@ -137,9 +137,9 @@ def robot_scene(args, scene):
     import os
     from dataclasses import replace
 
-    from ..errors import SceneError
-    from ..model.overrides import parse_set
-    from ..scenes import with_robot_overrides
+    from offshore_crane.errors import SceneError
+    from offshore_crane.robot.overrides import parse_set
+    from offshore_crane.scenes import with_robot_overrides
 
     if args.robot is not None:
         given = os.path.abspath(args.robot)

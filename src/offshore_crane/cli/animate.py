@@ -8,7 +8,7 @@ actuator force (computed by inverse dynamics when the source has none).
 
 from __future__ import annotations
 
-from ..errors import InputError
+from offshore_crane.errors import InputError
 
 #: Default picture size [pixels] and frame rate [1/s].
 SIZE, FPS = "640x480", 30.0
@@ -17,7 +17,7 @@ SIZE, FPS = "640x480", 30.0
 def add_source_options(p) -> None:
     """``--scene``, ``--trajectory``, ``--from``, ``--duration``, the robot and gravity
     (shared by ``animate`` and ``view``)."""
-    from . import add_robot_options
+    from offshore_crane.cli import add_robot_options
 
     p.add_argument("--scene", metavar="FILE.toml", help="scene file: robot, trajectory "
                    "(e.g. scenes/sea_state_crane.toml)")
@@ -37,8 +37,8 @@ def add_source_options(p) -> None:
 def scene_of(args):
     """The scene of ``--scene`` / ``--trajectory`` with ``--robot``, ``--set``,
     ``--gravity`` applied."""
-    from .. import scenes
-    from . import robot_scene
+    from offshore_crane import scenes
+    from offshore_crane.cli import robot_scene
 
     if args.run_csv is not None and args.trajectory is not None:
         raise InputError("--from and --trajectory both give the motion: choose one",
@@ -59,8 +59,8 @@ def inputs_of(args, scene) -> list:
 
 def load_motion(args, scene):
     """``(robot, motion)`` of the scene, or of ``--from``."""
-    from .. import scenes
-    from ..visual import motion as mo
+    from offshore_crane import scenes
+    from offshore_crane.outputs.visual import motion as mo
 
     robot = scenes.load_robot(scene)
     if args.run_csv is not None:
@@ -105,10 +105,10 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from ..io import plan_outputs
-    from ..visual import animate as an
-    from ..visual import motion as mo
-    from ..visual.render import parse_camera
+    from offshore_crane.io import plan_outputs
+    from offshore_crane.outputs.visual import animate as an
+    from offshore_crane.outputs.visual import motion as mo
+    from offshore_crane.outputs.visual.render import parse_camera
 
     for name, value in (("--fps", args.fps), ("--speed", args.speed)):
         if not value > 0 or value == float("inf"):

@@ -17,9 +17,9 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from ..cable import warm_up as warm_up_cable
-    from ..dynamics import warm_up
-    from ..simulate import warm_up as warm_up_simulation
+    from offshore_crane.dynamics.cable import warm_up as warm_up_cable
+    from offshore_crane.dynamics import warm_up
+    from offshore_crane.simulation.rigid import warm_up as warm_up_simulation
 
     total = 0.0
     for name, seconds in warm_up() + warm_up_simulation() + warm_up_cable():

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 
 def add_parser(sub) -> None:
-    from . import add_robot_options
+    from offshore_crane.cli import add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("describe", help="a robot description, resolved, as YAML",
@@ -23,10 +23,10 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from ..io import plan_outputs, write_text
-    from ..model.description import resolve
-    from ..model.overrides import parse_set
-    from ..model.xacro_cache import description_yaml
+    from offshore_crane.io import plan_outputs, write_text
+    from offshore_crane.robot.description import resolve
+    from offshore_crane.robot.overrides import parse_set
+    from offshore_crane.robot.xacro_cache import description_yaml
 
     outputs = plan_outputs({"--out": args.out or "-"}, [args.robot])
     text = description_yaml(resolve(args.robot, parse_set(args.set)).xacro_data())

@@ -9,14 +9,14 @@ with ours along Table 1 (needs the optional extra ``mujoco``). See docs/mjcf.md.
 
 from __future__ import annotations
 
-from ..errors import InputError
+from offshore_crane.errors import InputError
 
 #: Samples of Table 1 that ``--check`` compares (over its 10π s span).
 CHECK_SAMPLES = 50
 
 
 def add_parser(sub) -> None:
-    from . import add_robot_options
+    from offshore_crane.cli import add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("export", help="the robot as a MuJoCo model (MJCF)",
@@ -52,9 +52,9 @@ def run(args) -> int:
 
     import numpy as np
 
-    from .. import scenes
-    from ..io import plan_outputs, write_text
-    from . import comma_numbers, robot_scene
+    from offshore_crane import scenes
+    from offshore_crane.io import plan_outputs, write_text
+    from offshore_crane.cli import comma_numbers, robot_scene
 
     if args.mjcf is None:
         raise InputError("export: give --mjcf FILE.xml (the only format so far)",
@@ -68,7 +68,7 @@ def run(args) -> int:
         else print
     robot = scenes.load_robot(scene)
     gravity = scene.gravity if args.gravity is None else tuple(args.gravity)
-    from ..export.mjcf import TIMESTEP, export
+    from offshore_crane.outputs.export.mjcf import TIMESTEP, export
 
     model = export(robot, pose, sway=sway, gravity=gravity, limits=args.limits,
                    hold=not args.no_hold,
@@ -90,9 +90,10 @@ def _states(robot, gravity):
     accelerations 2 m/s², rad/s²; the arm's Table 1 motion when there is an arm)."""
     import numpy as np
 
-    from .. import inverse_dynamics, trajectories
-    from ..errors import WorkspaceError
-    from ..kinematics import legs
+    from offshore_crane import inverse_dynamics
+    from offshore_crane.motion import trajectories
+    from offshore_crane.errors import WorkspaceError
+    from offshore_crane.robot.kinematics import legs
 
     t = np.linspace(0.0, 10 * np.pi, CHECK_SAMPLES)
     q, qd, qdd = trajectories.table1(t)
@@ -121,12 +122,12 @@ def _states(robot, gravity):
 
 def _check(model, robot, gravity, say) -> int:
     """MuJoCo's forward dynamics of ``model`` against ours (printed): exit status 1 beyond
-    :data:`~offshore_crane.export.mjcf.AGREEMENT`."""
+    :data:`~offshore_crane.outputs.export.mjcf.AGREEMENT`."""
     import numpy as np
 
-    from .. import forward_dynamics
-    from ..conventions import COORDINATES
-    from ..export.mjcf import AGREEMENT, forward
+    from offshore_crane import forward_dynamics
+    from offshore_crane.conventions import COORDINATES
+    from offshore_crane.outputs.export.mjcf import AGREEMENT, forward
 
     if robot.hybrid.cable is not None:
         return _check_hanging(model, robot, gravity, say)
@@ -145,14 +146,15 @@ def _check(model, robot, gravity, say) -> int:
 
 def _check_hanging(model, robot, gravity, say) -> int:
     """With a hanging load: our swing along Table 1 (10 s at 100 Hz from a sway of
-    (0.1, −0.05) rad, X from :func:`offshore_crane.cable.inverse_dynamics`), every
+    (0.1, −0.05) rad, X from :func:`offshore_crane.dynamics.cable.inverse_dynamics`), every
     ``200 / CHECK_SAMPLES``-th sample set in MuJoCo: its accelerations against the
     prescribed q̈ and our sway accelerations (exit status 1 beyond AGREEMENT)."""
     import numpy as np
 
-    from .. import cable, trajectories
-    from ..conventions import COORDINATES
-    from ..export.mjcf import AGREEMENT, forward
+    from offshore_crane.dynamics import cable
+    from offshore_crane.motion import trajectories
+    from offshore_crane.conventions import COORDINATES
+    from offshore_crane.outputs.export.mjcf import AGREEMENT, forward
 
     t = trajectories.time_grid(10.0, 100.0)
     q, qd, qdd = trajectories.table1(t)
@@ -166,7 +168,7 @@ def _check_hanging(model, robot, gravity, say) -> int:
                  / np.abs(run.sway_accel[k]).max())
     worst = int(np.argmax(ratio))
     ok = bool(ratio.max() <= AGREEMENT and sway <= AGREEMENT)
-    say(f"MuJoCo vs our swing (offshore_crane.cable), Table 1 with the hanging load "
+    say(f"MuJoCo vs our swing (offshore_crane.dynamics.cable), Table 1 with the hanging load "
         f"({len(k)} samples): loops closed to {res.loop.max():.1e} m; max |Δq̈| / max "
         f"constraint acceleration = {ratio.max():.2e} ({COORDINATES[worst]}), sway "
         f"accelerations {sway:.2e} of their largest "

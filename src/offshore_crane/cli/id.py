@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from ..conventions import ACTUATOR_UNITS, ACTUATORS, AGREEMENT_RTOL, NUMBA_MIN
-from ..errors import InputError
-from . import add_robot_options
+from offshore_crane.conventions import ACTUATOR_UNITS, ACTUATORS, AGREEMENT_RTOL, NUMBA_MIN
+from offshore_crane.errors import InputError
+from offshore_crane.cli import add_robot_options
 
 RELATIVE_LIMIT = AGREEMENT_RTOL
 
@@ -74,7 +74,7 @@ def add_options(p, plot_help: str = "write a figure like the paper's Fig. 3 (PNG
 
 
 def _thresholds(args):
-    from ..kinematics.workspace import Thresholds
+    from offshore_crane.robot.kinematics.workspace import Thresholds
 
     try:
         return Thresholds(warn=args.warn_cond, error=args.error_cond)
@@ -88,9 +88,9 @@ _METHOD_LABELS = {"kane": "Kane", "kane-explicit": "Kane (explicit)", "rnea": "R
 
 def _scene(args):
     """The scene to run: ``--scene`` (or the default one) with the explicit flags applied."""
-    from ..scenes import Scene, load_scene, with_overrides, with_trajectory
+    from offshore_crane.scenes import Scene, load_scene, with_overrides, with_trajectory
 
-    from . import robot_scene
+    from offshore_crane.cli import robot_scene
 
     scene = robot_scene(args, load_scene(args.scene) if args.scene else Scene())
     methods = None
@@ -129,15 +129,15 @@ def _scene(args):
 def run(args) -> int:
     import numpy as np
 
-    from .. import scenes
-    from ..report import format_summary, plot, summary_rows, write_csv
-    from . import plan
+    from offshore_crane import scenes
+    from offshore_crane.outputs.report import format_summary, plot, summary_rows, write_csv
+    from offshore_crane.cli import plan
 
     scene = _scene(args)
     outputs, say = plan(args, scene)
     robot = scenes.load_robot(scene)
     traj = scenes.load_trajectory(scene, robot)
-    from ..dynamics import quick_backend
+    from offshore_crane.dynamics import quick_backend
 
     backend = args.backend or quick_backend(len(traj.t))
     options = dict(limits=not args.no_limits, thresholds=_thresholds(args),
@@ -163,7 +163,7 @@ def run(args) -> int:
     for kind, kappa, k in res.worst():
         say(f"worst {kind} condition number: {kappa:.4g} at t = {t[k]:.2f} s (sample {k})")
     if cable is not None:
-        from ..report import cable_summary
+        from offshore_crane.outputs.report import cable_summary
 
         say(cable_summary(cable))
     status = 0

@@ -8,7 +8,7 @@ against the robot's workspace, and an error states the smallest Froude scale tha
 
 from __future__ import annotations
 
-from ..conventions import COORDINATES, COORDINATE_UNITS
+from offshore_crane.conventions import COORDINATES, COORDINATE_UNITS
 
 #: Plotted spectra: heave, roll, pitch (columns of q).
 SPECTRUM_COLUMNS = (2, 3, 4)
@@ -18,8 +18,8 @@ WELCH_SEGMENT_S = 20.48
 
 
 def add_parser(sub) -> None:
-    from ..conventions import SPECTRA
-    from . import add_robot_options
+    from offshore_crane.conventions import SPECTRA
+    from offshore_crane.cli import add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("motion", help="platform and crane motion from a sea state",
@@ -64,8 +64,8 @@ def _scene(args):
     "sea"`` scene, its robot with ``--robot`` and ``--set``."""
     from dataclasses import replace
 
-    from .. import scenes
-    from . import robot_scene
+    from offshore_crane import scenes
+    from offshore_crane.cli import robot_scene
 
     scene = scenes.load_scene(args.scene) if args.scene else scenes.Scene()
     sea = dict(scene.sea)
@@ -101,8 +101,9 @@ def run(args) -> int:
 
     import numpy as np
 
-    from .. import scenes, trajectories
-    from ..io import FIGURE_FORMATS, plan_outputs
+    from offshore_crane import scenes
+    from offshore_crane.motion import trajectories
+    from offshore_crane.io import FIGURE_FORMATS, plan_outputs
 
     scene = _scene(args)
     outputs = plan_outputs({"--out": args.out, "--plot": args.plot},
@@ -148,10 +149,10 @@ def plot(target, scene, traj) -> None:
     """
     import numpy as np
 
-    from ..errors import require
-    from ..report import save_figure
-    from ..scenes import sea_arguments
-    from ..sea import response_spectrum, welch
+    from offshore_crane.errors import require
+    from offshore_crane.outputs.report import save_figure
+    from offshore_crane.scenes import sea_arguments
+    from offshore_crane.motion.sea import response_spectrum, welch
 
     matplotlib = require("matplotlib", "matplotlib", "--plot")
     matplotlib.use("Agg")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 
 def add_parser(sub) -> None:
-    from . import add_robot_options
+    from offshore_crane.cli import add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("show", help="a still picture of one pose, frames labelled",
@@ -37,13 +37,13 @@ STILL_FORMATS = ("png", "jpg", "jpeg", "webp", "bmp", "tif", "tiff", "gif")
 def run(args) -> int:
     import numpy as np
 
-    from .. import scenes
-    from ..io import plan_outputs
-    from ..visual.animate import still
-    from ..visual.poses import has_cable
-    from ..visual.render import parse_camera
-    from . import comma_numbers, robot_scene
-    from .animate import parse_size
+    from offshore_crane import scenes
+    from offshore_crane.io import plan_outputs
+    from offshore_crane.outputs.visual.animate import still
+    from offshore_crane.outputs.visual.poses import has_cable
+    from offshore_crane.outputs.visual.render import parse_camera
+    from offshore_crane.cli import comma_numbers, robot_scene
+    from offshore_crane.cli.animate import parse_size
 
     width, height = parse_size(args.size)
     camera = parse_camera(args.camera)

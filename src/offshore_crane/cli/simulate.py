@@ -8,8 +8,8 @@ every sample computed up to the stop, and the command exits with status 2 and on
 
 from __future__ import annotations
 
-from ..conventions import ACTUATOR_UNITS, ACTUATORS, COORDINATE_UNITS, COORDINATES
-from ..errors import InputError
+from offshore_crane.conventions import ACTUATOR_UNITS, ACTUATORS, COORDINATE_UNITS, COORDINATES
+from offshore_crane.errors import InputError
 
 CSV_HEADER = ",".join(["t_s", *COORDINATES, *(f"{c}_ref" for c in COORDINATES),
                        *(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS,
@@ -17,8 +17,8 @@ CSV_HEADER = ",".join(["t_s", *COORDINATES, *(f"{c}_ref" for c in COORDINATES),
 
 
 def add_parser(sub) -> None:
-    from ..control import LAWS
-    from . import add_robot_options
+    from offshore_crane.simulation.control import LAWS
+    from offshore_crane.cli import add_robot_options
 
     p = sub.add_parser("simulate", help="simulate the robot under a controller",
                        description=__doc__.splitlines()[0].split(": ", 1)[1] + " "
@@ -75,10 +75,10 @@ def run(args) -> int:
 
     import numpy as np
 
-    from .. import scenes
-    from ..errors import SimulationError
-    from ..simulate import simulate
-    from . import plan, robot_scene
+    from offshore_crane import scenes
+    from offshore_crane.errors import SimulationError
+    from offshore_crane.simulation.rigid import simulate
+    from offshore_crane.cli import plan, robot_scene
 
     scene = robot_scene(args, scenes.load_scene(args.scene) if args.scene else scenes.Scene())
     scene = scenes.with_trajectory(scene, "command line", args.trajectory)
@@ -132,8 +132,8 @@ def run(args) -> int:
         f"{len(res)} samples, t = {res.t[0]:.2f}..{res.t[-1]:.2f} s")
     say(summary(res))
     if "--out" in outputs:
-        from ..io import write_csv
-        from ..report import CABLE_COLUMNS
+        from offshore_crane.io import write_csv
+        from offshore_crane.outputs.report import CABLE_COLUMNS
 
         if res.sway is None:
             write_csv(outputs["--out"], CSV_HEADER,
@@ -180,8 +180,8 @@ def summary(res) -> str:
 
 def plot(target, res, title: str = "") -> None:
     """Tracking errors (translations, rotations) and applied forces against time."""
-    from ..errors import require
-    from ..report import finish_figure
+    from offshore_crane.errors import require
+    from offshore_crane.outputs.report import finish_figure
 
     matplotlib = require("matplotlib", "matplotlib", "--plot")
     matplotlib.use("Agg")

@@ -13,11 +13,11 @@ from __future__ import annotations
 
 import math
 
-from ..errors import InputError
+from offshore_crane.errors import InputError
 
 
 def add_parser(sub) -> None:
-    from . import id as id_command
+    from offshore_crane.cli import id as id_command
 
     doc = __doc__.splitlines()
     p = sub.add_parser("size", help="actuator envelope and utilisation of one run",
@@ -55,11 +55,12 @@ def run(args) -> int:
     import json
     import sys
 
-    from .. import scenes, sweep
-    from ..conventions import ACTUATORS
-    from ..sizing import CAPACITIES, format_envelope, format_verdict, verdict
-    from . import plan
-    from .id import RELATIVE_LIMIT, _scene, _thresholds
+    from offshore_crane import scenes
+    from offshore_crane.studies import sweep
+    from offshore_crane.conventions import ACTUATORS
+    from offshore_crane.studies.sizing import CAPACITIES, format_envelope, format_verdict, verdict
+    from offshore_crane.cli import plan
+    from offshore_crane.cli.id import RELATIVE_LIMIT, _scene, _thresholds
 
     if args.seeds < 1:
         raise InputError(f"--seeds {args.seeds}: must be ≥ 1", name="--seeds")
@@ -133,12 +134,12 @@ def run(args) -> int:
             say(f"kane vs {c['method']}: relative max |ΔX| = {c['relative']:.3e} "
                 f"({'OK' if c['ok'] else 'FAIL'}, limit {RELATIVE_LIMIT:g})")
     if "--out" in outputs:
-        from ..report import write_csv
+        from offshore_crane.outputs.report import write_csv
 
         write_csv(outputs["--out"], head.t, head.X)
         say(f"wrote {args.out}")
     if "--plot" in outputs:
-        from ..sizing_plots import utilisation_chart
+        from offshore_crane.outputs.sizing_plots import utilisation_chart
 
         utilisation_chart(outputs["--plot"], v.utilisation,
                           title=f"{scene.name}: utilisation ({v.describe()})")

@@ -13,11 +13,11 @@ from __future__ import annotations
 import math
 import os
 
-from ..errors import InputError
+from offshore_crane.errors import InputError
 
 
 def add_parser(sub) -> None:
-    from . import add_robot_options
+    from offshore_crane.cli import add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("sweep", help="sizing over a grid of sea states and parameters",
@@ -55,7 +55,7 @@ def add_parser(sub) -> None:
 def _plot_dir(given: str | None) -> str | None:
     """``--plot DIR``: an existing directory, or a new one whose parent exists (made
     after the checks, before the sweep)."""
-    from ..errors import OutputError
+    from offshore_crane.errors import OutputError
 
     if given is None:
         return None
@@ -76,10 +76,11 @@ def _label(values: dict) -> str:
 def run(args) -> int:
     import sys
 
-    from .. import scenes, sweep
-    from ..io import plan_outputs
-    from ..sizing import CAPACITIES
-    from . import robot_scene
+    from offshore_crane import scenes
+    from offshore_crane.studies import sweep
+    from offshore_crane.io import plan_outputs
+    from offshore_crane.studies.sizing import CAPACITIES
+    from offshore_crane.cli import robot_scene
 
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers {args.workers}: must be ≥ 1", name="--workers")
@@ -118,7 +119,7 @@ def run(args) -> int:
               + f"{r['seeds']:>7}{r['basis']:>10}{text:>9}  {who}")
     bases = set(v["basis"])
     if "observed" in bases:
-        from ..sizing import MIN_SEEDS
+        from offshore_crane.studies.sizing import MIN_SEEDS
 
         print(f"(observed: fewer than {MIN_SEEDS} seeds or no sea, the largest observed "
               "peak; gumbel: most probable maximum over "
@@ -137,7 +138,7 @@ def run(args) -> int:
                   + (f" ({r['uncovered_pct']:.1f} % of the time outside the swept Tp)"
                      if r["uncovered_pct"] > 0 else ""))
     if "--csv" in planned:
-        from ..io import write_text
+        from offshore_crane.io import write_text
 
         write_text(planned["--csv"], df.to_csv(index=False))
         print(f"wrote {args.csv}")
@@ -149,9 +150,9 @@ def run(args) -> int:
 def _plots(plot_dir, df, v, op, scene, capacities) -> None:
     import numpy as np
 
-    from .. import sweep
-    from ..conventions import ACTUATORS
-    from ..sizing_plots import operability_diagram, utilisation_chart
+    from offshore_crane.studies import sweep
+    from offshore_crane.conventions import ACTUATORS
+    from offshore_crane.outputs.sizing_plots import operability_diagram, utilisation_chart
 
     os.makedirs(plot_dir, exist_ok=True)
     table = v.copy()

@@ -8,11 +8,11 @@ Ctrl-C.
 
 from __future__ import annotations
 
-from ..errors import InputError
+from offshore_crane.errors import InputError
 
 
 def add_parser(sub) -> None:
-    from .animate import add_source_options
+    from offshore_crane.cli.animate import add_source_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("view", help="interactive 3-D view in the browser (viser)",
@@ -31,9 +31,9 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     import time
 
-    from ..visual import motion as mo
-    from ..visual.viewer import VIEW_RATE, Viewer, check_port
-    from .animate import load_motion, scene_of
+    from offshore_crane.outputs.visual import motion as mo
+    from offshore_crane.outputs.visual.viewer import VIEW_RATE, Viewer, check_port
+    from offshore_crane.cli.animate import load_motion, scene_of
 
     if not args.speed > 0 or args.speed == float("inf"):
         raise InputError(f"--speed {args.speed:g} must be a finite number > 0",

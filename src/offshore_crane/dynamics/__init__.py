@@ -20,13 +20,13 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..conventions import ACTUATORS, GRAVITY
-from ..errors import BackendMissingError, InputError
-from ..kinematics import workspace as ws
-from ..kinematics.formulas import LEG_MODEL_CODES
-from ..validation import as_gravity, as_samples, same_length
-from .constants import robot_arrays
-from .kernels import Options, allocate, run_numpy, run_python
+from offshore_crane.conventions import ACTUATORS, GRAVITY
+from offshore_crane.errors import BackendMissingError, InputError
+from offshore_crane.robot.kinematics import workspace as ws
+from offshore_crane.robot.kinematics.formulas import LEG_MODEL_CODES
+from offshore_crane.validation import as_gravity, as_samples, same_length
+from offshore_crane.dynamics.constants import robot_arrays
+from offshore_crane.dynamics.kernels import Options, allocate, run_numpy, run_python
 
 METHODS = ("kane", "kane-explicit", "rnea")
 LEG_MODELS = tuple(LEG_MODEL_CODES)
@@ -60,7 +60,7 @@ class Result:
         pruned: What was skipped because the result does not depend on it.
         backend: ``"numpy"`` or ``"numba"``: what ran.
         cable: With a payload on a cable, the
-            :class:`~offshore_crane.cable.CableResult` (sway, tension, cable force), else
+            :class:`~offshore_crane.dynamics.cable.CableResult` (sway, tension, cable force), else
             None.
     """
 
@@ -105,7 +105,7 @@ def _compiled():
         if not numba_available():
             raise BackendMissingError("backend='numba' needs Numba: pip install numba",
                                       package="numba")
-        from . import compiled
+        from offshore_crane.dynamics import compiled
 
         _COMPILED.append(compiled)
     return _COMPILED[0]
@@ -172,7 +172,7 @@ def _kane_numpy(robot, q, qd, qdd, g, opts: Options, threads: int):
 
 
 def _explicit_numpy(robot, q, qd, qdd, g, opts: Options, threads: int):
-    from .kernels import run_explicit_numpy
+    from offshore_crane.dynamics.kernels import run_explicit_numpy
 
     arrays = robot_arrays(robot)
     X, kappa = allocate(len(q), opts)
@@ -182,7 +182,7 @@ def _explicit_numpy(robot, q, qd, qdd, g, opts: Options, threads: int):
 
 
 def _rnea(robot, q, qd, qdd, g, opts: Options, threads: int):
-    from ..reference import rnea
+    from offshore_crane.reference import rnea
 
     arrays = robot_arrays(robot)
     X, kappa = allocate(len(q), opts)
@@ -231,7 +231,7 @@ def quick_backend(n: int) -> str:
     check); long-lived callers keep ``"auto"``."""
     import sys
 
-    from ..conventions import NUMBA_MIN
+    from offshore_crane.conventions import NUMBA_MIN
 
     if "numba" in sys.modules or n >= NUMBA_MIN:
         return "numba" if numba_available() else "numpy"
@@ -388,7 +388,7 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     """
     import time
 
-    from ..model import load_robot
+    from offshore_crane.robot import load_robot
 
     robot = robot or load_robot()
     q = np.zeros((1, 9))
@@ -398,7 +398,7 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
         t0 = time.perf_counter()
         solve(robot, q, 0 * q, 0 * q, method=method, backend="numba", limits=False)
         out.append((f"{method} kernels", time.perf_counter() - t0))
-    from .forward import forward_dynamics
+    from offshore_crane.dynamics.forward import forward_dynamics
 
     t0 = time.perf_counter()
     forward_dynamics(robot, q, 0 * q, 0 * q, limits=False)

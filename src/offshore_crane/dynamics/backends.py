@@ -1,6 +1,6 @@
 """One text, four backends: how the formulas are run.
 
-The formulas (:mod:`offshore_crane.kinematics.formulas`, :mod:`.formulas`) are written once
+The formulas (:mod:`offshore_crane.robot.kinematics.formulas`, :mod:`.formulas`) are written once
 as plain arithmetic on 3-tuples. This module *binds* their code objects to other
 namespaces, so that each backend runs exactly the same text:
 
@@ -24,8 +24,8 @@ import inspect
 import math
 import types
 
-from ..kinematics import formulas as _kinematics
-from . import formulas as _dynamics
+from offshore_crane.robot.kinematics import formulas as _kinematics
+from offshore_crane.dynamics import formulas as _dynamics
 
 #: The formula modules, in import order.
 MODULES = (_kinematics, _dynamics)
@@ -86,7 +86,7 @@ _MPMATH: list = []
 def mpmath_backend() -> types.SimpleNamespace:
     """The formulas in mpmath (bound on first use; mpmath is a test/study dependency)."""
     if not _MPMATH:
-        from ..errors import require
+        from offshore_crane.errors import require
 
         mp = require("mpmath", "mpmath", "The extended-precision reference")
         _MPMATH.append(bind({"sqrt": mp.sqrt, "sin": mp.sin, "cos": mp.cos,

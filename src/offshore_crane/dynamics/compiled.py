@@ -1,11 +1,11 @@
 """The compiled backend: the one text of the formulas, compiled by Numba.
 
-Every function of :mod:`offshore_crane.kinematics.formulas` and :mod:`.formulas` is
+Every function of :mod:`offshore_crane.robot.kinematics.formulas` and :mod:`.formulas` is
 re-bound and wrapped in ``numba.njit`` (:func:`.backends.bind`); the drivers below loop
 over samples, solve each 6x6 leg-force system by Gauss–Jordan elimination with partial
 pivoting (which also gives the inverse for the 1-norm condition number) and apply the
 checks inside the loop, writing a health record
-(:mod:`offshore_crane.kinematics.workspace`) instead of NumPy reductions.
+(:mod:`offshore_crane.robot.kinematics.workspace`) instead of NumPy reductions.
 
 Compilation happens on first call and is cached on disk (``cache=True``, beside the
 package's files, or in ``NUMBA_CACHE_DIR``); the drivers close over a hash of the
@@ -19,10 +19,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..kinematics import workspace as ws
-from . import backends
-from .constants import FIELDS
-from .formulas import KaneConstants
+from offshore_crane.robot.kinematics import workspace as ws
+from offshore_crane.dynamics import backends
+from offshore_crane.dynamics.constants import FIELDS
+from offshore_crane.dynamics.formulas import KaneConstants
 
 JIT = dict(cache=True, nogil=True, error_model="numpy")
 # No fastmath: measured on the fused driver, reassociation saves 8 % (1.37 against 1.50 µs

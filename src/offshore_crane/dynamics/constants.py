@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .formulas import KaneConstants
+from offshore_crane.dynamics.formulas import KaneConstants
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 _CABLE_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
@@ -60,7 +60,7 @@ FIELDS = tuple(f for f in KaneConstants._fields if f not in ("n_arm", "arm_prism
 
 
 def build(model) -> RobotArrays:
-    """Constants of :class:`~offshore_crane.model.hybrid.HybridModel` ``model``.
+    """Constants of :class:`~offshore_crane.robot.hybrid.HybridModel` ``model``.
 
     The leg links share the leg's angular velocity and acceleration (the joint between
     them is prismatic), so their central inertias are summed in the leg frame
@@ -113,12 +113,12 @@ def robot_arrays(robot) -> RobotArrays:
     out = _CACHE.get(robot)
     if out is None:
         if robot.hybrid.cable is not None:
-            from ..errors import ModelError
+            from offshore_crane.errors import ModelError
 
             raise ModelError(
                 f"this robot's payload hangs on a cable (payload.cable_length = "
                 f"{robot.hybrid.cable_length:g} m): its forces depend on the swing, so "
-                "the rigid-robot solvers do not apply; use offshore_crane.cable "
+                "the rigid-robot solvers do not apply; use offshore_crane.dynamics.cable "
                 "(inverse_dynamics; the command line's id does it), or cable_length = 0 "
                 "for a welded payload", element="payload.cable_length")
         out = _CACHE[robot] = build(robot.hybrid)
@@ -139,7 +139,7 @@ def cable_arrays(robot) -> RobotArrays:
     if out is None:
         model = robot.hybrid
         if model.cable is None:
-            from ..errors import ModelError
+            from offshore_crane.errors import ModelError
 
             raise ModelError("the robot has no payload on a cable (payload.cable_length = 0)",
                              element="payload.cable_length")

@@ -28,10 +28,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..conventions import GRAVITY
-from ..errors import InputError, require
-from ..kinematics.formulas import LEG_MODEL_CODES
-from ..validation import as_gravity, as_samples, same_length
+from offshore_crane.conventions import GRAVITY
+from offshore_crane.errors import InputError, require
+from offshore_crane.robot.kinematics.formulas import LEG_MODEL_CODES
+from offshore_crane.validation import as_gravity, as_samples, same_length
 
 #: Decimal digits of the reference arithmetic (≈ 133 bits): 1e-40 against float64's 1e-16.
 DPS = 40
@@ -71,9 +71,9 @@ def sample(robot, q, qd, qdd, gravity=GRAVITY, *, leg_model: str = "full",
     Returns:
         :class:`ExtendedResult`.
     """
-    from .backends import mpmath_backend
-    from .constants import as_mpf, robot_arrays
-    from .formulas import COS_THETA2, DIAG_ROWS, STORE_WIDTH
+    from offshore_crane.dynamics.backends import mpmath_backend
+    from offshore_crane.dynamics.constants import as_mpf, robot_arrays
+    from offshore_crane.dynamics.formulas import COS_THETA2, DIAG_ROWS, STORE_WIDTH
 
     mp = _mp()
     B = mpmath_backend()

@@ -1,6 +1,6 @@
 """Kane's method for the hybrid robot, written once, per sample (paper Eqs. 18-40).
 
-Like :mod:`offshore_crane.kinematics.formulas` (whose formulas these call), this is plain
+Like :mod:`offshore_crane.robot.kinematics.formulas` (whose formulas these call), this is plain
 arithmetic on 3-tuples that :mod:`.backends` runs vectorised with NumPy, compiled with
 Numba, or in Python floats / mpmath. Two forms of Kane's equations live here:
 
@@ -40,7 +40,7 @@ from collections import namedtuple
 
 from numpy import cos, sin, sqrt
 
-from ..kinematics.formulas import (FULL, MASSLESS, add, arm_child, arm_joint, attitude, axpy,
+from offshore_crane.robot.kinematics.formulas import (FULL, MASSLESS, add, arm_child, arm_joint, attitude, axpy,
                                    cross, platform_partials, put, take, dot, leg_frame, leg_geometry, leg_motion,
                                    leg_spin, mat3, mm, mtv, mv, platform_rates,
                                    point_acceleration, point_velocity, row3, scale, sub,
@@ -67,7 +67,7 @@ STORE_WIDTH = 27
 #: Rows of the legs' diagnostics workspace ``diag`` (DIAG_ROWS, 6).
 #: LENGTH l [m], COS_THETA2 = h / l, HEIGHT of S above P [m], and S − P in the U-joint
 #: frame (DX, DY, DZ) with H = |(DX, DZ)| [m], from which the U-joint angles follow
-#: (:func:`~offshore_crane.kinematics.formulas.ujoint_angles`, only where checked).
+#: (:func:`~offshore_crane.robot.kinematics.formulas.ujoint_angles`, only where checked).
 LENGTH, COS_THETA2, HEIGHT, DX, DY, DZ, H = 0, 1, 2, 3, 4, 5, 6
 DIAG_ROWS = 7
 

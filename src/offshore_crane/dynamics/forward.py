@@ -25,11 +25,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..conventions import COORDINATES, GRAVITY
-from ..errors import InputError, SingularConfigurationError
-from ..kinematics import workspace as ws
-from ..validation import as_gravity, as_samples
-from .constants import robot_arrays
+from offshore_crane.conventions import COORDINATES, GRAVITY
+from offshore_crane.errors import InputError, SingularConfigurationError
+from offshore_crane.robot.kinematics import workspace as ws
+from offshore_crane.validation import as_gravity, as_samples
+from offshore_crane.dynamics.constants import robot_arrays
 
 FORWARD_METHODS = ("kane", "pinocchio")
 
@@ -63,7 +63,7 @@ _DEFAULT_THRESHOLDS = ws.Thresholds()
 def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, checks=True,
          limits=True, thresholds=_DEFAULT_THRESHOLDS, t=None,
          threads=1) -> EquationsOfMotion:
-    from . import _compiled, _threaded, _threads
+    from offshore_crane.dynamics import _compiled, _threaded, _threads
 
     c = _compiled()
     q, single = as_samples("q", q, finite=False)
@@ -139,7 +139,7 @@ def _lean(robot, q, qd, X, gravity):
     is unusual (then the general path runs, and reports)."""
     if not (_is_state(q) and _is_state(qd) and _is_state(X)):
         return None
-    from . import _compiled
+    from offshore_crane.dynamics import _compiled
 
     arrays = robot_arrays(robot)
     if arrays.kane.n_arm != 3:
@@ -211,7 +211,7 @@ def forward_dynamics(robot, q, qd, X, gravity=GRAVITY, method: str = "kane",
             return qdd
     single = np.ndim(q) == 1
     if method == "pinocchio":
-        from ..reference.constrained import forward_dynamics as pin_fd
+        from offshore_crane.reference.constrained import forward_dynamics as pin_fd
 
         robot_arrays(robot)                 # refuses a payload on a cable, like kane
 

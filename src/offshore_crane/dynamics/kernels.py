@@ -3,7 +3,7 @@
 :func:`run_numpy` evaluates :func:`.formulas.kane_sample` on chunks of samples (every
 scalar of the text an ``(n,)`` array), then solves the chunk's 6x6 Stewart systems with
 LAPACK and records what the checks find in a health record
-(:mod:`offshore_crane.kinematics.workspace`). :func:`run_python` evaluates the same text
+(:mod:`offshore_crane.robot.kinematics.workspace`). :func:`run_python` evaluates the same text
 on Python floats, one sample at a time: for a handful of samples it avoids NumPy's cost
 per call (about 1 µs, and the text makes ~1,300 calls). Both fill the same arrays as the
 compiled driver (:mod:`.compiled`).
@@ -15,10 +15,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics import workspace as ws
-from ..kinematics.formulas import FULL
-from . import backends
-from .formulas import COS_THETA2, DIAG_ROWS, DX, DY, DZ, HEIGHT, LENGTH, STORE_WIDTH, H
+from offshore_crane.robot.kinematics import workspace as ws
+from offshore_crane.robot.kinematics.formulas import FULL
+from offshore_crane.dynamics import backends
+from offshore_crane.dynamics.formulas import COS_THETA2, DIAG_ROWS, DX, DY, DZ, HEIGHT, LENGTH, STORE_WIDTH, H
 
 #: Samples per chunk of the NumPy driver: each of the text's (n,) temporaries stays in
 #: the L2 cache (4096 doubles = 32 kB).
@@ -77,7 +77,7 @@ def _solve(A: np.ndarray, rhs: np.ndarray, conditioning: bool):
 
 def ujoint_angles(diag) -> np.ndarray:
     """``(n, 6, 2)`` U-joint angles θ1, θ2 [rad] from the diagnostics ``(DIAG_ROWS, n, 6)``
-    (:func:`~offshore_crane.kinematics.formulas.ujoint_angles`)."""
+    (:func:`~offshore_crane.robot.kinematics.formulas.ujoint_angles`)."""
     return np.stack(backends.NUMPY.ujoint_angles(diag[DX], diag[DY], diag[DZ], diag[H]), -1)
 
 

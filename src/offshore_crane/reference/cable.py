@@ -1,4 +1,4 @@
-"""The hanging load by Pinocchio: an independent check of :mod:`offshore_crane.cable`.
+"""The hanging load by Pinocchio: an independent check of :mod:`offshore_crane.dynamics.cable`.
 
 It shares only the URDF with the Kane path. The pendulum is the two sway joints
 ``cable_joint1``, ``cable_joint2`` of Pinocchio's model of the equivalent tree, the payload
@@ -21,8 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..conventions import ARM_JOINTS, CABLE_JOINTS, PLATFORM_JOINTS
-from ..errors import require
+from offshore_crane.conventions import ARM_JOINTS, CABLE_JOINTS, PLATFORM_JOINTS
+from offshore_crane.errors import require
 
 _MODELS: dict = {}
 
@@ -75,7 +75,7 @@ class _Pendulum:
 
 def integrate(robot, Q, Qd, Qdd, g, h, sub, y0, rel_min):
     """RK4 of the sway with Pinocchio's right-hand side; same contract as the compiled
-    :func:`offshore_crane.dynamics.cable_kernels.integrate` (returns ``(Y, status)``)."""
+    :func:`offshore_crane.dynamics.cable.kernels.integrate` (returns ``(Y, status)``)."""
     P = _Pendulum(robot, g)
     n_steps = (Q.shape[0] - 1) // 2
     Y = np.full((n_steps // sub + 1, 6), np.nan)
@@ -107,10 +107,10 @@ def forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
     """``(X (n, 9), F (n, 6), kappa)`` at the integrated sway: X from the RNEA reference
     with the sway rows set; ``F`` the cable's pull on the tip (3) [N], the tension [N],
     the RNEA torques left on the sway joints (2) [N·m]; ``kappa`` ``(3, n)`` (or None)."""
-    from ..dynamics.constants import Limits, cable_arrays
-    from ..dynamics.kernels import Options
-    from ..kinematics import workspace as ws
-    from . import rnea
+    from offshore_crane.dynamics.constants import Limits, cable_arrays
+    from offshore_crane.dynamics.kernels import Options
+    from offshore_crane.robot.kinematics import workspace as ws
+    from offshore_crane.reference import rnea
 
     pin = require("pinocchio", "pin", "The hanging load's Pinocchio reference")
     P = _Pendulum(robot, g)

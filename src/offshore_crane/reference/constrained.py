@@ -48,8 +48,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ConstraintResidualError, InputError, ModelError, WorkspaceError, require
-from ..validation import as_gravity, as_samples, same_length
+from offshore_crane.errors import ConstraintResidualError, InputError, ModelError, WorkspaceError, require
+from offshore_crane.validation import as_gravity, as_samples, same_length
 
 #: Tree joints realising q1..q6, in the order of q (docs/conventions.md).
 PLATFORM_JOINTS = ("platform_x", "platform_y", "platform_z",

@@ -30,8 +30,8 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from ..conventions import ARM_JOINTS, LEG_TIPS, N_LEGS, PLATFORM_ANCHORS, PLATFORM_JOINTS
-from ..errors import ModelError, NumericalError, require
+from offshore_crane.conventions import ARM_JOINTS, LEG_TIPS, N_LEGS, PLATFORM_ANCHORS, PLATFORM_JOINTS
+from offshore_crane.errors import ModelError, NumericalError, require
 
 #: Samples per block: the tree's Q, V, A, τ arrays (4 x 27 doubles a sample) stay bounded.
 BLOCK = 1 << 16
@@ -633,7 +633,7 @@ def run(robot, limits, q, qd, qdd, g, opts, X, kappa, health, threads: int = 1) 
     """
     import pinocchio as pin
 
-    from ..kinematics import workspace as ws
+    from offshore_crane.robot.kinematics import workspace as ws
 
     T = tree(robot)
     pool = _pool(robot, g, threads)

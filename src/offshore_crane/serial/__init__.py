@@ -23,12 +23,12 @@ Quick start::
     tau = serial.inverse_dynamics(chain, q, qd, qdd)            # (100, 7) [N·m]
 
 :mod:`offshore_crane.serial.reference` gives the same quantities from Pinocchio's RNEA
-(cross-check); :mod:`offshore_crane.serial.cli` is ``offshore-crane serial-id``.
+(cross-check); :mod:`offshore_crane.cli.serial_id` is ``offshore-crane serial-id``.
 """
 
 from __future__ import annotations
 
-from ..model.chain import SerialChain
-from .core import GRAVITY, inverse_dynamics, load_chain, random_states
+from offshore_crane.robot.chain import SerialChain
+from offshore_crane.serial.core import GRAVITY, inverse_dynamics, load_chain, random_states
 
 __all__ = ["SerialChain", "GRAVITY", "load_chain", "inverse_dynamics", "random_states"]

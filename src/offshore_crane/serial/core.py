@@ -14,11 +14,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..conventions import GRAVITY
-from ..errors import InputError, ModelError
-from ..model.chain import SerialChain, chain_from_urdf
-from ..model.urdf import URDF, parse_urdf
-from ..validation import as_gravity, as_samples, same_length
+from offshore_crane.conventions import GRAVITY
+from offshore_crane.errors import InputError, ModelError
+from offshore_crane.robot.chain import SerialChain, chain_from_urdf
+from offshore_crane.robot.urdf import URDF, parse_urdf
+from offshore_crane.validation import as_gravity, as_samples, same_length
 
 #: Most random states one call draws (3 x 8 bytes x n joints each: 10 M states of a
 #: 7-joint arm take 1.7 GB).
@@ -35,7 +35,7 @@ def read_urdf(urdf) -> tuple[URDF, str | None]:
     Args:
         urdf: ``str`` or ``os.PathLike`` path to a ``.urdf`` file; or a ``str`` holding
             the XML itself (recognised by its first non-blank character ``<``); or a
-            :class:`~offshore_crane.model.urdf.URDF`.
+            :class:`~offshore_crane.robot.urdf.URDF`.
 
     Returns:
         ``(parsed, text)``; ``text`` is None when ``urdf`` was already parsed.
@@ -82,7 +82,7 @@ def load_chain(urdf, tip: str | None = None, base: str | None = None) -> SerialC
         base: Link the chain is mounted on (held still); default the URDF's root link.
 
     Returns:
-        :class:`~offshore_crane.kinematics.chain.SerialChain`: ``joint_names`` ``(n,)``,
+        :class:`~offshore_crane.robot.kinematics.chain.SerialChain`: ``joint_names`` ``(n,)``,
         per joint its placement in the parent body ``p_parent_joint`` ``(n, 3)`` [m],
         ``R_parent_joint`` ``(n, 3, 3)``, unit ``axis`` ``(n, 3)`` (joint frame),
         ``prismatic`` ``(n,)``, limits ``lower``/``upper`` ``(n,)`` [rad or m, ±inf when
@@ -101,7 +101,7 @@ def load_chain(urdf, tip: str | None = None, base: str | None = None) -> SerialC
     if base_link not in desc.inertials:
         raise ModelError(f"the URDF has no link '{base_link}' (the base asked for)",
                          element=base_link)
-    from ..model.validate import validate
+    from offshore_crane.robot.validate import validate
 
     validate(desc)                        # masses, inertias, joint ranges (every link)
     chain = chain_from_urdf(desc, base_link, tip=tip)
@@ -246,8 +246,8 @@ def inverse_dynamics(chain: SerialChain, q, qd, qdd, gravity=GRAVITY, wrench=Non
 
 def _solve(chain: SerialChain, q, qd, qdd, g, R_b, load) -> np.ndarray:
     """The formulas' arm recursion on the chain, vectorised over the N samples."""
-    from ..dynamics import backends
-    from ..dynamics.formulas import ATT_, F_, STORE_WIDTH, T_, KaneConstants
+    from offshore_crane.dynamics import backends
+    from offshore_crane.dynamics.formulas import ATT_, F_, STORE_WIDTH, T_, KaneConstants
 
     B = backends.NUMPY
     N, n = q.shape

@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ModelError, require
-from ..model.chain import SerialChain
-from .core import GRAVITY, read_urdf
+from offshore_crane.errors import ModelError, require
+from offshore_crane.robot.chain import SerialChain
+from offshore_crane.serial.core import GRAVITY, read_urdf
 
 
 def _pin():

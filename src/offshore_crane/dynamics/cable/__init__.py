@@ -1,0 +1,487 @@
+"""The hanging load: a payload on a cable at the crane tip, its swing, its pull in X.
+
+Model (docs/cable.md): a point mass m on a massless, inextensible cable of length L from
+the frame ``arm_tip`` (the robot description's ``payload.mass`` and
+``payload.cable_length``; the URDF then carries the two sway joints). The sway angles
+``φ = (φ1, φ2)`` [rad] are measured in the ``arm_tip`` frame: the cable's direction from
+the tip to the payload is ``e = R_base_tip · Rx(φ1) · Ry(φ2) · (0, 0, −1)``, regular
+around hanging straight down (φ = 0) and singular only where ``cos φ2 = 0`` (the cable
+along ``±x`` of the tip frame, horizontal when the tip frame is upright).
+
+Inverse dynamics with the swing (:func:`inverse_dynamics`): the robot's motion ``q(t)`` is
+prescribed; the sway obeys Kane's equations of the two sway speeds, exact and nonlinear,
+driven by the tip's motion, and is integrated by classical RK4 from a given initial sway;
+the cable's pull then enters the actuator forces X through the arm (the payload is the
+last body of the arm chain). RK4 needs the robot's motion at its stage times (every half
+step): from ``reference`` (an analytic motion: Table 1, sea states, crane operations; a
+:class:`~offshore_crane.motion.trajectories.Trajectory`'s ``reference``), else from the samples
+by quintic Hermite interpolation of q, q̇, q̈ at both ends of each interval (error
+``O(h⁶)`` in q; the derivatives of a CSV are its own columns or finite differences).
+
+Two independent paths, like the rest of the project: ``method="kane"`` (compiled) and
+``method="pinocchio"`` (:mod:`offshore_crane.reference.cable`: the sway joints of
+Pinocchio's model of the URDF, their accelerations from RNEA and CRBA, X from the RNEA
+reference), which share only the URDF. The Kane path writes the pendulum's own equations
+by Kane's method on the tip's motion
+(:func:`~offshore_crane.dynamics.formulas.tip_motion`, ``pendulum``) and X by
+``kane_sample`` on the arm chain continued by the sway joints and the payload (the
+cable's pull enters through the arm); that pass's rows of the sway speeds must vanish at
+the integrated sway, a check between the two (``CableResult.residual``).
+
+A cable cannot push: where the tension the model needs is ≤ 0 the model no longer holds
+and :class:`~offshore_crane.errors.SlackCableError` names the time (``slack="warn"``: a
+warning, and the samples marked in ``CableResult.slack``).
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+
+from offshore_crane.conventions import GRAVITY
+from offshore_crane.errors import (InputError, ModelError, NumericalError, SingularConfigurationError,
+                     SlackCableError)
+from offshore_crane.robot.kinematics import workspace as ws
+from offshore_crane.validation import as_gravity, as_samples
+
+METHODS = ("kane", "pinocchio")
+SLACK = ("error", "warn")
+
+
+@dataclass
+class CableResult:
+    """Inverse dynamics of the robot with its hanging payload, sampled like the input.
+
+    Attributes:
+        t: ``(N,)`` [s].
+        q, qd, qdd: ``(N, 9)`` the robot's prescribed motion [m, rad], rates, accelerations.
+        X: ``(N, 9)`` actuator forces ``[T1, T2 [N·m], Fs, Fl1..Fl6 [N]]``, the cable's
+            pull included.
+        sway: ``(N, 2)`` φ1, φ2 [rad] (``arm_tip`` frame, see the module docstring).
+        sway_rate: ``(N, 2)`` [rad/s]; sway_accel: ``(N, 2)`` [rad/s²].
+        tension: ``(N,)`` the cable's tension [N] (> 0 taut).
+        force_tip: ``(N, 3)`` the cable's pull on the arm tip [N], base frame.
+        residual: ``(N, 2)`` Kane's rows of the sway speeds at the result [N·m]
+            (zero up to round-off: the sway accelerations solve them).
+        slack: ``(N,)`` True where the tension is ≤ 0 (only with ``slack="warn"``).
+        condition: ``(N,)`` the Stewart system's condition number (NaN without checks).
+        sway_condition: worst ``1 / cos²φ2`` met (the sway inertia's condition).
+        length, mass: The cable length [m] and payload mass [kg] (from the URDF).
+        method, step: The path and the RK4 step [s].
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    X: np.ndarray
+    sway: np.ndarray
+    sway_rate: np.ndarray
+    sway_accel: np.ndarray
+    tension: np.ndarray
+    force_tip: np.ndarray
+    residual: np.ndarray
+    slack: np.ndarray
+    condition: np.ndarray
+    sway_condition: float
+    length: float
+    mass: float
+    method: str = "kane"
+    step: float = 0.0
+    info: dict = field(default_factory=dict)
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    @property
+    def sway_angle(self) -> np.ndarray:
+        """``(N,)`` angle between the cable and the tip frame's downward axis [rad]:
+        ``arccos(cos φ1 cos φ2)``."""
+        return np.arccos(np.clip(np.cos(self.sway[:, 0]) * np.cos(self.sway[:, 1]), -1, 1))
+
+    def truncated(self, n: int) -> "CableResult":
+        """The first ``n`` samples."""
+        out = {}
+        for f in fields(self):
+            v = getattr(self, f.name)
+            out[f.name] = v[:n] if isinstance(v, np.ndarray) else v
+        return CableResult(**out)
+
+
+# --------------------------------------------------------------------------- helpers
+def _quintic_midpoints(t, q, qd, qdd, sub: int):
+    """The motion at the ``2 sub − 1`` interior stage points of each interval (spacing
+    ``h / 2``, ``h = Δt / sub``) by quintic Hermite interpolation of ``q, q̇, q̈`` at the
+    interval's ends; returns the whole stage grid ``(2 sub (N − 1) + 1, 9)`` × 3."""
+    dt = np.diff(t)[:, None, None]                         # (N-1, 1, 1)
+    s = (np.arange(2 * sub + 1) / (2 * sub))[None, :, None]   # (1, 2 sub + 1, 1)
+    s2, s3, s4, s5 = s ** 2, s ** 3, s ** 4, s ** 5
+    # basis functions (value, first, second derivative in s) of the quintic Hermite
+    H = [(1 - 10 * s3 + 15 * s4 - 6 * s5, -30 * s2 + 60 * s3 - 30 * s4,
+          -60 * s + 180 * s2 - 120 * s3),
+         (s - 6 * s3 + 8 * s4 - 3 * s5, 1 - 18 * s2 + 32 * s3 - 15 * s4,
+          -36 * s + 96 * s2 - 60 * s3),
+         (0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5, s - 4.5 * s2 + 6 * s3 - 2.5 * s4,
+          1 - 9 * s + 18 * s2 - 10 * s3),
+         (0.5 * s3 - s4 + 0.5 * s5, 1.5 * s2 - 4 * s3 + 2.5 * s4, 3 * s - 12 * s2 + 10 * s3),
+         (-4 * s3 + 7 * s4 - 3 * s5, -12 * s2 + 28 * s3 - 15 * s4, -24 * s + 84 * s2 - 60 * s3),
+         (10 * s3 - 15 * s4 + 6 * s5, 30 * s2 - 60 * s3 + 30 * s4, 60 * s - 180 * s2 + 120 * s3)]
+    ends = (q[:-1, None], qd[:-1, None] * dt, qdd[:-1, None] * dt ** 2, qdd[1:, None] * dt ** 2,
+            qd[1:, None] * dt, q[1:, None])
+    out = []
+    for d in range(3):
+        val = sum(Hk[d] * e for Hk, e in zip(H, ends)) / dt ** d
+        grid = val[:, :-1].reshape(-1, 9)
+        last = (q, qd, qdd)[d][-1:]
+        out.append(np.ascontiguousarray(np.concatenate([grid, last])))
+    for d, given in enumerate((q, qd, qdd)):       # the samples themselves, exactly
+        out[d][::2 * sub] = given
+    return out
+
+
+def _uniform_times(t, N: int) -> tuple[np.ndarray, float]:
+    t = np.asarray(t, dtype=float)
+    if t.shape != (N,):
+        raise InputError(f"t has shape {t.shape}; expected ({N},), one time per sample of q",
+                         name="t")
+    if N < 2:
+        raise InputError("the swing is integrated over time: give at least 2 samples",
+                         name="t")
+    if not np.isfinite(t).all():
+        k = int(np.argmax(~np.isfinite(t)))
+        raise InputError(f"t[{k}] is {t[k]}: every time must be finite", name="t", index=k)
+    d = np.diff(t)
+    dt = float((t[-1] - t[0]) / (N - 1))
+    if not dt > 0 or np.abs(d - dt).max() > 1e-9 * max(abs(t[-1]), abs(t[0]), dt):
+        k = int(np.argmax(np.abs(d - dt)))
+        raise InputError(f"the time axis must be uniform and increasing (RK4 steps along "
+                         f"it): step {k} is {d[k]:.9g} s against a mean {dt:.9g} s; "
+                         "resample the motion on a uniform grid", name="t", index=k)
+    return t, dt
+
+
+def _pair(value, name: str, unit: str) -> np.ndarray:
+    try:
+        v = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be two numbers [{unit}], got {value!r}",
+                         name=name) from None
+    if v.shape != (2,) or not np.isfinite(v).all():
+        raise InputError(f"{name} must be two finite numbers [{unit}], got {value!r}",
+                         name=name)
+    return v
+
+
+def cable_robot(robot, length=None, mass=None):
+    """``robot``, or the same description with ``payload.cable_length`` and
+    ``payload.mass`` overridden, checked: the robot must carry a payload on a cable.
+
+    Raises:
+        InputError: ``length ≤ 0`` or ``mass ≤ 0`` given, or a robot without cable.
+    """
+    if length is not None or mass is not None:
+        over = {}
+        if length is not None:
+            if not (isinstance(length, (int, float)) and np.isfinite(length) and length > 0):
+                raise InputError(f"length = {length!r} m: the cable needs a finite length "
+                                 "> 0 (a welded payload is an ordinary robot: use "
+                                 "offshore_crane.inverse_dynamics)", name="length")
+            over["payload.cable_length"] = float(length)
+        if mass is not None:
+            if not (isinstance(mass, (int, float)) and np.isfinite(mass) and mass > 0):
+                raise InputError(f"mass = {mass!r} kg: the hanging payload needs a finite "
+                                 "mass > 0", name="mass")
+            over["payload.mass"] = float(mass)
+        from offshore_crane.robot import load_robot
+
+        if robot.spec is None:
+            raise InputError("length/mass overrides need a robot loaded from a description "
+                             "(load_robot), not from URDF text", name="robot")
+        robot = load_robot(robot.description_path, {**robot.overrides, **over})
+    if robot.hybrid.cable is None:
+        raise ModelError("this robot's payload is welded to arm_tip (payload.cable_length = "
+                         "0): give payload.cable_length > 0 and payload.mass > 0 "
+                         "(--set payload.cable_length=1.5, a scene's [payload]), or length= "
+                         "and mass=", element="payload.cable_length")
+    return robot
+
+
+def stage_grid(t, q, qd, qdd, reference, substeps: int):
+    """The robot's motion at RK4's stage times (every half step): ``(tt, Q, Qd, Qdd)``
+    with ``2 substeps (N − 1) + 1`` rows (see the module docstring); the samples' own rows
+    are the given ``q, qd, qdd``, only the points between them are evaluated."""
+    N = len(t)
+    h = (t[-1] - t[0]) / (N - 1) / substeps
+    tt = t[0] + np.arange(2 * substeps * (N - 1) + 1) * (0.5 * h)
+    tt[::2 * substeps] = t
+    if reference is None:
+        return (tt, *_quintic_midpoints(t, q, qd, qdd, substeps))
+    between = np.ones(len(tt), dtype=bool)
+    between[::2 * substeps] = False
+    grid = []
+    for name, x, given in zip(("q", "qd", "qdd"), reference(tt[between]), (q, qd, qdd)):
+        x = np.asarray(x, dtype=float)
+        if x.shape != (int(between.sum()), 9):
+            raise InputError(f"reference(t) returned {name} of shape {x.shape}; expected "
+                             f"({int(between.sum())}, 9)", name="reference")
+        if not np.isfinite(x).all():
+            k = int(np.argmax(~np.isfinite(x).all(axis=1)))
+            raise InputError(f"reference(t) returned a non-finite {name} at t = "
+                             f"{tt[between][k]:.6g} s", name="reference", index=k)
+        full = np.empty((len(tt), 9))
+        full[between] = x
+        full[~between] = given
+        grid.append(full)
+    return (tt, *grid)
+
+
+# --------------------------------------------------------------------------- public
+def inverse_dynamics(robot, t, q, qd, qdd, *, reference=None, gravity=GRAVITY,
+                     initial=(0.0, 0.0), initial_rate=(0.0, 0.0), substeps: int = 1,
+                     slack: str = "error", method: str = "kane", limits: bool = True,
+                     checks: bool = True, thresholds: ws.Thresholds = ws.Thresholds(),
+                     length=None, mass=None) -> CableResult:
+    """Actuator forces of the prescribed motion with the payload swinging on its cable.
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot` with ``payload.cable_length > 0``
+            (or give ``length`` and ``mass``).
+        t: ``(N,)`` uniform times [s] (N ≥ 2): RK4 steps along them.
+        q, qd, qdd: ``(N, 9)`` the robot's motion [m, rad], rates, accelerations.
+        reference: Optional ``reference(t (n,)) -> (q, qd, qdd)`` evaluated at RK4's stage
+            times (analytic motions); None: quintic Hermite interpolation of the samples.
+        gravity: ``(3,)`` [m/s²], base frame.
+        initial: ``(2,)`` φ1, φ2 at ``t[0]`` [rad]; initial_rate: ``(2,)`` [rad/s].
+        substeps: RK4 steps per sample interval (integer ≥ 1).
+        slack: ``"error"``: :class:`SlackCableError` at the first sample whose tension is
+            ≤ 0; ``"warn"``: a warning and the samples marked (``CableResult.slack``).
+        method: ``"kane"`` (compiled) or ``"pinocchio"`` (the independent reference).
+        limits, checks, thresholds: As :func:`offshore_crane.dynamics.solve` (the sway's
+            condition ``1/cos²φ2`` follows the same thresholds).
+        length, mass: Optional overrides of ``payload.cable_length`` [m] and
+            ``payload.mass`` [kg].
+
+    Returns:
+        :class:`CableResult`.
+
+    Raises:
+        InputError: bad arguments (shapes, NaN, a non-uniform time axis, an initial sway
+            on the singular set ``cos φ2 = 0``).
+        ModelError: a robot without cable.
+        SingularConfigurationError: the sway reaches the singular set, or the robot a
+            singular pose (names the time).
+        WorkspaceError, NumericalError: as the inverse dynamics; a sway that diverges.
+        SlackCableError: the cable goes slack (``slack="error"``).
+    """
+    if method not in METHODS:
+        raise InputError(f"unknown method {method!r}: use one of {', '.join(METHODS)}",
+                         name="method")
+    if slack not in SLACK:
+        raise InputError(f"slack = {slack!r}: use 'error' or 'warn'", name="slack")
+    if isinstance(substeps, bool) or not isinstance(substeps, (int, np.integer)) or substeps < 1:
+        raise InputError(f"substeps = {substeps!r} must be an integer >= 1", name="substeps")
+    if not isinstance(thresholds, ws.Thresholds):
+        raise InputError(f"thresholds must be a Thresholds(warn, error), got {thresholds!r}",
+                         name="thresholds")
+    robot = cable_robot(robot, length, mass)
+    q, _ = as_samples("q", q)
+    qd, _ = as_samples("qd", qd)
+    qdd, _ = as_samples("qdd", qdd)
+    N = q.shape[0]
+    if qd.shape[0] != N or qdd.shape[0] != N:
+        raise InputError(f"q, qd, qdd have {N}, {qd.shape[0]}, {qdd.shape[0]} samples: give "
+                         "the same number", name="qd")
+    t, dt = _uniform_times(t, N)
+    g = as_gravity(gravity)
+    phi0 = _pair(initial, "initial", "rad")
+    rate0 = _pair(initial_rate, "initial_rate", "rad/s")
+    c2 = np.cos(phi0[1]) ** 2
+    if not c2 * thresholds.error > 1.0:
+        raise InputError(f"initial sway phi2 = {phi0[1]:.6g} rad lies on the singular set "
+                         "cos(phi2) = 0 (the cable along the tip frame's x axis, where phi1 "
+                         f"is undefined; 1/cos^2 = {1 / max(c2, 1e-300):.3g} > "
+                         f"{thresholds.error:.3g}): start from another sway", name="initial")
+    tt, Q, Qd, Qdd = stage_grid(t, q, qd, qdd, reference, int(substeps))
+    h = dt / substeps
+    y0 = np.concatenate([phi0, rate0])
+    if method == "kane":
+        Y, status = _integrate_kane(robot, Q, Qd, Qdd, g, h, int(substeps), y0, thresholds)
+    else:
+        from offshore_crane.reference import cable as ref
+
+        Y, status = ref.integrate(robot, Q, Qd, Qdd, g, h, int(substeps), y0,
+                                  1.0 / thresholds.error)
+    code, stop, worst = int(status[0]), int(status[1]), float(status[2])
+    n = N if code == 0 else stop
+    length_, mass_ = robot.hybrid.cable_length, float(robot.hybrid.cable.mass[-1])
+    res = _forces(robot, t[:n], q[:n], qd[:n], qdd[:n], Y[:n], g, method, limits, checks,
+                  thresholds, worst, length_, mass_, h)
+    if code != 0:
+        if slack == "error":
+            _slack(res, slack)         # a slack cable before the stop is its first cause
+        cause = ("the sway reached the singular set cos(phi2) = 0 (1/cos^2 above "
+                 f"{thresholds.error:.3g})" if code == 1 else "the sway diverged (a "
+                 "non-finite state)")
+        exc = (SingularConfigurationError(
+            f"hanging load: {cause} at sample {stop} (t = {t[stop]:.6g} s); the {n} samples "
+            "before it are in error.result", index=stop, time=float(t[stop]),
+            condition=worst, kind="sway") if code == 1 else NumericalError(
+            f"hanging load: {cause} at sample {stop} (t = {t[stop]:.6g} s): shorten the step "
+            "(substeps) or check the motion", index=stop, name="sway"))
+        exc.result = res
+        raise exc
+    if checks and worst > thresholds.warn:
+        warnings.warn(ws.OffshoreCraneWarning(
+            f"the hanging load comes near its singular set cos(phi2) = 0: 1/cos^2 reaches "
+            f"{worst:.3g} (above {thresholds.warn:.3g})"), stacklevel=2)
+    _slack(res, slack)
+    return res
+
+
+def _integrate_kane(robot, Q, Qd, Qdd, g, h, sub, y0, thresholds):
+    from offshore_crane.dynamics import _compiled
+    from offshore_crane.dynamics.cable import kernels as ck
+    from offshore_crane.dynamics.constants import cable_arrays
+
+    _compiled()
+    arrays = cable_arrays(robot)
+    n_out = (Q.shape[0] - 1) // (2 * sub) + 1
+    Y = np.full((n_out, 6), np.nan)
+    status = np.zeros(3)
+    ck.integrate(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, Q, Qd,
+                 Qdd, g, h, sub, y0, 1.0 / thresholds.error, Y, status)
+    return Y, status
+
+
+def _forces(robot, t, q, qd, qdd, Y, g, method, limits, checks, thresholds, worst, length,
+            mass, h) -> CableResult:
+    """X, the cable force and the residual at the integrated sway (both paths)."""
+    n = len(t)
+    if method == "kane":
+        X, F, kappa = _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds)
+    else:
+        from offshore_crane.reference import cable as ref
+
+        X, F, kappa = ref.forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds)
+    return CableResult(
+        t=t, q=q, qd=qd, qdd=qdd, X=X, sway=Y[:, 0:2].copy(), sway_rate=Y[:, 2:4].copy(),
+        sway_accel=Y[:, 4:6].copy(), tension=F[:, 3].copy(), force_tip=F[:, 0:3].copy(),
+        residual=F[:, 4:6].copy(), slack=np.zeros(n, dtype=bool),
+        condition=kappa[0] if kappa is not None else np.full(n, np.nan),
+        sway_condition=worst, length=length, mass=mass, method=method, step=h)
+
+
+def _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
+    from offshore_crane.dynamics import _compiled, _threaded
+    from offshore_crane.dynamics.cable import kernels as ck
+    from offshore_crane.dynamics.constants import cable_arrays
+
+    _compiled()
+    arrays = cable_arrays(robot)
+    n = len(t)
+    q11 = np.ascontiguousarray(np.concatenate([q, Y[:, 0:2]], axis=1))
+    qd11 = np.ascontiguousarray(np.concatenate([qd, Y[:, 2:4]], axis=1))
+    qdd11 = np.ascontiguousarray(np.concatenate([qdd, Y[:, 4:6]], axis=1))
+    X = np.empty((n, 9))
+    F = np.empty((n, 6))
+    kappa = np.empty((3, n)) if checks else np.empty((3, 1))
+    if n == 0:
+        return X, F, kappa if checks else None
+
+    def run(start, stop, health):
+        ck.kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11,
+                qd11, qdd11, g, checks, limits, thresholds.warn, thresholds.error, start, stop,
+                X, kappa, health, F)
+
+    health = _threaded(run, n, 1)
+    ws.enforce(health, (q, qd, qdd), arrays.limits if limits else None,
+               kappa if checks else None, thresholds, (ws.LEG_JACOBIAN, ws.GIMBAL), t)
+    return X, F, kappa if checks else None
+
+
+def _slack(res: CableResult, policy: str) -> None:
+    slack = ~(res.tension > 0.0)
+    if not slack.any():
+        return
+    k = int(np.argmax(slack))
+    where = f"sample {k} (t = {res.t[k]:.6g} s)"
+    if policy == "error":
+        raise SlackCableError(
+            f"the cable goes slack at {where}: the tension would be {res.tension[k]:.4g} N "
+            "(a cable cannot push; the payload would fall freely there and the pendulum "
+            "model no longer holds); the samples before it are in error.result; pass "
+            "slack='warn' (CLI --slack warn) to mark such samples and go on",
+            index=k, time=float(res.t[k]), tension=float(res.tension[k]),
+            result=res.truncated(k))
+    res.slack = slack
+    warnings.warn(ws.OffshoreCraneWarning(
+        f"the cable is slack at {int(slack.sum())} samples, first at {where} (tension "
+        f"{res.tension[k]:.4g} N): the pendulum model does not hold there; they are marked "
+        "in the result's slack array"), stacklevel=3)
+
+
+def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY) -> np.ndarray:
+    """The right-hand side of the swing: ``φ̈`` ``(N, 2)`` [rad/s²] at given states.
+
+    The same formulas the integrator runs compiled
+    (:func:`~offshore_crane.dynamics.formulas.tip_motion` and ``pendulum``), here on NumPy
+    arrays.
+
+    Args:
+        robot: With a payload on a cable.
+        q, qd, qdd: ``(N, 9)`` the robot's state and accelerations.
+        sway, sway_rate: ``(N, 2)`` φ [rad], φ̇ [rad/s].
+        gravity: ``(3,)`` [m/s²].
+    """
+    from offshore_crane.dynamics import backends
+    from offshore_crane.dynamics.constants import cable_arrays
+
+    robot = cable_robot(robot)
+    q, single = as_samples("q", q)
+    qd = as_samples("qd", qd)[0]
+    qdd = as_samples("qdd", qdd)[0]
+    sway = as_samples("sway", sway, width=2)[0]
+    sway_rate = as_samples("sway_rate", sway_rate, width=2)[0]
+    g = tuple(float(x) for x in as_gravity(gravity))
+    C = cable_arrays(robot).kane
+    c1, c2 = (float(c) for c in robot.hybrid.sway_damping)
+    F = backends.NUMPY
+    with np.errstate(divide="ignore", invalid="ignore"):
+        Rt, w, al, a = F.tip_motion(C, q.T, qd.T, qdd.T)
+        a1, a2, _ = F.pendulum(C, Rt, w, al, a, g, sway[:, 0], sway[:, 1], sway_rate[:, 0],
+                               sway_rate[:, 1], c1, c2)
+    out = np.stack([a1, a2], axis=-1)
+    return out[0] if single else out
+
+
+def swing(robot, trajectory, **options) -> CableResult:
+    """:func:`inverse_dynamics` of a :class:`~offshore_crane.motion.trajectories.Trajectory`,
+    its analytic ``source`` (when it has one) evaluated at RK4's stage times."""
+    reference = trajectory.reference if trajectory.source is not None else None
+    return inverse_dynamics(robot, trajectory.t, trajectory.q, trajectory.qd, trajectory.qdd,
+                            reference=reference, **options)
+
+
+def warm_up(robot=None) -> list[tuple[str, float]]:
+    """Compile (or load from the cache) the swing's kernels: ``[(name, seconds)]``."""
+    import time
+
+    from offshore_crane.robot import load_robot
+
+    t0 = time.perf_counter()
+    robot = robot or load_robot()
+    if robot.hybrid.cable is None:
+        robot = cable_robot(robot, length=1.0, mass=1.0)
+    t = np.array([0.0, 1e-3])
+    q = np.zeros((2, 9))
+    q[:, 2] = robot.home_height
+    inverse_dynamics(robot, t, q, 0 * q, 0 * q, limits=False)
+    from offshore_crane.simulation.swing import simulate_swing
+    from offshore_crane.simulation.control import Controller
+
+    simulate_swing(robot, 2e-3, lambda tt: (q[[0] * len(tt)], 0 * q[[0] * len(tt)],
+                                            0 * q[[0] * len(tt)]),
+                   controller=Controller(anti_sway=0.1), step=1e-3, limits=False)
+    return [("hanging-load kernels", time.perf_counter() - t0)]

@@ -1,0 +1,294 @@
+"""Compiled drivers of the hanging load (:mod:`offshore_crane.dynamics.cable`; imports Numba).
+
+The formulas are those of :mod:`.formulas` (``tip_motion``, ``pendulum``, ``cable_force``,
+``kane_sample`` on the arm chain continued by the two sway joints), compiled inlined
+(:data:`.compiled.K`). Two drivers:
+
+- :func:`integrate`: classical RK4 of the sway state ``y = (φ1, φ2, φ̇1, φ̇2)`` under the
+  robot's prescribed motion, given on the grid of RK4's stage times (every half step):
+  the tip's motion (``tip_motion``) drives the pendulum's equations (``pendulum``);
+- :func:`kane`: Kane's inverse dynamics of the robot with the payload hanging at the
+  integrated sway (the cable's pull enters X through the arm pass), with the cable force
+  and the residual of the sway equations (zero up to round-off: a check);
+- :func:`accelerations` and :func:`computed_torque`: the equations of motion of the 11
+  coordinates (q1..q9, φ1, φ2) by the explicit Kane pass on the chain with the sway
+  joints, ``M a + h = [A X; −c φ̇]``, and the computed-torque law that knows the sway
+  (the forward simulation with the swing, :mod:`offshore_crane.simulation.swing`).
+
+They close over the formulas' hash only (the disk cache keys on it, see
+:mod:`.compiled`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from offshore_crane.dynamics import compiled as c
+from offshore_crane.dynamics.formulas import STORE_WIDTH
+
+tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_force
+sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
+explicit_sample, cholesky_solve, solve6 = c.KE.explicit_sample, c.cholesky_solve, c.solve6
+actuation_minus_bias = c.actuation_minus_bias
+#: One sample at a time from Python (the simulation's law): not inlined (compiles in
+#: seconds rather than the inlined driver's ~20 s, at no cost that matters here).
+kane_sample_call = c.KE.kane_sample
+finite_inputs = c._finite_inputs
+kane_sample, unpack, post, tangent_bounds = c.K.kane_sample, c.unpack, c._post, c.tangent_bounds
+jit = njit(**c.JIT)
+#: Stop codes of :func:`integrate` (``status[0]``).
+OK, SINGULAR, DIVERGED = 0, 1, 2
+
+
+def _helpers(stamp):
+    """The right-hand side pieces, closed over the formulas' hash (their disk cache key;
+    the drivers reach them as module globals, see :mod:`offshore_crane.simulation.rk4`)."""
+
+    @jit
+    def tip(C, Qh, Qdh, Qddh, i, q, qd, qdd, out):
+        """``out`` (18,) = R_base_tip (by rows), ω, α, a of the tip at stage point ``i``."""
+        if len(stamp) == 0:
+            return
+        for j in range(9):
+            q[j] = Qh[i, j]
+            qd[j] = Qdh[i, j]
+            qdd[j] = Qddh[i, j]
+        R, w, al, a = tip_motion(C, q, qd, qdd)
+        for r in range(3):
+            for j in range(3):
+                out[3 * r + j] = R[r][j]
+            out[9 + r] = w[r]
+            out[12 + r] = al[r]
+            out[15 + r] = a[r]
+
+    @jit
+    def rhs(C, g, damp, T, y, out):
+        """``out = (φ̇1, φ̇2, φ̈1, φ̈2)`` for the tip state ``T`` (18,) and sway ``y``;
+        returns ``cos²φ2`` (0 on the singular set)."""
+        if len(stamp) == 0:
+            return 0.0
+        R = ((T[0], T[1], T[2]), (T[3], T[4], T[5]), (T[6], T[7], T[8]))
+        a1, a2, cos2 = pendulum(C, R, (T[9], T[10], T[11]), (T[12], T[13], T[14]),
+                                (T[15], T[16], T[17]), g, y[0], y[1], y[2], y[3], damp[0],
+                                damp[1])
+        out[0] = y[2]
+        out[1] = y[3]
+        out[2] = a1
+        out[3] = a2
+        return cos2
+
+    return tip, rhs
+
+
+tip, rhs = _helpers(c.STAMP)
+
+
+def _make(stamp):
+
+    @jit
+    def integrate(flat, lay, prism, damp, Qh, Qdh, Qddh, g, h, sub, y0, rel_min, Y, status):
+        """RK4 of the sway from ``y0`` (4,) with step ``h`` [s] and the sway joints'
+        damping ``damp`` (2,) [N·m·s/rad]; ``Qh, Qdh, Qddh`` ``(2 n + 1, 9)`` the robot's
+        motion at every half step (n steps; the tip's motion is formed once per point);
+        writes every ``sub``-th state to ``Y`` ``(n // sub + 1, 6)``: φ1, φ2 [rad], φ̇1,
+        φ̇2 [rad/s], φ̈1, φ̈2 [rad/s²]. ``status`` (3,): stop code, sample index of the
+        stop, and the worst ``1 / cos²φ2`` met (the sway inertia's condition); the run
+        stops at the first output sample whose state is not finite or whose ``cos²φ2``
+        falls below ``rel_min`` (``Y`` holds every sample before it)."""
+        if len(stamp) == 0:
+            return
+        C = unpack(flat, lay, prism)[0]
+        gt = (g[0], g[1], g[2])
+        q = np.empty(9)
+        qd = np.empty(9)
+        qdd = np.empty(9)
+        T0 = np.empty(18)
+        Tm = np.empty(18)
+        T1 = np.empty(18)
+        y = y0.copy()
+        ys = np.empty(4)
+        k1 = np.empty(4)
+        k2 = np.empty(4)
+        k3 = np.empty(4)
+        k4 = np.empty(4)
+        n_steps = (Qh.shape[0] - 1) // 2
+        status[0] = OK
+        status[1] = -1
+        status[2] = 0.0
+        tip(C, Qh, Qdh, Qddh, 0, q, qd, qdd, T0)
+        for s in range(n_steps + 1):
+            rel = rhs(C, gt, damp, T0, y, k1)
+            if s % sub == 0:
+                k = s // sub
+                finite = True
+                for j in range(4):
+                    Y[k, j] = y[j]
+                    finite = finite and np.isfinite(y[j])
+                Y[k, 4] = k1[2]
+                Y[k, 5] = k1[3]
+                finite = finite and np.isfinite(k1[2]) and np.isfinite(k1[3])
+                worst = 1.0 / rel if rel > 0.0 else np.inf
+                if worst > status[2] or not finite:
+                    status[2] = worst
+                if not finite:
+                    status[0] = DIVERGED
+                    status[1] = k
+                    return
+                if not rel >= rel_min:
+                    status[0] = SINGULAR
+                    status[1] = k
+                    return
+            if s == n_steps:
+                break
+            tip(C, Qh, Qdh, Qddh, 2 * s + 1, q, qd, qdd, Tm)
+            tip(C, Qh, Qdh, Qddh, 2 * s + 2, q, qd, qdd, T1)
+            for j in range(4):
+                ys[j] = y[j] + 0.5 * h * k1[j]
+            rhs(C, gt, damp, Tm, ys, k2)
+            for j in range(4):
+                ys[j] = y[j] + 0.5 * h * k2[j]
+            rhs(C, gt, damp, Tm, ys, k3)
+            for j in range(4):
+                ys[j] = y[j] + h * k3[j]
+            rhs(C, gt, damp, T1, ys, k4)
+            for j in range(4):
+                y[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+            for j in range(18):
+                T0[j] = T1[j]
+
+    @jit
+    def kane(flat, lay, prism, damp, q, qd, qdd, g, want_cond, want_limits, warn, error,
+             start, stop, X, kappa, health, F):
+        """Samples ``start..stop-1`` of the fused Kane equations of the robot with its
+        hanging payload: ``q, qd, qdd`` ``(N, 11)`` (the sway's in columns 9, 10); fills
+        X ``(N, 9)`` and ``F`` ``(N, 6)``: the cable's pull on the tip (3) [N, base
+        axes], the tension [N], and the residual of the two sway equations [N·m]
+        (Kane's rows of the sway speeds with the damping ``damp`` (2,) [N·m·s/rad], zero
+        when φ̈ solves them)."""
+        if len(stamp) == 0:
+            return
+        C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
+        tb = tangent_bounds(lim_ujoint)
+        na = C.n_arm
+        rows = np.zeros(na)
+        A = np.empty((6, 6))
+        rhs6 = np.empty(6)
+        diag = np.zeros((7, 6))
+        store = np.empty((na, STORE_WIDTH))
+        x = np.empty(6)
+        M = np.empty((6, 13))
+        gt = (g[0], g[1], g[2])
+        for k in range(start, stop):
+            if not finite_inputs(q, qd, qdd, k, health):
+                for j in range(9):
+                    X[k, j] = np.nan
+                continue
+            kane_sample(C, q[k], qd[k], qdd[k], gt, False, 0, True, rows, A, rhs6, diag,
+                        store)
+            for b in range(3):
+                X[k, b] = rows[b]
+            f, tension = cable_force(C, store)
+            for j in range(3):
+                F[k, j] = f[j]
+            F[k, 3] = tension
+            F[k, 4] = rows[na - 2] + damp[0] * qd[k, 4 + na]
+            F[k, 5] = rows[na - 1] + damp[1] * qd[k, 5 + na]
+            post(k, q, na, A, rhs6, diag, True, want_cond, want_limits, warn, error,
+                 lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
+
+    @jit
+    def accelerations(flat, lay, prism, damp, q, qd, X, g, a, energy):
+        """One state ``q, qd`` (11,) [m, rad, /s] under actuator forces ``X`` (9,):
+        ``a`` (11,) the accelerations of ``M a + h = [A X; −c φ̇]`` (Cholesky of the
+        explicit Kane pass's M; NaN when M is singular) and ``energy`` (2,): kinetic
+        ``½ q̇ᵀ M q̇`` and gravitational ``−g · Σ m c`` [J]. Returns False when M is not
+        positive definite (the attitude singularity, or the sway's cos φ2 = 0)."""
+        if len(stamp) == 0:
+            return False
+        C = unpack(flat, lay, prism)[0]
+        na = C.n_arm
+        n = 6 + na
+        B = np.zeros(n)
+        J = np.empty((6, 6))
+        Mm = np.zeros((n, n))
+        L = np.zeros((n, n))
+        diag = np.zeros((7, 6))
+        store = np.empty((na, STORE_WIDTH))
+        Vw = np.empty((n, 3))
+        Ww = np.empty((n, 3))
+        Vs = np.empty((n, 3))
+        mc = np.empty((1, 3))
+        rhs = np.empty(n)
+        zero = np.zeros(n)
+        gt = (g[0], g[1], g[2])
+        explicit_sample(C, q, qd, zero, gt, True, B, J, Mm, store, Vw, Ww, Vs, diag, mc)
+        actuation_minus_bias(B, J, X, na - 2, rhs)
+        rhs[n - 2] = -damp[0] * qd[n - 2] - B[n - 2]
+        rhs[n - 1] = -damp[1] * qd[n - 1] - B[n - 1]
+        ok = cholesky_solve(Mm, rhs, n, a, L)
+        kin = 0.0
+        for r in range(n):
+            kin += 0.5 * Mm[r, r] * qd[r] * qd[r]
+            for s_ in range(r):
+                kin += Mm[r, s_] * qd[r] * qd[s_]
+        energy[0] = kin
+        energy[1] = -(g[0] * mc[0, 0] + g[1] * mc[0, 1] + g[2] * mc[0, 2])
+        return ok
+
+    @jit
+    def computed_torque(flat, lay, prism, damp, q, qd, qdd_cmd, g, X):
+        """The actuator forces ``X`` (9,) that give the robot the accelerations
+        ``qdd_cmd`` (9,) at the measured state ``q, qd`` (11,) with its payload swinging:
+        the sway's accelerations from the pendulum's equations under that motion, then
+        Kane's inverse dynamics of the chain with the sway joints. Returns the Stewart
+        system's condition number (inf when singular)."""
+        if len(stamp) == 0:
+            return 0.0
+        C = unpack(flat, lay, prism)[0]
+        na = C.n_arm
+        gt = (g[0], g[1], g[2])
+        qdd = np.empty(6 + na)
+        for j in range(9):
+            qdd[j] = qdd_cmd[j]
+        Rt, w, al, at = tip_motion(C, q, qd, qdd)
+        a1, a2, cos2 = pendulum(C, Rt, w, al, at, gt, q[6 + na - 2], q[6 + na - 1],
+                                qd[6 + na - 2], qd[6 + na - 1], damp[0], damp[1])
+        qdd[6 + na - 2] = a1
+        qdd[6 + na - 1] = a2
+        rows = np.zeros(na)
+        A = np.empty((6, 6))
+        rhs6 = np.empty(6)
+        diag = np.zeros((7, 6))
+        store = np.empty((na, STORE_WIDTH))
+        x = np.empty(6)
+        M = np.empty((6, 13))
+        kane_sample_call(C, q, qd, qdd, gt, False, 0, True, rows, A, rhs6, diag, store)
+        for b in range(3):
+            X[b] = rows[b] if b < na - 2 else 0.0
+        cond = solve6(A, rhs6, x, M, True)
+        for l in range(6):
+            X[3 + l] = x[l]
+        return cond
+
+    @jit
+    def payload(flat, lay, prism, q, qd, pay):
+        """``pay`` (6,): the payload's velocity relative to the tip [m/s] (the sway rates'
+        part, base axes) and its position from the tip [m], at ``q, qd`` (11,)."""
+        if len(stamp) == 0:
+            return
+        C = unpack(flat, lay, prism)[0]
+        na = C.n_arm
+        Rt = tip_motion(C, q, qd, np.zeros(6 + na))[0]
+        L = -C.arm_c[na - 1, 2]
+        e, e1, e2 = sway_direction(q[6 + na - 2], q[6 + na - 1])
+        rate = mv(Rt, scale(axpy(qd[6 + na - 1], e2, scale(e1, qd[6 + na - 2])), L))
+        rho = mv(Rt, scale(e, L))
+        for i in range(3):
+            pay[i] = rate[i]
+            pay[3 + i] = rho[i]
+
+    return integrate, kane, accelerations, computed_torque, payload
+
+
+integrate, kane, accelerations, computed_torque, payload = _make(c.STAMP)

@@ -1,8 +1,0 @@
-"""Exports of the robot to other tools' formats.
-
-- :mod:`offshore_crane.export.mjcf`: a MuJoCo model (MJCF) with the six loops closed by
-  equality constraints (``offshore-crane export --mjcf``).
-
-Nothing here is imported by ``import offshore_crane``; the exporters need no optional
-package (the MuJoCo checks import ``mujoco`` lazily).
-"""

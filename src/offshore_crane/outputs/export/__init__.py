@@ -1,0 +1,8 @@
+"""Exports of the robot to other tools' formats.
+
+- :mod:`offshore_crane.outputs.export.mjcf`: a MuJoCo model (MJCF) with the six loops closed by
+  equality constraints (``offshore-crane export --mjcf``).
+
+Nothing here is imported by ``import offshore_crane``; the exporters need no optional
+package (the MuJoCo checks import ``mujoco`` lazily).
+"""

@@ -1,0 +1,280 @@
+"""Animations (GIF through Pillow, MP4 through imageio-ffmpeg) and still pictures of the
+robot, headless.
+
+:func:`animate` draws a :class:`~offshore_crane.outputs.visual.motion.Motion` frame by frame
+with :class:`~offshore_crane.outputs.visual.render.Renderer` (one camera for the whole run) and
+streams the frames to the encoder: MP4 frames go to ffmpeg as they are drawn (memory
+stays bounded), GIF frames are reduced to a palette of :data:`GIF_COLOURS` each and kept until
+Pillow writes the file. The output is written atomically through
+:mod:`offshore_crane.io`.
+
+GIF stores frame durations in hundredths of a second: at 30 fps a frame lasts 30 ms
+(GIF cannot say 33.3 ms), so a GIF plays 10 % fast at 30 fps; 10, 20, 25 and 50 fps are
+exact.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from offshore_crane.conventions import GRAVITY
+from offshore_crane.errors import InputError
+
+#: Output formats by file suffix.
+FORMATS = ("gif", "mp4")
+#: GIF frames are kept in memory (one byte a pixel) until written: refuse beyond this.
+GIF_MAX_PIXELS = 1_000_000_000
+#: Colours of each GIF frame's palette (flat shading needs few; fewer keep files small).
+GIF_COLOURS = 64
+#: The still's frames, drawn as axis triads (x red, y green, z blue) with their names.
+LABELLED_FRAMES = ("base", "platform", "arm_link1", "arm_link2", "arm_tip", "payload")
+
+
+def output_format(path) -> str:
+    """``"gif"`` or ``"mp4"`` from the file's suffix.
+
+    Raises:
+        InputError: any other suffix.
+    """
+    suffix = Path(str(path)).suffix.lstrip(".").lower()
+    if suffix not in FORMATS:
+        raise InputError(f"--out {path}: unknown animation type '.{suffix}': give a file "
+                         f"name ending in {' or '.join('.' + f for f in FORMATS)}",
+                         name="--out")
+    return suffix
+
+
+@dataclass(frozen=True)
+class Written:
+    """What :func:`animate` wrote.
+
+    Attributes:
+        frames: Number of frames.
+        fps: Frames per second of the file.
+        size: ``(width, height)`` [pixels].
+        seconds: Wall time of drawing and encoding [s].
+        scale: With ``color_by``: max |Fl| [N] (force) or the largest utilisation.
+    """
+
+    frames: int
+    fps: float
+    size: tuple
+    seconds: float
+    scale: float | None = None
+
+
+def _legend(color_by: str, scale: float):
+    """An overlay drawing the legs' colour bar, top right."""
+    from offshore_crane.outputs.visual.render import diverging, sequential
+
+    def draw(d, r, k):
+        ss = r.ss
+        W = r.width * ss
+        w, h = 120 * ss, 10 * ss
+        x0, y0 = W - w - 14 * ss, 22 * ss
+        x = np.linspace(-1.0, 1.0, w) if color_by == "force" else np.linspace(0.0, 1.0, w)
+        rgb = (diverging(x) if color_by == "force" else sequential(x)) * 255
+        for i, c in enumerate(rgb.astype(int).tolist()):
+            d.line([(x0 + i, y0), (x0 + i, y0 + h)], fill=tuple(c))
+        font = r.font(11)
+        if color_by == "force":
+            left, right, title = f"-{scale:.0f} N", f"+{scale:.0f} N", "leg force: pull / push"
+        else:
+            left, right, title = "0", "100 %", f"leg utilisation (max {scale:.0%})"
+        d.text((x0, y0 - 14 * ss), title, fill=(20, 20, 25), font=font)
+        d.text((x0, y0 + h + 2 * ss), left, fill=(20, 20, 25), font=font)
+        d.text((x0 + w, y0 + h + 2 * ss), right, fill=(20, 20, 25), font=font, anchor="ra")
+    return draw
+
+
+def frames(robot, shown, *, width: int = 640, height: int = 480, camera=None,
+           color_by: str | None = None, supersample: int = 1, caption: str = ""):
+    """The pictures of a motion already evaluated at the frames' times.
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot`.
+        shown: :class:`~offshore_crane.outputs.visual.motion.Motion` at the frames' times (its
+            ``X`` needed with ``color_by``, its ``sway`` with a cable).
+        color_by: None, ``"force"`` or ``"utilisation"`` (the legs' colour).
+        caption: Printed after the time stamp.
+
+    Returns:
+        ``(renderer, iterator of PIL images, scale)``.
+    """
+    from offshore_crane.outputs.visual import motion as mo
+    from offshore_crane.outputs.visual.poses import link_poses
+    from offshore_crane.outputs.visual.render import Renderer, diverging, leg_face_colours, sequential
+
+    P = link_poses(robot, shown.q, shown.sway)
+    r = Renderer(robot, P, width, height, camera, supersample)
+    values, scale, overlay = None, None, None
+    if color_by is not None:
+        if shown.X is None:
+            raise InputError("--color-by needs the actuator forces", name="--color-by")
+        values, scale = mo.leg_values(robot, shown.X, color_by)
+        overlay = _legend(color_by, scale)
+    cmap = diverging if color_by == "force" else sequential
+
+    def pictures():
+        for k in range(len(P)):
+            rgb = None if values is None else leg_face_colours(r.geo, cmap(values[k]))
+            yield r.frame(k, rgb, text=f"t = {shown.t[k]:.2f} s{caption}", overlay=overlay)
+    return r, pictures(), scale
+
+
+def write_gif(target, images, fps: float) -> int:
+    """Write the images as a looping GIF (Pillow); returns the number of frames."""
+    from offshore_crane.errors import require
+    from offshore_crane.io import open_output
+
+    Image = require("PIL.Image", "pillow", "Writing a GIF")
+    kept = []
+    for im in images:
+        kept.append(im.quantize(GIF_COLOURS, method=Image.Quantize.MEDIANCUT,
+                                dither=Image.Dither.NONE))
+    duration = max(20, int(round(1000.0 / fps / 10.0)) * 10)
+    with open_output(target, "wb") as fh:
+        kept[0].save(fh, format="GIF", save_all=True, append_images=kept[1:],
+                     duration=duration, loop=0, disposal=1, optimize=False)
+    return len(kept)
+
+
+def write_mp4(target, images, fps: float, size: tuple) -> int:
+    """Stream the images to ffmpeg (H.264, yuv420p); returns the number of frames."""
+    from offshore_crane.errors import require
+    from offshore_crane.io import output_path
+
+    iio = require("imageio_ffmpeg", "offshore-crane[animate]", "Writing an MP4")
+    n = 0
+    with output_path(target, ".mp4") as path:
+        writer = iio.write_frames(path, size, fps=fps, codec="libx264", quality=7,
+                                  pix_fmt_out="yuv420p", macro_block_size=2,
+                                  output_params=["-f", "mp4"], ffmpeg_log_level="error")
+        writer.send(None)
+        try:
+            for im in images:
+                writer.send(im.tobytes())
+                n += 1
+        finally:
+            writer.close()
+    return n
+
+
+def animate(robot, motion, target, *, fps: float = 30.0, speed: float = 1.0,
+            duration: float | None = None, color_by: str | None = None,
+            gravity=GRAVITY, leg_model: str = "full", width: int = 640,
+            height: int = 480, camera=None, fmt: str | None = None,
+            cable: dict | None = None) -> Written:
+    """Draw ``motion`` into a GIF or MP4 file.
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot`.
+        motion: :class:`~offshore_crane.outputs.visual.motion.Motion` (a scene's trajectory, a
+            run's CSV).
+        target: Output path or :class:`offshore_crane.io.Target`; its suffix (``.gif``,
+            ``.mp4``) chooses the format unless ``fmt`` is given.
+        fps: Frames per second of the file (> 0).
+        speed: Motion seconds per second of the file (> 0).
+        duration: Motion time drawn from its start [s] (default: all).
+        color_by: None, ``"force"`` or ``"utilisation"``: the legs coloured by their
+            actuator force (computed by inverse dynamics when the motion has none).
+        gravity: ``(3,)`` [m/s²], for the forces and the hanging load.
+        width, height: [pixels]; MP4 needs them even.
+        camera: :class:`~offshore_crane.outputs.visual.render.Camera`.
+        cable: Options of the hanging load's swing (a scene's ``[cable]``).
+
+    Returns:
+        :class:`Written`.
+
+    Raises:
+        InputError: unknown suffix, fps or speed <= 0, odd MP4 size, a GIF too large.
+        ModelError: a hanging load without the cable model.
+        BackendMissingError: Pillow or imageio-ffmpeg missing (with the install hint).
+    """
+    from offshore_crane.outputs.visual import motion as mo
+
+    fmt = fmt or output_format(getattr(target, "given", target))
+    times = mo.frame_times(motion, fps, speed, duration)
+    if fmt == "mp4" and (width % 2 or height % 2):
+        raise InputError(f"an MP4 needs an even width and height, got {width} x {height}",
+                         name="--size")
+    if fmt == "gif" and len(times) * width * height > GIF_MAX_PIXELS:
+        raise InputError(f"a GIF of {len(times)} frames of {width} x {height} would hold "
+                         f"{len(times) * width * height / 1e9:.1f} G pixels in memory: "
+                         "write an MP4, or lower --fps, --duration or the size",
+                         name="--out")
+    start = time.perf_counter()
+    motion = mo.hanging_load(robot, motion, gravity, cable)
+    if color_by is not None:
+        motion = mo.forces(robot, motion, gravity, leg_model)
+    shown = mo.at(motion, times)
+    _, images, scale = frames(robot, shown, width=width, height=height, camera=camera,
+                              color_by=color_by)
+    if fmt == "gif":
+        n = write_gif(target, images, fps)
+    else:
+        n = write_mp4(target, images, fps, (width, height))
+    return Written(n, fps, (width, height), time.perf_counter() - start, scale)
+
+
+def _labels(names):
+    """An overlay drawing the axis triads of the frames ``names`` with their names."""
+    def draw(d, r, k):
+        P = r.poses
+        ss = r.ss
+        font = r.font(12)
+        size = 0.08 * np.linalg.norm(r.eye - r.target) / 4.0
+        drawn = []
+        for name in names:
+            if name not in P.links:
+                continue
+            p, R = P.p[k, P.index(name)], P.R[k, P.index(name)]
+            if any(np.abs(p - other).max() < 1e-9 for other in drawn):
+                continue                            # welded at a frame already named
+            drawn.append(p)
+            pts = np.vstack([p, p + size * R.T])
+            xy, _ = r.project(pts)
+            o = tuple(xy[0])
+            for a, colour in enumerate(((220, 30, 30), (30, 160, 30), (30, 60, 220))):
+                d.line([o, tuple(xy[a + 1])], fill=colour, width=2 * ss)
+            d.text((o[0] + 6 * ss, o[1] - 16 * ss), name, fill=(10, 10, 10), font=font,
+                   stroke_width=2 * ss, stroke_fill=(255, 255, 255))
+        for i in range(1, 7):                      # leg numbers beside each leg's middle
+            lo = f"leg{i}_lower"
+            if lo not in P.links:
+                continue
+            mid = (P.p[k, P.index(lo)] + P.p[k, P.index(f"leg{i}_tip")]) / 2.0
+            (x, y), = r.project(mid[None])[0]
+            d.text((x + 4 * ss, y), f"leg{i}", fill=(10, 10, 10), font=font,
+                   stroke_width=2 * ss, stroke_fill=(255, 255, 255))
+    return draw
+
+
+def still(robot, q, target, *, width: int = 800, height: int = 600, camera=None,
+          sway=None, labels: bool = True) -> None:
+    """A picture of the robot at one pose ``q (9,)`` (PNG, or any type Pillow writes
+    from the suffix), with the main frames drawn and named (``labels``).
+
+    Raises:
+        InputError: a bad ``q`` or size; the errors of
+            :func:`offshore_crane.outputs.visual.poses.link_poses`.
+    """
+    from offshore_crane.io import open_output
+    from offshore_crane.validation import as_samples
+    from offshore_crane.outputs.visual.poses import link_poses
+    from offshore_crane.outputs.visual.render import Renderer
+
+    q, _ = as_samples("--pose", q)
+    if len(q) != 1:
+        raise InputError(f"--pose takes one pose of 9 values, got {len(q)}", name="--pose")
+    P = link_poses(robot, q, None if sway is None else np.atleast_2d(sway))
+    r = Renderer(robot, P, width, height, camera, supersample=2)
+    text = "q = (" + ", ".join(f"{x:.3g}" for x in q[0]) + ")"
+    image = r.frame(0, text=text, overlay=_labels(LABELLED_FRAMES) if labels else None)
+    fmt = Path(str(getattr(target, "given", target))).suffix.lstrip(".").lower()
+    with open_output(target, "wb") as fh:
+        image.save(fh, format={"jpg": "JPEG", "tif": "TIFF"}.get(fmt, fmt.upper()))

@@ -1,0 +1,304 @@
+"""The motion to draw: where it comes from, its values at the frames' times, and the
+forces and sway that go with it.
+
+Sources:
+
+- a scene or a trajectory (``--scene``, ``--trajectory table1|sea|F.csv``): through
+  :func:`offshore_crane.scenes.load_trajectory`; rates and accelerations analytic where
+  the source has them;
+- a run's CSV (``--from F.csv``): read by :func:`read_run`. Accepted: the CSV of
+  ``offshore-crane simulate --out`` (``t_s, q1..q9, q1_ref..q9_ref, T1_Nm..Fl6_N``), a
+  trajectory CSV (``t_s, q1..q9`` with optional ``qd1..qd9, qdd1..qdd9``, e.g. from
+  ``offshore-crane motion --out``), and either with the hanging load's
+  ``phi1_rad, phi2_rad, tension_N``. ``offshore-crane id --out`` writes forces only (no
+  q): give its trajectory with ``--trajectory`` instead.
+
+Frames: frame k shows the motion at ``t0 + k · speed / fps`` (speed 2: twice real time),
+evaluated exactly where the source is analytic and linearly interpolated between samples
+otherwise (positions, forces, sway alike).
+
+The hanging load (issue 14) plugs in at one place, :func:`hanging_load`: when the robot
+description's ``payload.cable_length`` is > 0, the sway and the forces come from
+``offshore_crane.dynamics.cable.inverse_dynamics`` (or from the run's CSV), never a load drawn
+welded.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from offshore_crane.conventions import ACTUATOR_UNITS, ACTUATORS, COORDINATES
+from offshore_crane.errors import InputError, TrajectoryError
+
+#: Columns of a run's CSV that :func:`read_run` reads (others are ignored if known).
+FORCE_COLUMNS = tuple(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS, ACTUATOR_UNITS))
+SWAY_COLUMNS = ("phi1_rad", "phi2_rad")
+KNOWN_COLUMNS = (("t_s",) + COORDINATES + tuple(f"{c}_ref" for c in COORDINATES)
+                 + tuple(f"qd{i}" for i in range(1, 10)) + tuple(f"qdd{i}" for i in range(1, 10))
+                 + FORCE_COLUMNS + SWAY_COLUMNS + ("tension_N",))
+
+
+@dataclass(frozen=True)
+class Motion:
+    """A sampled motion with what is known along it.
+
+    Attributes:
+        name: Where it comes from (for captions).
+        t: ``(N,)`` [s], strictly increasing.
+        q: ``(N, 9)`` [m, rad].
+        qd, qdd: ``(N, 9)`` rates and accelerations, or None (a run's CSV without them).
+        X: ``(N, 9)`` actuator forces [N·m, N], or None.
+        sway: ``(N, 2)`` sway angles (φ1, φ2) [rad] of a hanging load, or None.
+        source: ``source(t (n,)) -> (q, qd, qdd)`` exact at any time, or None.
+    """
+
+    name: str
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray | None = None
+    qdd: np.ndarray | None = None
+    X: np.ndarray | None = None
+    sway: np.ndarray | None = None
+    source: object = None
+
+
+def from_trajectory(traj) -> Motion:
+    """A :class:`~offshore_crane.motion.trajectories.Trajectory` as a :class:`Motion`."""
+    return Motion(traj.name, traj.t, traj.q, traj.qd, traj.qdd, source=traj.source)
+
+
+def read_run(path) -> Motion:
+    """Read a run's CSV (see the module docstring for the accepted files).
+
+    Raises:
+        TrajectoryError: the file is missing or unreadable, lacks ``t_s`` or one of
+            q1..q9 (an ``offshore-crane id`` CSV: named as such), has an unknown column,
+            a row of the wrong length, a non-numeric or non-finite cell (naming the line
+            and column), or a time that does not increase.
+    """
+    from offshore_crane.io import read_text
+
+    where = os.fspath(path)
+    if not os.path.isfile(where):
+        raise TrajectoryError(f"--from {where}: no such file (a CSV of offshore-crane "
+                              "simulate --out, or a trajectory t_s,q1..q9)", path=where)
+    try:
+        rows = [r for r in csv.reader(read_text(where, "run CSV").removeprefix("\ufeff")
+                                      .splitlines()) if r and any(c.strip() for c in r)]
+    except InputError as exc:
+        raise TrajectoryError(str(exc), path=where) from None
+    if not rows:
+        raise TrajectoryError(f"{where}: the file is empty: it needs a header line with "
+                              "t_s,q1..q9 and at least 2 rows", path=where)
+    header = [c.strip() for c in rows[0]]
+    if "t_s" in header and "q1" not in header and "T1_Nm" in header:
+        raise TrajectoryError(f"{where}: holds actuator forces only (the CSV of "
+                              "offshore-crane id): give the trajectory it was computed on "
+                              "with --trajectory (the forces are recomputed)", path=where)
+    missing = [c for c in ("t_s",) + COORDINATES if c not in header]
+    if missing:
+        raise TrajectoryError(f"{where}, line 1: missing column(s) {', '.join(missing)}: "
+                              "a run's CSV needs t_s,q1..q9", name=",".join(missing),
+                              path=where)
+    unknown = [c for c in header if c not in KNOWN_COLUMNS]
+    repeated = sorted({c for c in header if header.count(c) > 1})
+    if unknown or repeated:
+        bad = unknown or repeated
+        raise TrajectoryError(f"{where}, line 1: {'unknown' if unknown else 'repeated'} "
+                              f"column(s) {', '.join(map(repr, bad))}: accepted are t_s, "
+                              "q1..q9, q1_ref..q9_ref, qd1..qd9, qdd1..qdd9, "
+                              f"{FORCE_COLUMNS[0]}..{FORCE_COLUMNS[-1]}, phi1_rad, phi2_rad, "
+                              "tension_N", name=bad[0], path=where)
+    data = rows[1:]
+    for i, row in enumerate(data):
+        if len(row) != len(header):
+            raise TrajectoryError(f"{where}, data row {i + 1}: {len(row)} cells, expected "
+                                  f"{len(header)}", index=i, path=where)
+    if len(data) < 2:
+        raise TrajectoryError(f"{where}: {len(data)} data row(s), at least 2 are needed",
+                              path=where)
+    try:
+        values = np.array(data, dtype=str).astype(float)
+    except ValueError:
+        for i, row in enumerate(data):
+            for j, cell in enumerate(row):
+                try:
+                    float(cell)
+                except ValueError:
+                    raise TrajectoryError(f"{where}, data row {i + 1}, column {header[j]}: "
+                                          f"{cell.strip()!r} is not a number", name=header[j],
+                                          index=i, path=where) from None
+        raise
+    col = {name: k for k, name in enumerate(header)}
+    needed = [c for c in header if not c.endswith("_ref") and c != "tension_N"]
+    bad = ~np.isfinite(values[:, [col[c] for c in needed]])
+    if bad.any():
+        i, j = (int(x) for x in np.argwhere(bad)[0])
+        raise TrajectoryError(f"{where}, data row {i + 1}, column {needed[j]}: "
+                              f"{data[i][col[needed[j]]].strip()!r} is not finite (a simulation "
+                              "that stopped early keeps every sample it computed: cut the "
+                              "file there)", name=needed[j], index=i, path=where)
+    t = values[:, col["t_s"]]
+    back = np.diff(t) <= 0.0
+    if back.any():
+        i = int(np.argmax(back)) + 1
+        raise TrajectoryError(f"{where}, data row {i + 1}: t_s = {t[i]!r} s does not "
+                              f"increase after {t[i - 1]!r} s", name="t_s", index=i,
+                              path=where)
+
+    def block(names):
+        if not all(n in col for n in names):
+            return None
+        return np.ascontiguousarray(values[:, [col[n] for n in names]])
+
+    qd = block([f"qd{i}" for i in range(1, 10)])
+    qdd = block([f"qdd{i}" for i in range(1, 10)])
+    X = block(list(FORCE_COLUMNS))
+    return Motion(os.path.splitext(os.path.basename(where))[0], np.ascontiguousarray(t),
+                  block(list(COORDINATES)), qd, qdd, X, block(list(SWAY_COLUMNS)))
+
+
+def frame_times(motion: Motion, fps: float, speed: float = 1.0,
+                duration: float | None = None) -> np.ndarray:
+    """Times [s] of the motion shown by each frame: ``t0 + k · speed / fps``.
+
+    Args:
+        fps: Frames per second of the picture (> 0).
+        speed: Motion seconds per picture second (> 0).
+        duration: Motion time to show from the start [s] (default: all of it).
+
+    Raises:
+        InputError: fps, speed or duration not finite and > 0, or a duration longer than
+            the motion.
+    """
+    for name, value in (("--fps", fps), ("--speed", speed)):
+        if not (isinstance(value, (int, float, np.floating)) and np.isfinite(value)
+                and value > 0):
+            raise InputError(f"{name} {value!r} must be a finite number > 0", name=name)
+    t0, t1 = float(motion.t[0]), float(motion.t[-1])
+    if duration is not None:
+        if not (np.isfinite(duration) and duration > 0):
+            raise InputError(f"--duration {duration!r} s must be a finite number > 0",
+                             name="--duration")
+        if duration > (t1 - t0) * (1 + 1e-12):
+            raise InputError(f"--duration {duration:g} s is longer than the motion "
+                             f"({t1 - t0:g} s)", name="--duration")
+        t1 = t0 + duration
+    n = int(np.floor((t1 - t0) * fps / speed * (1 + 1e-12))) + 1
+    return t0 + np.arange(n) * (speed / fps)
+
+
+def _lerp(t: np.ndarray, y: np.ndarray, times: np.ndarray) -> np.ndarray:
+    """Linear interpolation of the rows of ``y (N, m)`` at ``times`` (within ``t``)."""
+    i = np.clip(np.searchsorted(t, times, side="right") - 1, 0, len(t) - 2)
+    s = ((times - t[i]) / (t[i + 1] - t[i]))[:, None]
+    return y[i] * (1.0 - s) + y[i + 1] * s
+
+
+def at(motion: Motion, times: np.ndarray) -> Motion:
+    """The motion at ``times`` (within its span): exact with an analytic source, linear
+    between samples otherwise."""
+    times = np.asarray(times, dtype=float)
+    if motion.source is not None:
+        q, qd, qdd = motion.source(times)
+    else:
+        q = _lerp(motion.t, motion.q, times)
+        qd = None if motion.qd is None else _lerp(motion.t, motion.qd, times)
+        qdd = None if motion.qdd is None else _lerp(motion.t, motion.qdd, times)
+    X = None if motion.X is None else _lerp(motion.t, motion.X, times)
+    sway = None if motion.sway is None else _lerp(motion.t, motion.sway, times)
+    return Motion(motion.name, times, q, qd, qdd, X, sway, motion.source)
+
+
+def with_rates(motion: Motion, order: int = 4) -> Motion:
+    """``motion`` with rates and accelerations (finite differences of the samples when it
+    has none, :func:`offshore_crane.motion.trajectories.finite_difference`)."""
+    if motion.qd is not None and motion.qdd is not None:
+        return motion
+    from offshore_crane.motion.trajectories import finite_difference
+
+    qd, qdd = finite_difference(motion.t, motion.q, order=order)
+    return replace(motion, qd=qd, qdd=qdd)
+
+
+def cable_length(robot) -> float:
+    """The description's ``payload.cable_length`` [m] (0: the payload is welded)."""
+    return float(getattr(robot.spec, "cable_length", 0.0) or 0.0) if robot.spec else 0.0
+
+
+def hanging_load(robot, motion: Motion, gravity, options: dict | None = None) -> Motion:
+    """The one place where the hanging load (issue 14) enters the pictures.
+
+    Without a cable (``payload.cable_length = 0``) the motion is returned as it is. With
+    one, a motion that carries its sway (a run's CSV with ``phi1_rad, phi2_rad``) is kept;
+    otherwise the sway and the forces come from
+    ``offshore_crane.dynamics.cable.inverse_dynamics(robot, t, q, qd, qdd, gravity=...)`` (``.sway
+    (N, 2)``, ``.X (N, 9)``), with the motion's analytic source at RK4's stages when it has
+    one, and ``options`` (a scene's ``[cable]``: initial sway, substeps, slack policy).
+
+    Raises:
+        The errors of :func:`offshore_crane.dynamics.cable.inverse_dynamics` (a slack cable, a
+        non-uniform time axis, ...).
+    """
+    L = cable_length(robot)
+    if L <= 0.0 or motion.sway is not None:
+        return motion
+    from offshore_crane.dynamics import cable
+
+    full = with_rates(motion)
+    run = cable.inverse_dynamics(robot, full.t, full.q, full.qd, full.qdd, gravity=gravity,
+                                 reference=motion.source, **(options or {}))
+    return replace(motion, sway=np.asarray(run.sway), X=np.asarray(run.X))
+
+
+def forces(robot, motion: Motion, gravity, leg_model: str = "full") -> Motion:
+    """``motion`` with its actuator forces: kept when it has them, else computed by the
+    inverse dynamics (:func:`offshore_crane.dynamics.solve`, Kane) on its samples."""
+    if motion.X is not None:
+        return motion
+    from offshore_crane.dynamics import solve
+
+    full = with_rates(motion)
+    X = solve(robot, full.q, full.qd, full.qdd, gravity=gravity, leg_model=leg_model,
+              t=full.t).X
+    return replace(motion, X=np.asarray(X))
+
+
+#: ``--color-by`` choices.
+COLOR_BY = ("force", "utilisation")
+
+
+def leg_values(robot, X: np.ndarray, color_by: str) -> tuple[np.ndarray, float]:
+    """What colours the legs: ``(v (F, 6), scale)``.
+
+    ``force``: ``v = Fl / max |Fl|`` over the frames, in [-1, 1] (pull < 0 < push),
+    ``scale = max |Fl|`` [N]. ``utilisation``: ``v = Fl / push_max`` where Fl > 0 and
+    ``|Fl| / pull_max`` where Fl < 0 (the robot description's capacities), ``scale`` the
+    largest utilisation over the frames.
+
+    Raises:
+        InputError: unknown ``color_by``; utilisation without finite capacities for the
+            legs.
+    """
+    Fl = X[:, 3:9]
+    if color_by == "force":
+        scale = float(np.abs(Fl).max())
+        return (Fl / scale if scale > 0 else np.zeros_like(Fl)), scale
+    if color_by == "utilisation":
+        caps = robot.capacities
+        push, pull = np.asarray(caps.push_max)[3:9], np.asarray(caps.pull_max)[3:9]
+        if not (np.all(np.isfinite(push)) and np.all(np.isfinite(pull))):
+            raise InputError("--color-by utilisation needs the legs' capacities "
+                             "(actuators.Fl.push_max and pull_max in the robot description "
+                             "or the scene's [actuators]); this robot gives none: use "
+                             "--color-by force", name="--color-by")
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = np.where(Fl >= 0, Fl / push, -Fl / pull)
+        u = np.nan_to_num(u, nan=0.0, posinf=np.inf)
+        return u, float(u.max())
+    raise InputError(f"--color-by {color_by!r}: choose {' or '.join(COLOR_BY)}",
+                     name="--color-by")

@@ -1,0 +1,193 @@
+"""A 3-D view of a motion in the browser (viser), with play / pause and a time slider.
+
+The robot is the renderer's tessellation of the URDF's shapes
+(:func:`offshore_crane.outputs.visual.render.geometry`), one mesh per link under a scene frame
+that :class:`Viewer` moves to the link's pose; the poses of every frame are computed once
+(:mod:`offshore_crane.outputs.visual.poses`). The server listens on 127.0.0.1 by default (this
+machine only); a port already in use is an error, not a silent move to the next port.
+"""
+
+from __future__ import annotations
+
+import socket
+import threading
+import time
+
+import numpy as np
+
+from offshore_crane.errors import ViewerError
+
+#: Rate [1/s] at which the motion is sampled for the viewer (motion time).
+VIEW_RATE = 30.0
+
+
+def quaternions(R: np.ndarray) -> np.ndarray:
+    """``(..., 3, 3)`` rotation matrices to unit quaternions ``(..., 4)`` (w, x, y, z),
+    w >= 0 (Shepperd's method: the largest of the four candidates, stable everywhere)."""
+    R = np.asarray(R, dtype=float)
+    tr = R[..., 0, 0] + R[..., 1, 1] + R[..., 2, 2]
+    cand = np.stack([tr, R[..., 0, 0], R[..., 1, 1], R[..., 2, 2]], axis=-1)
+    k = np.argmax(cand, axis=-1)
+    q = np.empty(R.shape[:-2] + (4,))
+    s = np.sqrt(np.maximum(1.0 + 2.0 * np.take_along_axis(cand, k[..., None], -1)[..., 0]
+                           - tr, 0.0)) * 2.0                 # 4 * the largest component
+    m = k == 0
+    q[m] = np.stack([s[m] / 4, (R[m, 2, 1] - R[m, 1, 2]) / s[m],
+                     (R[m, 0, 2] - R[m, 2, 0]) / s[m], (R[m, 1, 0] - R[m, 0, 1]) / s[m]], -1)
+    m = k == 1
+    q[m] = np.stack([(R[m, 2, 1] - R[m, 1, 2]) / s[m], s[m] / 4,
+                     (R[m, 0, 1] + R[m, 1, 0]) / s[m], (R[m, 0, 2] + R[m, 2, 0]) / s[m]], -1)
+    m = k == 2
+    q[m] = np.stack([(R[m, 0, 2] - R[m, 2, 0]) / s[m], (R[m, 0, 1] + R[m, 1, 0]) / s[m],
+                     s[m] / 4, (R[m, 1, 2] + R[m, 2, 1]) / s[m]], -1)
+    m = k == 3
+    q[m] = np.stack([(R[m, 1, 0] - R[m, 0, 1]) / s[m], (R[m, 0, 2] + R[m, 2, 0]) / s[m],
+                     (R[m, 1, 2] + R[m, 2, 1]) / s[m], s[m] / 4], -1)
+    return np.where(q[..., :1] < 0, -q, q)
+
+
+def check_port(host: str, port: int) -> None:
+    """Raise :class:`ViewerError` when ``port`` cannot be bound on ``host``."""
+    if not isinstance(port, int) or not 0 <= port <= 65535:
+        raise ViewerError(f"--port {port!r}: give a port number in 0..65535 (0: any free "
+                          "port)", host=host, port=port)
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    with socket.socket(family, socket.SOCK_STREAM) as s:
+        try:
+            s.bind((host, port))
+        except OSError as exc:
+            raise ViewerError(f"--port {port}: cannot listen on {host}:{port} "
+                              f"({exc.strerror}): another program uses it; choose another "
+                              "port with --port", host=host, port=port) from None
+
+
+class Viewer:
+    """A viser server showing a motion.
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot`.
+        shown: :class:`~offshore_crane.outputs.visual.motion.Motion` at the frames' times
+            (``t (F,)``, ``q (F, 9)``, ``sway`` with a cable).
+        host: Address to listen on (default this machine only).
+        port: TCP port (0: any free port; read :attr:`port`).
+        speed: Motion seconds per second of playback.
+        play: Start playing.
+
+    Attributes:
+        server: The ``viser.ViserServer``.
+        port: The port it listens on.
+        url: ``http://host:port/``.
+        slider, playing: The GUI handles (time [s], play checkbox).
+
+    Raises:
+        ViewerError: the port is in use or out of range.
+        BackendMissingError: viser is not installed (install hint).
+    """
+
+    def __init__(self, robot, shown, host: str = "127.0.0.1", port: int = 8080,
+                 speed: float = 1.0, play: bool = True, title: str = "offshore-crane"):
+        from offshore_crane.errors import require
+        from offshore_crane.outputs.visual.poses import link_poses
+        from offshore_crane.outputs.visual.render import geometry
+
+        viser = require("viser", "offshore-crane[view]", "The browser viewer")
+        check_port(host, port)
+        self.t = np.asarray(shown.t, dtype=float)
+        P = link_poses(robot, shown.q, shown.sway)
+        self.poses = P
+        self.wxyz = quaternions(P.R)                           # (F, L, 4)
+        geo = geometry(robot, P.links)
+        server = viser.ViserServer(host=host, port=port, label=title, verbose=False)
+        self.server = server
+        self.port = server.get_port()
+        if port != 0 and self.port != port:                    # lost a race for the port
+            server.stop()
+            raise ViewerError(f"--port {port}: cannot listen on {host}:{port}: another "
+                              "program took it; choose another port with --port",
+                              host=host, port=port)
+        self.url = f"http://{host if ':' not in host else '[' + host + ']'}:{self.port}/"
+        server.scene.set_up_direction("+z")
+        # the renderer's default view, fitted to the whole motion
+        from offshore_crane.outputs.visual.render import Camera, fit_camera
+
+        step = max(1, len(P) // 100)
+        pts = (np.einsum("nvij,vj->nvi", P.R[::step][:, geo.vlink], geo.V)
+               + P.p[::step][:, geo.vlink]).reshape(-1, 3)
+        eye, target = fit_camera(Camera(fov=50.0), pts, 4.0 / 3.0, fill=0.85)
+        server.initial_camera.position = tuple(eye)
+        server.initial_camera.look_at = tuple(target)
+        self.frames = {}
+        for col, link in enumerate(P.links):
+            faces = np.flatnonzero(geo.flink == col)
+            if not len(faces):
+                continue
+            handle = server.scene.add_frame(f"/robot/{link}", show_axes=False)
+            self.frames[col] = handle
+            # one mesh per colour: fan triangles of the link's faces, link-frame vertices
+            for c, rgb in enumerate(np.unique(geo.rgb[faces], axis=0)):
+                same = [f for f in faces if np.array_equal(geo.rgb[f], rgb)]
+                tris = [(fc[0], fc[i], fc[i + 1]) for f in same
+                        for fc in [geo.faces[f]] for i in range(1, len(fc) - 1)]
+                used = np.unique(np.array(tris).ravel())
+                remap = {v: i for i, v in enumerate(used)}
+                server.scene.add_mesh_simple(
+                    f"/robot/{link}/mesh{c}", geo.V[used].astype(np.float32),
+                    np.array([[remap[v] for v in tri] for tri in tris], dtype=np.uint32),
+                    color=tuple(int(255 * x) for x in rgb), flat_shading=True)
+        self.cable = None
+        if geo.cable is not None:
+            self.cable = (geo.cable, None)
+        with server.gui.add_folder("motion"):
+            self.playing = server.gui.add_checkbox("play", initial_value=play)
+            self.slider = server.gui.add_slider(
+                "time [s]", min=float(self.t[0]), max=float(max(self.t[-1], self.t[0] + 1e-9)),
+                step=float(np.min(np.diff(self.t))) if len(self.t) > 1 else 1.0,
+                initial_value=float(self.t[0]))
+            self.speed = server.gui.add_number("speed", initial_value=float(speed),
+                                               min=0.01, max=100.0, step=0.01)
+        self.slider.on_update(lambda _: self.show(self.slider.value))
+        self.show(float(self.t[0]))
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._play, daemon=True, name="viewer-play")
+        self._thread.start()
+
+    def index(self, time_s: float) -> int:
+        """The frame shown at motion time ``time_s`` [s] (the last one at or before it)."""
+        return int(np.clip(np.searchsorted(self.t, time_s + 1e-9, side="right") - 1, 0,
+                           len(self.t) - 1))
+
+    def show(self, time_s: float) -> int:
+        """Move every link to its pose at ``time_s`` [s]; returns the frame index."""
+        k = self.index(time_s)
+        p, wxyz = self.poses.p[k], self.wxyz[k]
+        with self.server.atomic():
+            for col, handle in self.frames.items():
+                handle.position = p[col]
+                handle.wxyz = wxyz[col]
+            if self.cable is not None:
+                (a, b), line = self.cable
+                pts = np.array([[p[a], p[b]]], dtype=np.float32)
+                if line is None:
+                    line = self.server.scene.add_line_segments(
+                        "/cable", pts, colors=(25, 25, 25), line_width=2.0)
+                    self.cable = ((a, b), line)
+                else:
+                    line.points = pts
+        return k
+
+    def _play(self) -> None:
+        last = time.perf_counter()
+        while not self._stop.wait(1.0 / VIEW_RATE):
+            now = time.perf_counter()
+            if self.playing.value and len(self.t) > 1:
+                t = self.slider.value + (now - last) * float(self.speed.value)
+                if t > self.t[-1]:
+                    t = float(self.t[0])                       # loop
+                self.slider.value = float(t)                    # on_update moves the robot
+            last = now
+
+    def close(self) -> None:
+        """Stop playback and the server."""
+        self._stop.set()
+        self._thread.join(timeout=2.0)
+        self.server.stop()

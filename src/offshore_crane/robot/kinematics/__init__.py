@@ -1,0 +1,117 @@
+"""Kinematics of the hybrid robot: the formulas (:mod:`.formulas`), the workspace and
+singularity checks (:mod:`.workspace`), and batched evaluations for users and tests.
+
+:func:`legs` evaluates the leg formulas on ``(N, 9)`` trajectories with NumPy (the
+vectorised backend of the one text) and returns every leg quantity with leading axes
+``(N, 6)``. It is meant for analysis, plots and checks (a motion source can check its own
+output against the robot); the dynamics kernels evaluate the same formulas inline.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from offshore_crane.robot.kinematics import formulas as F
+
+__all__ = ["LegState", "legs", "platform_pose"]
+
+
+@dataclass
+class LegState:
+    """Kinematics of the six legs; arrays have leading axes ``(N, 6)`` (base frame).
+
+    Attributes:
+        p_S, v_S, a_S: ``(N, 6, 3)`` sphere centre S_i [m], [m/s], [m/s²].
+        length, rate, accel: ``(N, 6)`` leg length l_i [m], l̇_i [m/s], l̈_i [m/s²].
+        u: ``(N, 6, 3)`` unit vector from P_i to S_i.
+        theta, theta_d, theta_dd: ``(N, 6, 2)`` U-joint angles [rad], rates, accelerations.
+        cos_theta2: ``(N, 6)`` ``cos θ2`` (zero at the U-joint gimbal singularity).
+        R: ``(N, 6, 3, 3)`` ``R_base_leg`` (both leg links' frames).
+        omega, alpha: ``(N, 6, 3)`` the legs' angular velocity [rad/s], acceleration.
+        V_S: ``(N, 6, 6, 3)`` partial velocities of S_i for u1..u6 [m/s per u_r].
+        J: ``(N, 6, 6)`` leg-length (actuation) Jacobian, ``l̇ = J · q̇[:6]``.
+    """
+
+    p_S: np.ndarray
+    v_S: np.ndarray
+    a_S: np.ndarray
+    length: np.ndarray
+    rate: np.ndarray
+    accel: np.ndarray
+    u: np.ndarray
+    theta: np.ndarray
+    theta_d: np.ndarray
+    theta_dd: np.ndarray
+    cos_theta2: np.ndarray
+    R: np.ndarray
+    omega: np.ndarray
+    alpha: np.ndarray
+    V_S: np.ndarray
+    J: np.ndarray
+
+
+def _samples(x, N=None):
+    from offshore_crane.validation import as_samples
+
+    return as_samples("q", x)[0] if x is not None else np.zeros((N, 9))
+
+
+def platform_pose(q) -> tuple[np.ndarray, np.ndarray]:
+    """``(p_base_O2 (N, 3) [m], R_base_platform (N, 3, 3))`` of ``q`` ``(N, 9)``."""
+    q = _samples(q)
+    R = F.attitude(q.T)[0]
+    return q[:, :3].copy(), np.moveaxis(np.array(R, dtype=float), (0, 1), (1, 2))
+
+
+def legs(robot, q, qd=None, qdd=None) -> LegState:
+    """Leg kinematics along ``q`` ``(N, 9)`` (rates and accelerations zero if omitted).
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot`.
+        q, qd, qdd: ``(N, 9)`` or ``(9,)`` [m, rad], rates, accelerations.
+
+    Returns:
+        :class:`LegState`.
+    """
+    q = _samples(q)
+    N = len(q)
+    qd, qdd = _samples(qd, N), _samples(qdd, N)
+    m = robot.hybrid
+    RU = m.R_base_U
+    qT, qdT, qddT = q.T, qd.T, qdd.T
+    R, w4, w5, w6 = F.attitude(qT)
+    omega, alpha = F.platform_rates(w4, w5, qdT, qddT)
+    p, v, a = (qT[0], qT[1], qT[2]), (qdT[0], qdT[1], qdT[2]), (qddT[0], qddT[1], qddT[2])
+    out = {k: [] for k in ("p_S", "v_S", "a_S", "length", "rate", "accel", "u", "theta",
+                           "theta_d", "theta_dd", "cos_theta2", "R", "omega", "alpha", "V_S")}
+    Vw, Ww = np.empty((9, 3), dtype=object), np.empty((9, 3), dtype=object)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for i in range(len(RU)):
+            X, Y, Z = RU[i, :, 0], RU[i, :, 1], RU[i, :, 2]
+            r, d, length, il, u, dx, dy, dz, h = F.leg_geometry(p, R, m.p_platform_S[i],
+                                                                m.p_base_P[i], X, Y, Z)
+            a2, n = F.ujoint_axes(X, Z, dx, dz, h)
+            v_S = F.point_velocity(v, omega, r)
+            a_S = F.point_acceleration(a, omega, alpha, r)
+            rate, accel, w, al, _, _, th1d, th2d = F.leg_motion(v_S, a_S, u, length, il, Y, a2,
+                                                                n, length / h, True)
+            F.platform_partials(w4, w5, w6, r, Vw, Ww)
+            values = dict(p_S=F.add(p, r), v_S=v_S, a_S=a_S, length=length, rate=rate,
+                          accel=accel, u=u, theta=F.ujoint_angles(dx, dy, dz, h),
+                          theta_d=(th1d, th2d), theta_dd=(F.dot(al, Y), F.dot(al, a2)),
+                          cos_theta2=h / length, R=F.leg_frame(u, a2), omega=w, alpha=al,
+                          V_S=[[Vw[r_, k] for k in range(3)] for r_ in range(6)])
+            for key, value in values.items():
+                out[key].append(np.moveaxis(_array(value, N), -1, 0))
+    res = {k: np.stack(v, axis=1) for k, v in out.items()}
+    J = np.einsum("nlk,nlrk->nlr", res["u"], res["V_S"])
+    return LegState(J=J, **res)
+
+
+def _array(value, N: int) -> np.ndarray:
+    """Nested tuples of ``(N,)`` arrays or scalars as one array ``nested + (N,)``."""
+    if isinstance(value, (tuple, list)):
+        return np.stack([_array(v, N) for v in value])
+    return np.broadcast_to(np.asarray(value, dtype=float), (N,))

@@ -1,0 +1,10 @@
+"""The robot run forward in time: :mod:`.control` (control laws), :mod:`.rk4` (the
+integrator), :mod:`.rigid` (the 9-coordinate robot) and :mod:`.swing` (with the payload
+swinging on its cable)."""
+
+from __future__ import annotations
+
+from offshore_crane.simulation.control import Controller
+from offshore_crane.simulation.rigid import SimulationResult, simulate
+
+__all__ = ["Controller", "SimulationResult", "simulate"]

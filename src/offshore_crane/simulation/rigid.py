@@ -1,0 +1,400 @@
+"""Time simulation of the closed-loop robot under a controller.
+
+The state ``(q, q̇)`` lives in the 9 independent coordinates of ``docs/conventions.md``:
+the loops are closed by construction, there is no constraint drift. The accelerations come
+from the equations of motion ``M q̈ + h = A X`` (:mod:`offshore_crane.dynamics.forward`),
+the actuator forces X from a controller (:mod:`offshore_crane.simulation.control`) tracking a
+reference motion.
+
+Integrators:
+
+- ``"rk4"`` (default): classical fixed-step Runge–Kutta at ``step`` [s], compiled whole
+  (the built-in laws included): the reference is evaluated analytically at every stage time
+  (t, t + h/2, t + h) beforehand; with a control rate the law is evaluated at the control
+  instants and X held in between (sample-and-hold), otherwise at every stage.
+- ``"dop853"``: SciPy's adaptive ``solve_ivp`` (DOP853, ``rtol``/``atol`` stated in the
+  result), driven from Python: the accuracy reference for RK4.
+
+A controller may also be any Python callable ``law(t, q, qd, q_ref, qd_ref, qdd_ref) ->
+X (9,)`` [s, m, rad, ... → N·m, N]: the same RK4 then runs in Python, one forward-dynamics
+call and one call of the law per stage (slower than the compiled built-in laws; X clipped
+to the robot description's capacities, the time saturated reported).
+
+The simulation stops at the first sample that leaves the workspace, reaches a singular
+configuration (the mass matrix at the attitude singularity) or diverges (a non-finite
+state): :class:`~offshore_crane.errors.SimulationError` names the time and the cause and
+carries the :class:`SimulationResult` up to that sample (``error.result``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from offshore_crane.simulation.control import LAW_CODES, Controller
+from offshore_crane.conventions import GRAVITY
+from offshore_crane.errors import InputError, SimulationError
+from offshore_crane.validation import as_gravity
+
+INTEGRATORS = ("rk4", "dop853")
+#: Stop codes of the compiled loop.
+OK, WORKSPACE, SINGULAR, DIVERGED = 0, 1, 2, 3
+
+
+@dataclass
+class SimulationResult:
+    """A simulated run, sampled at the output times (every sample kept on a stop).
+
+    Attributes:
+        t: ``(N,)`` [s].
+        q, qd, qdd: ``(N, 9)`` state and accelerations [m, rad, /s, /s²].
+        q_ref, qd_ref: ``(N, 9)`` the reference.
+        X_cmd, X: ``(N, 9)`` commanded and applied (saturated) actuator forces [N·m, N]
+            at the start of each output interval.
+        saturated: ``(N, 9)`` True where the command exceeded a limit.
+        energy: ``(N,)`` mechanical energy T + V [J] (V of gravity, zero at the base).
+        power: ``(N,)`` actuators' power Σ X_k · (rate of joint k) [W].
+        integrator, step: What integrated it and its step [s] (RK4) or tolerances.
+        stop: None, or the reason the run stopped early.
+        sway, sway_rate: ``(N, 2)`` with a payload on a cable: φ1, φ2 [rad] and their
+            rates [rad/s] (docs/cable.md); None otherwise.
+        tension: ``(N,)`` the cable's tension [N], or None.
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    q_ref: np.ndarray
+    qd_ref: np.ndarray
+    X_cmd: np.ndarray
+    X: np.ndarray
+    saturated: np.ndarray
+    energy: np.ndarray
+    power: np.ndarray
+    integrator: str = "rk4"
+    step: float = 0.0
+    stop: str | None = None
+    info: dict = field(default_factory=dict)
+    sway: np.ndarray | None = None
+    sway_rate: np.ndarray | None = None
+    tension: np.ndarray | None = None
+
+    @property
+    def error(self) -> np.ndarray:
+        """Tracking error ``q − q_ref`` ``(N, 9)``."""
+        return self.q - self.q_ref
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def truncated(self, n: int) -> "SimulationResult":
+        """The first ``n`` samples."""
+        arrays = {k: getattr(self, k)[:n] for k in ("t", "q", "qd", "qdd", "q_ref", "qd_ref",
+                                                     "X_cmd", "X", "saturated", "energy",
+                                                     "power")}
+        cable = {k: None if getattr(self, k) is None else getattr(self, k)[:n]
+                 for k in ("sway", "sway_rate", "tension")}
+        return SimulationResult(**arrays, integrator=self.integrator, step=self.step,
+                                stop=self.stop, info=self.info, **cable)
+
+
+# --------------------------------------------------------------------------- compiled
+def _loop():
+    """The compiled RK4 loop, its control law and accelerations (:mod:`._rk4`, which
+    imports Numba: loaded on first use)."""
+    from offshore_crane.simulation import rk4 as _rk4
+
+    return _rk4.run, _rk4.law, _rk4.accel
+
+
+# --------------------------------------------------------------------------- public
+def _reference_grid(reference, t0: float, h: float, n_steps: int):
+    tt = t0 + np.arange(2 * n_steps + 1) * (0.5 * h)
+    q, qd, qdd = reference(tt)
+    return tt, np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd)
+
+
+def steps(duration, step, rate, control_rate) -> tuple[int, int, int]:
+    """``(n_steps, out_every, hold)``: integration steps in ``duration`` [s] at ``step``
+    [s], steps per output sample (output ``rate`` [Hz], None: every step) and per control
+    period (``control_rate`` [Hz], None: 0, the law at every stage).
+
+    Raises:
+        InputError: a non-positive or non-finite duration or step, a duration shorter
+            than a step, a rate whose period is not a whole number of steps, a control
+            rate above the integration rate.
+    """
+    for name, value in (("duration", duration), ("step", step)):
+        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
+            raise InputError(f"{name} = {value!r} s: must be positive and finite", name=name)
+    n_steps = int(round(duration / step))
+    if n_steps < 1:
+        raise InputError(f"duration {duration} s is shorter than one step {step} s",
+                         name="duration")
+    out_every = 1
+    if rate is not None:
+        ratio = 1.0 / (rate * step)
+        if not (np.isfinite(ratio) and abs(ratio - round(ratio)) < 1e-9 and round(ratio) >= 1):
+            raise InputError(f"output rate {rate} Hz: 1/rate must be a multiple of the step "
+                             f"{step} s", name="rate")
+        out_every = int(round(ratio))
+    hold = 0
+    if control_rate is not None:
+        ratio = 1.0 / (control_rate * step)
+        if ratio < 1.0 - 1e-9:
+            raise InputError(f"control rate {control_rate} Hz is above the integration "
+                             f"rate {1.0 / step:g} Hz: lower it or shorten the step",
+                             name="control_rate")
+        if abs(ratio - round(ratio)) > 1e-9:
+            raise InputError(f"control rate {control_rate} Hz: its period must be a "
+                             f"multiple of the step {step} s", name="control_rate")
+        hold = int(round(ratio))
+    return n_steps, out_every, hold
+
+
+def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=None, *,
+             gravity=GRAVITY, step: float = 1e-3, rate: float | None = None,
+             integrator: str = "rk4", limits: bool = True, rtol: float = 1e-10,
+             atol: float = 1e-12, t0: float = 0.0, **cable) -> SimulationResult:
+    """Simulate the robot from ``(q0, q̇0)`` for ``duration`` seconds.
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot` (the plant).
+        duration: [s] > 0.
+        reference: A callable ``reference(t (n,)) -> (q, qd, qdd)`` each ``(n, 9)``
+            (e.g. :func:`offshore_crane.motion.trajectories.table1`), evaluated at every stage.
+        q0, qd0: ``(9,)`` initial state (default: the reference at ``t0``).
+        controller: :class:`~offshore_crane.simulation.control.Controller` (default computed torque).
+        gravity: ``(3,)`` [m/s²].
+        step: Integration step [s] (RK4).
+        rate: Output sampling rate [Hz] (default every step); 1/rate must be a multiple
+            of ``step``.
+        integrator: ``"rk4"`` or ``"dop853"``.
+        limits: Stop at the first sample outside the workspace.
+        rtol, atol: Tolerances of DOP853.
+        t0: Start time [s].
+        **cable: With a payload on a cable: ``initial``, ``initial_rate`` (2,) of the
+            sway [rad, rad/s] (:func:`offshore_crane.simulation.swing.simulate_swing`,
+            which then runs).
+
+    Returns:
+        :class:`SimulationResult`.
+
+    Raises:
+        InputError: bad arguments (one-line message).
+        SimulationError: the run stopped early (``error.result`` holds what was computed).
+    """
+    controller = controller or Controller()
+    if not isinstance(controller, Controller):
+        if not callable(controller):
+            raise InputError(f"controller must be a Controller or a callable law(t, q, qd, "
+                             f"q_ref, qd_ref, qdd_ref) -> X, got {controller!r}",
+                             name="controller")
+        if integrator != "rk4" or robot.hybrid.cable is not None or cable:
+            raise InputError("a Python controller runs with RK4 on a robot without a "
+                             "hanging load", name="controller")
+        return _python_law(robot, duration, reference, q0, qd0, controller, gravity, step,
+                           rate, limits, t0)
+    if robot.hybrid.cable is not None or cable:
+        if integrator != "rk4":
+            raise InputError(f"integrator {integrator!r}: with a payload on a cable the "
+                             "simulation runs RK4", name="integrator")
+        from offshore_crane.simulation.swing import simulate_swing
+
+        return simulate_swing(robot, duration, reference, q0, qd0, controller,
+                              gravity=gravity, step=step, rate=rate, limits=limits, t0=t0,
+                              **cable)
+    if controller.anti_sway:
+        raise InputError("anti_sway damps the swing of a payload on a cable, but this "
+                         "robot's payload is welded (payload.cable_length = 0)",
+                         name="anti_sway")
+    if integrator not in INTEGRATORS:
+        raise InputError(f"unknown integrator {integrator!r}: use one of "
+                         f"{', '.join(INTEGRATORS)}", name="integrator")
+    n_steps, out_every, hold = steps(duration, step, rate, controller.rate)
+    g = as_gravity(gravity)
+    tt, qr, qdr, qddr = _reference_grid(reference, t0, step, n_steps)
+    q0 = qr[0].copy() if q0 is None else np.asarray(q0, dtype=float).reshape(9).copy()
+    qd0 = qdr[0].copy() if qd0 is None else np.asarray(qd0, dtype=float).reshape(9).copy()
+    if not (np.isfinite(q0).all() and np.isfinite(qd0).all()):
+        raise InputError("the initial state q0, qd0 must be finite", name="q0")
+    if integrator == "dop853":
+        return _dop853(robot, tt[::2], reference, q0, qd0, controller, g, limits, rtol, atol,
+                       out_every)
+    from offshore_crane.dynamics.constants import robot_arrays
+    from offshore_crane.robot.kinematics import workspace as ws
+
+    run = _loop()[0]
+    plant = robot_arrays(robot)
+    model = robot_arrays(controller.model or robot)
+    kp, kd = controller.gains
+    lo, hi = controller.bounds(robot)
+    n_ctrl = n_steps // hold + 2 if hold else 1
+    rng = np.random.default_rng(controller.seed)
+    sq, sqd = controller.noise
+    nq = rng.normal(size=(n_ctrl, 9)) * sq
+    nqd = rng.normal(size=(n_ctrl, 9)) * sqd
+    n_out = n_steps // out_every + 1
+    arrays = {k: np.zeros((n_out, 9)) for k in ("q", "qd", "qdd", "q_ref", "qd_ref", "X_cmd",
+                                                "X")}
+    sat = np.zeros((n_out, 9), dtype=bool)
+    E = np.zeros(n_out)
+    P = np.zeros(n_out)
+    health = ws.new_health()
+    status = np.zeros(3, dtype=np.int64)
+    run(plant.flat, plant.layout, plant.prismatic, model.flat, model.layout, model.prismatic,
+        g, step, n_steps, out_every, qr, qdr, qddr, LAW_CODES[controller.law], kp, kd, hold,
+        nq, nqd, lo, hi, limits, q0, qd0, arrays["q"], arrays["qd"], arrays["qdd"],
+        arrays["q_ref"], arrays["qd_ref"], arrays["X_cmd"], arrays["X"], sat, E, P, health,
+        status)
+    n_done = int(status[2])
+    t_out = tt[::2][::out_every][:n_out]
+    res = SimulationResult(t=t_out, **arrays, saturated=sat, energy=E, power=P,
+                           integrator="rk4", step=step)
+    if status[0] != OK:
+        k = int(status[1])
+        when = t0 + k * step
+        res = res.truncated(n_done)
+        if status[0] == WORKSPACE:
+            try:
+                ws.check_workspace(health, plant.limits, res.q[-1:], None)
+                cause = "left the workspace"
+            except Exception as exc:          # the WorkspaceError's text names the limit
+                cause = str(exc).split(" at sample")[0] + " (outside its limits)"
+        elif status[0] == SINGULAR:
+            cause = ("the mass matrix became singular (attitude singularity, "
+                     f"q5 = {res.q[-1, 4]:.4g} rad)")
+        else:
+            cause = "the state diverged (a non-finite value)"
+        res.stop = f"stopped at t = {when:.6g} s: {cause}"
+        raise SimulationError(f"simulation {res.stop}; the {n_done} samples computed before "
+                              "are kept", time=when, cause=cause, result=res)
+    return res
+
+
+def _python_law(robot, duration, reference, q0, qd0, law, gravity, step, rate, limits, t0):
+    """RK4 with a Python controller (module docstring): the law and Kane's forward
+    dynamics (:func:`offshore_crane.forward_dynamics`, its one-sample path) at every stage."""
+    from offshore_crane.dynamics.forward import forward_dynamics
+    from offshore_crane.robot.kinematics import legs
+    from offshore_crane.validation import as_samples
+
+    n_steps, out_every, _ = steps(duration, step, rate, None)
+    g = as_gravity(gravity)
+    tt, qr, qdr, qddr = _reference_grid(reference, t0, step, n_steps)
+    y = np.concatenate([qr[0] if q0 is None else np.asarray(q0, float).reshape(9),
+                        qdr[0] if qd0 is None else np.asarray(qd0, float).reshape(9)])
+    lo, hi = Controller().bounds(robot)
+
+    def f(i, y):
+        q, qd = y[:9].copy(), y[9:].copy()
+        X_cmd = as_samples("X returned by the controller", law(tt[i], q, qd, qr[i], qdr[i],
+                                                                qddr[i]))[0][0]
+        X = np.clip(X_cmd, lo, hi)
+        return np.concatenate([qd, forward_dynamics(robot, q, qd, X, gravity=g)]), X_cmd, X
+
+    n_out = n_steps // out_every + 1
+    rec = {k: np.full((n_out, 9), np.nan) for k in ("q", "qd", "qdd", "q_ref", "qd_ref",
+                                                    "X_cmd", "X")}
+    for s in range(n_steps + 1):
+        k1, X_cmd, X = f(2 * s, y)
+        if s % out_every == 0:
+            k = s // out_every
+            rec["q"][k], rec["qd"][k], rec["qdd"][k] = y[:9], y[9:], k1[9:]
+            rec["q_ref"][k], rec["qd_ref"][k] = qr[2 * s], qdr[2 * s]
+            rec["X_cmd"][k], rec["X"][k] = X_cmd, X
+        if s == n_steps:
+            break
+        k2 = f(2 * s + 1, y + 0.5 * step * k1)[0]
+        k3 = f(2 * s + 1, y + 0.5 * step * k2)[0]
+        k4 = f(2 * s + 2, y + step * k3)[0]
+        y = y + step / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+    res = SimulationResult(t=tt[::2][::out_every][:n_out], **rec,
+                           saturated=(rec["X_cmd"] < lo) | (rec["X_cmd"] > hi),
+                           energy=np.full(n_out, np.nan), power=np.full(n_out, np.nan),
+                           integrator="rk4", step=step, info={"controller": "python"})
+    rates = legs(robot, res.q, res.qd).rate
+    res.power = (res.X[:, :3] * res.qd[:, 6:9]).sum(axis=1) + (res.X[:, 3:] * rates).sum(1)
+    if limits:
+        from offshore_crane.dynamics import solve
+
+        zero = np.zeros_like(res.q)
+        solve(robot, res.q, zero, zero, t=res.t, limits=True, checks=False)
+    return res
+
+
+def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol, out_every):
+    """The adaptive reference integrator (continuous controller, driven from Python)."""
+    from offshore_crane.errors import require
+
+    integrate = require("scipy.integrate", "scipy", "The DOP853 integrator")
+    _, law, accel = _loop()
+    from offshore_crane.dynamics.constants import robot_arrays
+
+    plant = robot_arrays(robot)
+    from offshore_crane.dynamics import compiled as c
+
+    C = plant.kane
+    Cc_arrays = robot_arrays(controller.model or robot)
+    Cc = Cc_arrays.kane
+    kp, kd = controller.gains
+    lo, hi = controller.bounds(robot)
+    n = 6 + C.n_arm
+    ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
+          np.empty((max(C.n_arm, 1), 27)), np.empty((9, 3)), np.empty((9, 3)),
+          np.empty((9, 3)), np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9),
+          np.zeros(9))
+    na = C.n_arm
+    wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
+          np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
+          np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
+          np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
+    gt = tuple(float(x) for x in g)
+    X = np.empty(9)
+    qdd = np.empty(9)
+    kind = LAW_CODES[controller.law]
+    del c
+
+    def rhs(t, x):
+        q, qd = x[:9].copy(), x[9:].copy()
+        r = reference(np.array([t]))
+        law(Cc, gt, kind, kp, kd, q, qd, r[0][0], r[1][0], r[2][0], X, wl)
+        np.clip(X, lo, hi, out=X)
+        accel(C, gt, n, q, qd, X, qdd, ws)
+        return np.concatenate([qd, qdd])
+
+    sol = integrate.solve_ivp(rhs, (t_out[0], t_out[-1]), np.concatenate([q0, qd0]),
+                              method="DOP853", t_eval=t_out[::out_every], rtol=rtol, atol=atol)
+    N = sol.t.size
+    q, qd = sol.y[:9].T.copy(), sol.y[9:].T.copy()
+    rq, rqd, _ = reference(sol.t)
+    qdd_all = np.array([rhs(t, x)[9:] for t, x in zip(sol.t, sol.y.T)])
+    Xa = np.empty((N, 9))
+    for k in range(N):
+        rr = reference(sol.t[k:k + 1])
+        law(Cc, gt, kind, kp, kd, q[k], qd[k], rr[0][0], rr[1][0], rr[2][0], X, wl)
+        Xa[k] = X
+    Xapp = np.clip(Xa, lo, hi)
+    res = SimulationResult(t=sol.t, q=q, qd=qd, qdd=qdd_all, q_ref=rq, qd_ref=rqd, X_cmd=Xa,
+                           X=Xapp, saturated=(Xa < lo) | (Xa > hi), energy=np.full(N, np.nan),
+                           power=np.full(N, np.nan), integrator="dop853", step=0.0,
+                           info=dict(rtol=rtol, atol=atol, nfev=sol.nfev))
+    if not sol.success:
+        res.stop = f"DOP853 stopped: {sol.message}"
+        raise SimulationError(f"simulation {res.stop}", time=float(sol.t[-1]) if N else 0.0,
+                              cause=sol.message, result=res)
+    return res
+
+
+def warm_up(robot=None) -> list[tuple[str, float]]:
+    """Compile (or load from the cache) the simulation loop: ``[(name, seconds)]``."""
+    import time
+
+    from offshore_crane.robot import load_robot
+    from offshore_crane.motion.trajectories import table1
+
+    t0 = time.perf_counter()
+    simulate(robot or load_robot(), 2e-3, table1, step=1e-3)
+    return [("simulation loop", time.perf_counter() - t0)]

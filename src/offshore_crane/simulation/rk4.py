@@ -1,0 +1,232 @@
+"""The compiled RK4 loop of :mod:`offshore_crane.simulation.rigid` (imports Numba).
+
+The functions link the compiled formulas (module globals) and close over the formulas'
+hash only (see :func:`_make`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from offshore_crane.dynamics import compiled as c
+
+explicit_sample, actuator_coordinates = c.KE.explicit_sample, c.KE.actuator_coordinates
+solve6, cholesky_solve, unpack, check = c.solve6, c.cholesky_solve, c.unpack, c._check
+actuation_minus_bias = c.actuation_minus_bias
+tangent_bounds = c.tangent_bounds
+STAMP = c.STAMP
+jit = njit(**c.JIT)
+OK, WORKSPACE, SINGULAR, DIVERGED = 0, 1, 2, 3
+_VIOLATION = 3
+
+
+def _helpers(stamp):
+    """The control law and the accelerations, closed over the formulas' hash ``stamp``
+    only: it keys their disk cache, so that editing a formula (whose compiled code they
+    link) rebuilds them. (A closure over a dispatcher would defeat the cache: the loop
+    below reaches these two as module globals.)"""
+
+    @jit
+    def law(Cc, g, kind, kp, kd, q, qd, qr, qdr, qddr, Xout, w):
+        """The control law at one state, with the controller's model ``Cc`` (``w``: the
+        workspace tuple). The model's inverse dynamics comes from its equations of motion:
+        ``B = M q̈_cmd + h``, ``(T1, T2, Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]``."""
+        if len(stamp) == 0:
+            return
+        B, J, Mm, store, Vw, Ww, Vs, diag, mc, A, rhs, x, M13, zero, qdd_c, pos, rate, posr, \
+            rater = w
+        if kind == 3:
+            for j in range(9):
+                Xout[j] = 0.0
+            return
+        for j in range(9):
+            Xout[j] = 0.0
+        if kind <= 1:
+            B[:] = 0.0
+            Mm[:] = 0.0
+            for j in range(9):
+                qdd_c[j] = (qddr[j] + kd[j] * (qdr[j] - qd[j]) + kp[j] * (qr[j] - q[j])
+                            if kind == 0 else 0.0)
+            if kind == 0:
+                explicit_sample(Cc, q, qd, qdd_c, g, False, B, J, Mm, store, Vw, Ww, Vs,
+                                diag, mc)
+            else:
+                explicit_sample(Cc, q, zero, zero, g, False, B, J, Mm, store, Vw, Ww, Vs,
+                                diag, mc)
+            for b in range(Cc.n_arm):
+                Xout[b] = B[6 + b]
+            for r in range(6):
+                rhs[r] = B[r]
+                for l in range(6):
+                    A[r, l] = J[l, r]
+            solve6(A, rhs, x, M13, False)
+            for l in range(6):
+                Xout[3 + l] = x[l]
+        if kind >= 1:
+            actuator_coordinates(Cc, q, qd, pos, rate)
+            actuator_coordinates(Cc, qr, qdr, posr, rater)
+            for j in range(9):
+                Xout[j] += kp[j] * (posr[j] - pos[j]) + kd[j] * (rater[j] - rate[j])
+
+    @jit
+    def accel(C, g, n, q, qd, X, qdd, ws):
+        """q̈ from the equations of motion into ``qdd``; False when M is singular."""
+        if len(stamp) == 0:
+            return False
+        B, J, Mm, L, store, Vw, Ww, Vs, diag, mc, rhs, x, zero = ws
+        B[:] = 0.0
+        Mm[:] = 0.0
+        explicit_sample(C, q, qd, zero, g, True, B, J, Mm, store, Vw, Ww, Vs, diag, mc)
+        actuation_minus_bias(B, J, X, n - 6, rhs)
+        ok = cholesky_solve(Mm, rhs, n, x, L)
+        for j in range(9):
+            qdd[j] = x[j] if j < n else 0.0
+        return ok
+
+    return law, accel
+
+
+law, accel = _helpers(STAMP)
+
+
+def _runner(stamp):
+    """The RK4 loop, closed over ``stamp`` only (see :func:`_helpers`)."""
+
+    @jit
+    def run(fp, lp, pp, fc, lc, pc, g, h, n_steps, out_every, qr, qdr, qddr, kind, kp, kd,
+            hold, nq, nqd, lo, hi, want_limits, q0, qd0, Q, QD, QDD, QR, QDR, XC, XA, SAT,
+            E, P, health, status):
+        """RK4 from (q0, qd0); outputs every ``out_every`` steps; ``status`` receives
+        (code, step) of a stop."""
+        if len(stamp) == 0:
+            return
+        C, lim_arm, lim_stroke, lim_ujoint = unpack(fp, lp, pp)
+        Cc = unpack(fc, lc, pc)[0]
+        tb = tangent_bounds(lim_ujoint)
+        na = C.n_arm
+        n = 6 + na
+        gt = (g[0], g[1], g[2])
+        ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
+              np.empty((max(na, 1), 27)), np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)),
+              np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9), np.zeros(9))
+        wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
+              np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
+              np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
+              np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
+        kap = np.empty((3, 1))
+        q = q0.copy()
+        qd = qd0.copy()
+        Xc = np.zeros(9)
+        Xa = np.zeros(9)
+        qm = np.empty(9)
+        qdm = np.empty(9)
+        k1q = np.empty(9)
+        k1v = np.empty(9)
+        k2q = np.empty(9)
+        k2v = np.empty(9)
+        k3q = np.empty(9)
+        k3v = np.empty(9)
+        k4v = np.empty(9)
+        qs = np.empty(9)
+        qds = np.empty(9)
+        sat = np.zeros(9, dtype=np.bool_)
+        ctrl = 0
+        for step in range(n_steps + 1):
+            i0 = 2 * step
+            # control at the step start (sample-and-hold) or at every stage
+            if hold == 0 or step % hold == 0:
+                for j in range(9):
+                    qm[j] = q[j] + (nq[ctrl, j] if hold > 0 else 0.0)
+                    qdm[j] = qd[j] + (nqd[ctrl, j] if hold > 0 else 0.0)
+                if hold > 0:
+                    ctrl += 1
+                law(Cc, gt, kind, kp, kd, qm, qdm, qr[i0], qdr[i0], qddr[i0], Xc, wl)
+                for j in range(9):
+                    sat[j] = Xc[j] < lo[j] or Xc[j] > hi[j]
+                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
+            ok = accel(C, gt, n, q, qd, Xa, k1v, ws)
+            diag, mc, Mm, J = ws[8], ws[9], ws[2], ws[1]
+            finite = ok
+            for j in range(9):
+                finite = finite and np.isfinite(q[j]) and np.isfinite(qd[j])
+            if want_limits:
+                check(0, q.reshape((1, 9)), na, diag, np.nan, True, False, True, np.inf,
+                      np.inf, lim_arm, lim_stroke, lim_ujoint, tb, kap, health)
+            stop = OK if finite else (SINGULAR if not ok else DIVERGED)
+            if want_limits and stop == OK:
+                for s in range(4):
+                    if health[_VIOLATION + 3 * s] >= 0.0:
+                        stop = WORKSPACE
+            if step % out_every == 0 or stop != OK:
+                o = step // out_every if stop == OK else (step + out_every - 1) // out_every
+                if o < Q.shape[0]:
+                    T = 0.0
+                    for r in range(n):
+                        for c_ in range(n):
+                            T += 0.5 * qd[r] * (Mm[r, c_] if c_ <= r else Mm[c_, r]) * qd[c_]
+                    pw = 0.0
+                    for b in range(na):
+                        pw += Xa[b] * qd[6 + b]
+                    for l in range(6):
+                        ldot = 0.0
+                        for r in range(6):
+                            ldot += J[l, r] * qd[r]
+                        pw += Xa[3 + l] * ldot
+                    for j in range(9):
+                        Q[o, j] = q[j]
+                        QD[o, j] = qd[j]
+                        QDD[o, j] = k1v[j]
+                        QR[o, j] = qr[i0, j]
+                        QDR[o, j] = qdr[i0, j]
+                        XC[o, j] = Xc[j]
+                        XA[o, j] = Xa[j]
+                        SAT[o, j] = sat[j]
+                    E[o] = T - (gt[0] * mc[0, 0] + gt[1] * mc[0, 1] + gt[2] * mc[0, 2])
+                    P[o] = pw
+                    status[2] = o + 1
+            if stop != OK:
+                status[0] = stop
+                status[1] = step
+                return
+            if step == n_steps:
+                break
+            # RK4 stages
+            for j in range(9):
+                k1q[j] = qd[j]
+                qs[j] = q[j] + 0.5 * h * qd[j]
+                qds[j] = qd[j] + 0.5 * h * k1v[j]
+            if hold == 0:
+                law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], Xc,
+                    wl)
+                for j in range(9):
+                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
+            accel(C, gt, n, qs, qds, Xa, k2v, ws)
+            for j in range(9):
+                k2q[j] = qds[j]
+                qs[j] = q[j] + 0.5 * h * qds[j]
+                qds[j] = qd[j] + 0.5 * h * k2v[j]
+            if hold == 0:
+                law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], Xc,
+                    wl)
+                for j in range(9):
+                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
+            accel(C, gt, n, qs, qds, Xa, k3v, ws)
+            for j in range(9):
+                k3q[j] = qds[j]
+                qs[j] = q[j] + h * qds[j]
+                qds[j] = qd[j] + h * k3v[j]
+            if hold == 0:
+                law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 2], qdr[i0 + 2], qddr[i0 + 2], Xc,
+                    wl)
+                for j in range(9):
+                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
+            accel(C, gt, n, qs, qds, Xa, k4v, ws)
+            for j in range(9):
+                q[j] += h / 6.0 * (k1q[j] + 2.0 * k2q[j] + 2.0 * k3q[j] + qds[j])
+                qd[j] += h / 6.0 * (k1v[j] + 2.0 * k2v[j] + 2.0 * k3v[j] + k4v[j])
+
+    return run
+
+
+run = _runner(STAMP)

@@ -1,0 +1,97 @@
+"""Results bit-identical across the package's restructuring (issue 20).
+
+``tests/data/golden_cc08b22.npz`` was written by main ``cc08b22`` (before the columns
+layout) from Table 1, the controlled-crane, sea-state and hanging-load scenes: inverse
+dynamics on every path, forward dynamics (ours and Pinocchio's), M, h, A, two
+simulations, the sea-state record, the swing and a simulation with the swing. The same
+calls through today's layout must give the same bits, except where a later change
+deliberately altered the numerics (listed in :data:`MOVED`, with its bound).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import offshore_crane as oc
+from offshore_crane import scenes
+from offshore_crane.motion import trajectories
+
+GOLDEN = Path(__file__).parent / "data" / "golden_cc08b22.npz"
+ROOT = Path(__file__).resolve().parents[1]
+
+#: Arrays whose numerics changed on purpose since cc08b22: name -> relative bound (of
+#: the array's largest magnitude), with the reason.
+MOVED: dict[str, float] = {}
+
+
+def _hold(q_hold):
+    def reference(t):
+        n = len(np.atleast_1d(t))
+        return np.tile(q_hold, (n, 1)), np.zeros((n, 9)), np.zeros((n, 9))
+    return reference
+
+
+@pytest.fixture(scope="module")
+def now() -> dict:
+    out = {}
+    robot = oc.load_robot()
+    t = trajectories.time_grid(duration=10 * np.pi, rate=100.0)
+    q, qd, qdd = trajectories.table1(t)
+    idx = np.arange(0, len(t), 37)
+    X = oc.inverse_dynamics(robot, q, qd, qdd)
+    out["table1_X_kane"] = X[idx]
+    out["table1_X_kane_numpy"] = oc.dynamics.solve(robot, q, qd, qdd, backend="numpy").X[idx]
+    out["table1_X_explicit"] = oc.inverse_dynamics(robot, q, qd, qdd,
+                                                   method="kane-explicit")[idx]
+    out["table1_X_rnea"] = oc.inverse_dynamics(robot, q, qd, qdd, method="rnea")[idx]
+    out["table1_qdd_fd"] = oc.forward_dynamics(robot, q[idx], qd[idx], X[idx])
+    out["table1_qdd_fd_pin"] = oc.forward_dynamics(robot, q[idx], qd[idx], X[idx],
+                                                   method="pinocchio")
+    out["table1_M"] = oc.mass_matrix(robot, q[idx[:5]])
+    out["table1_h"] = oc.bias_forces(robot, q[idx[:5]], qd[idx[:5]])
+    out["table1_A"] = oc.actuation_matrix(robot, q[idx[:5]])
+
+    sc = scenes.load_scene(ROOT / "scenes" / "controlled_crane.toml")
+    r = scenes.load_robot(sc)
+    sim = oc.simulate(r, 2.0, trajectories.table1, controller=scenes.controller(sc, r))
+    for k in ("t", "q", "qd", "X"):
+        out[f"sim_{k}"] = np.asarray(getattr(sim, k))[::50]
+    sim2 = oc.simulate(robot, 1.0, trajectories.table1,
+                       controller=oc.Controller(law="pd-gravity"))
+    out["sim_pd_q"], out["sim_pd_X"] = sim2.q[::50], sim2.X[::50]
+
+    run = scenes.run(scenes.load_scene(ROOT / "scenes" / "sea_state_crane.toml"))
+    tr = run.trajectory
+    out["sea_q"], out["sea_qd"], out["sea_qdd"] = tr.q[::97], tr.qd[::97], tr.qdd[::97]
+    out["sea_X"] = run.result.X[::97]
+
+    sc = scenes.load_scene(ROOT / "scenes" / "hanging_load.toml")
+    run = scenes.run(sc)
+    c = run.result.cable
+    out["cable_X"], out["cable_sway"], out["cable_tension"] = (
+        c.X[::97], c.sway[::97], c.tension[::97])
+    sim3 = oc.simulate(scenes.load_robot(sc), 2.0, _hold(run.trajectory.q[0].copy()),
+                       controller=oc.Controller(anti_sway=0.3), initial=(0.05, 0.0))
+    for k in ("q", "X", "sway", "tension"):
+        out[f"cable_sim_{k}"] = np.asarray(getattr(sim3, k))[::50]
+    return out
+
+
+def _names():
+    with np.load(GOLDEN) as g:
+        return list(g.files)
+
+
+@pytest.mark.parametrize("name", _names())
+def test_result_unchanged_since_cc08b22(now, name):
+    with np.load(GOLDEN) as g:
+        before = g[name]
+    assert now[name].shape == before.shape
+    if name in MOVED:
+        scale = np.max(np.abs(before))
+        assert np.max(np.abs(now[name] - before)) <= MOVED[name] * scale
+    else:
+        np.testing.assert_array_equal(now[name], before)   # bit for bit
