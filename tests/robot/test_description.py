@@ -34,8 +34,8 @@ from offshore_crane.robot.overrides import ALIASES, conflicts, normalise, parse_
 
 import description_cases as dc
 
-ROOT = Path(__file__).resolve().parents[1]
-OLD_XACRO = Path(__file__).parent / "data" / "offshore_crane_v1.urdf.xacro"
+ROOT = Path(__file__).resolve().parents[2]
+OLD_XACRO = Path(__file__).resolve().parents[1] / "data" / "offshore_crane_v1.urdf.xacro"
 LITERATURE = ROOT / "models" / "descriptions" / "harib_srinivasan_2003.toml"
 AGREEMENT = 1e-9
 CONVENTION = 1e-11

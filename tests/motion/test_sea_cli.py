@@ -19,7 +19,7 @@ from offshore_crane.errors import SceneError, SeaStateError
 
 from conftest import relative_error
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "scenes" / "sea_state_crane.toml"
 SEA = ["--hs", "2.5", "--tp", "8", "--heading", "90", "--scale", "20"]
 #: Kane against RNEA (docs/conventions.md, AGREEMENT_RTOL).

@@ -27,7 +27,7 @@ from offshore_crane.studies import sweep
 from offshore_crane.cli import main                           # noqa: E402
 from offshore_crane.errors import GridError, ResultsDirectoryError  # noqa: E402
 
-SRC = Path(__file__).resolve().parents[1] / "src"
+SRC = Path(__file__).resolve().parents[2] / "src"
 SCENE = """
 name = "sweep test"
 [payload]

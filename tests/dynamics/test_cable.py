@@ -213,7 +213,7 @@ def sea_scene(**cable):
 
     from offshore_crane import scenes
 
-    path = Path(__file__).resolve().parents[1] / "scenes" / "sea_state_crane.toml"
+    path = Path(__file__).resolve().parents[2] / "scenes" / "sea_state_crane.toml"
     data = tomllib.loads(path.read_text())
     data["payload"] = {"mass": 2.0, "cable_length": 0.3}
     data["trajectory"]["duration"] = 10.0

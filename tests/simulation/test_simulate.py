@@ -161,7 +161,7 @@ def test_cli_scene_with_control_section(tmp_path, capsys):
 
     from offshore_crane.cli import main
 
-    scene = Path(__file__).resolve().parents[1] / "scenes" / "controlled_crane.toml"
+    scene = Path(__file__).resolve().parents[2] / "scenes" / "controlled_crane.toml"
     out = tmp_path / "sim.csv"
     assert main(["simulate", "--scene", str(scene), "--duration", "2", "--rate", "100",
                  "--out", str(out)]) == 0

@@ -32,7 +32,7 @@ from problems import random_states
 EXACT = 1e-12
 AGREE = 1e-9
 G = np.array([0.0, 0.0, -9.81])
-SCENES = Path(__file__).resolve().parents[1] / "scenes"
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
 EXAMPLES = ("full_crane", "platform_only", "arm_fixed_deck", "crane_with_payload")
 ARM = ["T1", "T2", "Fs"]
 

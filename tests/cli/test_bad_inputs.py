@@ -58,7 +58,7 @@ class Case:
     cli_match: str | None = None
 
 
-_SCENES = Path(__file__).resolve().parents[1] / "scenes"
+_SCENES = Path(__file__).resolve().parents[2] / "scenes"
 
 
 # --------------------------------------------------------------------------- helpers

@@ -18,7 +18,7 @@ from offshore_crane import scenes
 from offshore_crane.__main__ import main
 from offshore_crane.errors import SceneError
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 PLATFORM_ONLY = str(ROOT / "scenes" / "platform_only.toml")
 HS_DESCRIPTION = str(ROOT / "models" / "descriptions" / "harib_srinivasan_2003.toml")
 HS_SCENE = str(ROOT / "scenes" / "harib_srinivasan_2003.toml")
