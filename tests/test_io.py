@@ -164,6 +164,7 @@ def _run_and_signal(tmp_path, sig):
     return proc.returncode, err, out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig, status, word", [(signal.SIGTERM, 143, "SIGTERM"),
                                                 (signal.SIGINT, 130, "SIGINT")])
 def test_signal_mid_write_leaves_nothing(tmp_path, sig, status, word):

@@ -20,7 +20,7 @@ ACTUATOR_UNITS = ("N·m", "N·m", "N", "N", "N", "N", "N", "N", "N")
 ARM_ACTUATORS = ACTUATORS[:3]
 LEG_ACTUATORS = ACTUATORS[3:]
 
-#: URDF joints (the equivalent tree, docs/conventions.md "URDF names").
+#: URDF joints (the equivalent tree, docs/conventions.md "The equivalent tree (URDF)").
 PLATFORM_JOINTS = ("platform_x", "platform_y", "platform_z",
                    "platform_roll", "platform_pitch", "platform_yaw")   # q1..q6
 ARM_JOINTS = ("arm_joint1", "arm_joint2", "arm_slide")                  # q7..q9

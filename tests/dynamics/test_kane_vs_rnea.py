@@ -64,7 +64,6 @@ def test_batch_equals_single_samples(robot):
 def test_rnea_backends_agree(robot):
     """The compiled RNEA path (tree states, projection) equals the NumPy one, and both
     report the same leg diagnostics and condition numbers."""
-    pytest.importorskip("numba")
     from offshore_crane.dynamics import solve
 
     q, qd, qdd = random_states(robot, 300, seed=17)

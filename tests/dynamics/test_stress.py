@@ -3,7 +3,7 @@
 (a) Three pose families driven towards each kind of singularity, with seeded random
     rates and accelerations; the relative error of X against the extended-precision
     reference (:mod:`offshore_crane.dynamics.extended`, mpmath, 40 digits) must stay below
-    ``c · κ · ε`` (``ε = 2⁻⁵²``), and the policy (checks.py) must warn once beyond the
+    ``c · κ · ε`` (``ε = 2⁻⁵²``), and the policy (:func:`offshore_crane.robot.kinematics.workspace.check_singularities`) must warn once beyond the
     warning threshold and raise beyond the error threshold:
 
     - leg Jacobian (Stewart): the platform at home height turned by yaw ``π/2 − δ``,
@@ -53,6 +53,9 @@ from offshore_crane.robot.kinematics.workspace import OffshoreCraneWarning, Thre
 from offshore_crane.dynamics import extended, solve
 from offshore_crane.robot import xacro_arguments
 from problems import Q_HIGH, Q_LOW
+
+#: Stress families, extended precision (mpmath) and property tests: slow (CI runs them).
+pytestmark = pytest.mark.slow
 
 EPS = np.finfo(float).eps
 KANE_RNEA = 1e-9                      # docs/conventions.md agreement

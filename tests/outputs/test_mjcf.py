@@ -19,6 +19,7 @@ import subprocess
 import sys
 
 import numpy as np
+import mujoco
 import pytest
 
 import offshore_crane as oc
@@ -29,8 +30,6 @@ from offshore_crane.outputs.export import mjcf
 
 from problems import random_states
 
-mujoco = pytest.importorskip("mujoco", reason="the MJCF checks need MuJoCo: pip install "
-                             "'offshore-crane[mujoco]'")
 
 HARIB = "models/descriptions/harib_srinivasan_2003.toml"
 PLACEMENT_TOL = 1e-12
@@ -110,7 +109,7 @@ def test_tree_matches_pinocchio(robot, pose):
     """For random joint values (closed or not), every MuJoCo body sits where Pinocchio puts
     the URDF link of that name: the written refs, quaternions and joint axes reproduce the
     URDF's joint map, and the platform's orientation is Rz(q6) Ry(q5) Rx(q4)."""
-    pin = pytest.importorskip("pinocchio")
+    import pinocchio as pin
     model = mjcf.export(robot, None if pose == "home" else _rotated_pose(robot))
     m, d = mjcf.load(model)
     pm = robot.pinocchio_model

@@ -13,7 +13,7 @@ from offshore_crane.outputs.visual import animate as an
 from offshore_crane.outputs.visual import motion as mo
 from offshore_crane.outputs.visual import poses, render
 
-PIL = pytest.importorskip("PIL.Image")
+from PIL import Image as PIL
 
 #: The URDF's arm colour (material "orange", rgba 0.95 0.50 0.10) after flat shading
 #: (intensity 0.45..1): red well above green well above blue.
@@ -77,7 +77,7 @@ def test_speed_and_frame_times():
 
 
 def test_mp4_frames(robot, tmp_path):
-    iio = pytest.importorskip("imageio_ffmpeg")
+    import imageio_ffmpeg as iio
     out = tmp_path / "a.mp4"
     traj = oc.motion.trajectories.load("table1", duration=2.0, rate=50.0)
     done = an.animate(robot, mo.from_trajectory(traj), out, fps=20, duration=1.0,

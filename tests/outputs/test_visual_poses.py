@@ -51,7 +51,7 @@ def test_platform_pose_is_q(robot):
 def test_equals_pinocchio_forward_kinematics(robot):
     """Every link frame against pinocchio.forwardKinematics on robot.pinocchio_model,
     given the tree joint values."""
-    pin = pytest.importorskip("pinocchio")
+    import pinocchio as pin
     model = robot.pinocchio_model
     data = model.createData()
     q = random_poses(robot, 20, seed=3)

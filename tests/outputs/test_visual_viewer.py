@@ -20,6 +20,9 @@ import offshore_crane as oc
 from offshore_crane.__main__ import main
 from offshore_crane.outputs.visual import motion as mo
 
+#: A real headless browser: slow (``pytest -m 'not slow'`` leaves it out; CI runs it).
+pytestmark = pytest.mark.slow
+
 CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
 REQUIRED = os.environ.get("OFFSHORE_CRANE_BROWSER_TEST") == "required"
 #: How long the page may take to show the robot [s]: SwiftShader compiles the shaders in

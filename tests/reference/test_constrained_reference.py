@@ -19,7 +19,7 @@ from offshore_crane.reference import constrained as C
 from offshore_crane.reference.constrained import constrained_dynamics, forward_dynamics, tree_states
 from problems import random_states
 
-pin = pytest.importorskip("pinocchio")
+import pinocchio as pin
 
 #: Issue 13's agreement bound between Kane and Pinocchio forward dynamics (relative).
 ROUND_TRIP = 1e-8

@@ -47,7 +47,7 @@ def relative_error(X, Y) -> float:
 
 # ------------------------------------------------------------ default == former xacro
 def _old_urdf(**args) -> str:
-    xacro = pytest.importorskip("xacro")
+    import xacro
     mappings = {k: repr(float(v)) for k, v in args.items()}
     return xacro.process_file(str(OLD_XACRO), mappings=mappings).toprettyxml(indent="  ")
 

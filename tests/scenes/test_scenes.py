@@ -110,7 +110,7 @@ def test_with_arm_override_is_a_boolean():
 
 
 def test_payload_is_part_of_both_models():
-    pin = pytest.importorskip("pinocchio")
+    import pinocchio as pin
     base = oc.load_robot()
     robot = scenes.load_robot(example("crane_with_payload"))
     assert robot.hybrid.total_mass == pytest.approx(base.hybrid.total_mass + 2.0, rel=1e-14)

@@ -21,7 +21,7 @@ from offshore_crane import serial
 from offshore_crane.errors import InputError, ModelError
 from offshore_crane.spatial import attitude_matrix, rpy_matrix
 
-pin = pytest.importorskip("pinocchio")
+import pinocchio as pin
 from offshore_crane.serial import reference
 from offshore_crane.cli import serial_id as cli
 

@@ -19,8 +19,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-pytest.importorskip("pyarrow")
-pytest.importorskip("pandas")
 
 from offshore_crane import scenes
 from offshore_crane.studies import sweep
@@ -105,11 +103,10 @@ def test_grid_product_order_and_names(tmp_path):
 
 
 # --------------------------------------------------------------------------- backends
+@pytest.mark.slow
 def test_rows_bit_identical_serial_joblib_dask(tmp_path):
     """The same rows, bit for bit, serially, on 2 joblib (loky) workers and on a Dask
     LocalCluster of 2 workers."""
-    pytest.importorskip("joblib")
-    pytest.importorskip("distributed")
     scene = scenes.load_scene(_scene(tmp_path))
     grid = {"hs": [1.5, 3.0], "seed": [0, 1], "payload.mass": [1.0]}
     serial = sweep.run(scene, grid, workers=1)
@@ -125,11 +122,12 @@ def test_rows_bit_identical_serial_joblib_dask(tmp_path):
             np.testing.assert_array_equal(got[c], ref[c], err_msg=c)
 
 
+@pytest.mark.slow
 def test_remote_scheduler_address(tmp_path):
     """A scheduler given by its address (here a LocalCluster's tcp:// address, on
     loopback): the kernels are warmed up on its workers one at a time, and the rows are
     those of a serial run."""
-    distributed = pytest.importorskip("distributed")
+    import distributed
     scene = scenes.load_scene(_scene(tmp_path))
     grid = {"hs": [1.0, 2.0]}
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
@@ -201,6 +199,7 @@ def test_resume_skips_finished_cases(tmp_path):
     assert len(sweep.read_results(out)) == 3                       # a Parquet dataset
 
 
+@pytest.mark.slow
 def test_killed_sweep_rerun_has_every_case_once(tmp_path):
     """SIGKILL a sweep once some rows exist; the rerun completes with every case exactly
     once, and the rows of the first run are kept."""
@@ -302,7 +301,7 @@ def test_verdicts_gumbel_from_rows(tmp_path):
 
 
 def test_limiting_hs_and_operability(tmp_path):
-    pd = pytest.importorskip("pandas")
+    import pandas as pd
     assert sweep.limiting_hs([1, 2, 3], [0.4, 0.8, 1.2]) == pytest.approx(2.5)
     assert sweep.limiting_hs([1, 2, 3], [0.4, 0.8, 0.9]) == 3.0      # never exceeded
     assert sweep.limiting_hs([1, 2, 3], [1.1, 0.8, 0.9]) == 0.0      # first crossing
@@ -345,7 +344,6 @@ def test_scatter_errors(tmp_path, text, match):
 
 
 def test_cli_sweep_plots_csv_and_operability(tmp_path, capsys):
-    pytest.importorskip("matplotlib")
     grid = _grid(tmp_path, "hs = [1.0, 4.0]\ntp = [6.0, 9.0]\n")
     scatter = tmp_path / "s.csv"
     scatter.write_text("hs_m/tp_s,6,9\n1.0,3,1\n3.0,1,1\n")
