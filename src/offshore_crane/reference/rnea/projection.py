@@ -129,7 +129,9 @@ def _qr_apply(Q, R, x):
 
 
 @jit
-def project(tau, G, plat_v, leg_v, arm_v, iL, want_cond, X, cond):
+def project(tau: np.ndarray, G: np.ndarray, plat_v: np.ndarray, leg_v: np.ndarray,
+            arm_v: np.ndarray, iL: float, want_cond: bool, X: np.ndarray,
+            cond: np.ndarray) -> None:
     """``B = Gᵀ τ`` and the actuator forces: ``(T1, T2, Fs) = τ_arm`` and the legs from
     ``Jlᵀ Fl = B[0:6]`` (rows of the rotation coordinates scaled by 1/L), solved by QR;
     ``cond`` receives that system's 1-norm condition number."""
