@@ -90,7 +90,7 @@ def main(argv=None) -> int:
     free = C.forward_dynamics(robot, q, qd, np.zeros_like(X))
     scale = np.abs(free).max()
 
-    tree = C._tree(robot)                       # the reference's Pinocchio objects
+    tree = C.loop_tree(robot)                   # the reference's Pinocchio objects
     model = tree.model
     model.gravity = pin.Motion(np.array([0.0, 0.0, -9.81]), np.zeros(3))
     states = C.tree_states(robot, q, qd)

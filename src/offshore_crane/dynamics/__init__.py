@@ -184,14 +184,24 @@ def _explicit_numpy(robot, q, qd, qdd, g, opts: Options, threads: int):
 def _rnea(robot, q, qd, qdd, g, opts: Options, threads: int):
     from offshore_crane.reference import rnea
 
-    arrays = robot_arrays(robot)
+    limits = robot_arrays(robot).limits
     X, kappa = allocate(len(q), opts)
     health = ws.new_health()
-    rnea.run(robot, arrays.limits, q, qd, qdd, g, opts, X, kappa, health, threads)
+    for start in range(0, len(q), rnea.BLOCK):          # the reference checks nothing
+        sl = slice(start, min(start + rnea.BLOCK, len(q)))
+        ws.check_finite((q[sl], qd[sl], qdd[sl]), start, health)
+        if health[0] >= 0:
+            break
+        r = rnea.actuator_forces(robot, q[sl], qd[sl], qdd[sl], g, X=X[sl], threads=threads,
+                                 conditioning=opts.conditioning)
+        ws.record_chunk(X[sl], r.condition, r.length, r.cos_theta2, r.height, r.theta, q[sl],
+                        start, opts, limits, None if kappa is None else kappa[:, sl], health)
     return X, kappa, health
 
 
 #: (method, backend) -> entry(robot, q, qd, qdd, g, options, threads) -> (X, kappa, health).
+#: The RNEA reference has one implementation (Numba closure, Pinocchio's RNEA): both of
+#: its backends run it.
 REGISTRY = {
     ("kane", "numba"): _kane_numba, ("kane", "numpy"): _kane_numpy,
     ("kane-explicit", "numba"): _explicit_numba, ("kane-explicit", "numpy"): _explicit_numpy,

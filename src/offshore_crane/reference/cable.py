@@ -12,20 +12,26 @@ the mass below them; the robot's motion is prescribed, so this is hybrid dynamic
   fast path);
 - actuator forces: the RNEA reference's loop-closing tree states
   (:func:`offshore_crane.reference.rnea.tree_state`) with the sway joints' rows set,
-  ``pin.rneaInParallel`` and the RNEA reference's projection on the independent speeds;
-  the residual torque on the sway joints (zero when φ̈ solves the sway equations) and the
-  cable's pull on the tip, ``m (g − a_payload)`` from Pinocchio's frame acceleration.
+  ``pin.rneaInParallel`` and the RNEA reference's projection on the independent speeds
+  (:func:`offshore_crane.reference.rnea.rnea_projected`); the residual torque on the sway
+  joints (zero when φ̈ solves the sway equations) and the cable's pull on the tip,
+  ``m (g − a_payload)`` from Pinocchio's frame acceleration.
+
+Everything it needs of the robot it reads from ``robot.pinocchio_model`` (the payload's
+mass, the sway joints' damping); it checks nothing: the caller
+(``offshore_crane.dynamics.cable``) applies the workspace limits and the singularity
+policy to the diagnostics it returns.
 """
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
-from offshore_crane.conventions import ARM_JOINTS, CABLE_JOINTS, PLATFORM_JOINTS
+from offshore_crane.conventions import ARM_JOINTS, CABLE_JOINTS, N_LEGS, PLATFORM_JOINTS
 from offshore_crane.errors import require
-
-_MODELS: dict = {}
-
+from offshore_crane.reference.rnea import Forces, rnea_projected, tree_state
 
 class _Pendulum:
     """Pinocchio's model of the robot with the sway joints, and its indices."""
@@ -73,9 +79,23 @@ class _Pendulum:
         return det / (m22 * m22)
 
 
-def integrate(robot, Q, Qd, Qdd, g, h, sub, y0, rel_min):
+def integrate(robot: Any, Q: np.ndarray, Qd: np.ndarray, Qdd: np.ndarray, g: np.ndarray,
+              h: float, sub: int, y0: np.ndarray,
+              rel_min: float) -> tuple[np.ndarray, np.ndarray]:
     """RK4 of the sway with Pinocchio's right-hand side; same contract as the compiled
-    :func:`offshore_crane.dynamics.cable.kernels.integrate` (returns ``(Y, status)``)."""
+    :func:`offshore_crane.dynamics.cable.kernels.integrate`.
+
+    Args:
+        Q, Qd, Qdd: ``(2 n + 1, 9)`` the robot's motion at the steps and half steps.
+        g: ``(3,)`` gravity [m/s²]; ``h``: the step [s]; ``sub``: steps per output sample.
+        y0: ``(4,)`` initial sway ``(φ1, φ2)`` [rad] and rates [rad/s].
+        rel_min: the smallest ``det M_φφ / M44²`` accepted (1 / the error threshold).
+
+    Returns:
+        ``(Y, status)``: ``Y`` ``(n // sub + 1, 6)`` sway, rates, accelerations at the
+        output samples (NaN after a stop); ``status`` ``(3,)``: stop code (0 none, 1
+        singular, 2 non-finite), the output sample of the stop, worst ``1/rel``.
+    """
     P = _Pendulum(robot, g)
     n_steps = (Q.shape[0] - 1) // 2
     Y = np.full((n_steps // sub + 1, 6), np.nan)
@@ -103,32 +123,33 @@ def integrate(robot, Q, Qd, Qdd, g, h, sub, y0, rel_min):
     return Y, status
 
 
-def forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
-    """``(X (n, 9), F (n, 6), kappa)`` at the integrated sway: X from the RNEA reference
-    with the sway rows set; ``F`` the cable's pull on the tip (3) [N], the tension [N],
-    the RNEA torques left on the sway joints (2) [N·m]; ``kappa`` ``(3, n)`` (or None)."""
-    from offshore_crane.dynamics.constants import Limits, cable_arrays
-    from offshore_crane.dynamics.kernels import Options
-    from offshore_crane.robot.kinematics import workspace as ws
-    from offshore_crane.reference import rnea
+def forces(robot: Any, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, Y: np.ndarray,
+           g: np.ndarray, *, conditioning: bool = False) -> tuple[Forces, np.ndarray]:
+    """The actuator forces and the cable's pull at the integrated sway, unchecked.
 
+    Args:
+        q, qd, qdd: ``(n, 9)`` the robot's motion [m, rad], rates, accelerations.
+        Y: ``(n, 6)`` the sway ``(φ1, φ2)`` [rad], its rates and accelerations.
+        g: ``(3,)`` gravity in the base frame [m/s²].
+        conditioning: Measure the leg-force systems' condition numbers.
+
+    Returns:
+        ``(forces, F)``: :class:`~offshore_crane.reference.rnea.Forces` (X from the RNEA
+        reference with the sway rows set, its condition numbers and leg diagnostics, for
+        the caller's checks) and ``F`` ``(n, 6)``: the cable's pull on the tip (3) [N],
+        the tension [N], the RNEA torques left on the sway joints (2) [N·m].
+    """
     pin = require("pinocchio", "pin", "The hanging load's Pinocchio reference")
     P = _Pendulum(robot, g)
-    T = rnea.tree(robot)
-    n = len(t)
-    X = np.empty((n, 9))
+    n = len(q)
     F = np.empty((n, 6))
-    kappa = np.empty((3, n)) if checks else None
     if n == 0:
-        return X, F, kappa
-    Qt, Vt, At, G, diag = rnea.tree_state(robot, q, qd, qdd)
+        return Forces(np.empty((0, 9)), np.empty(0), *(np.empty((0, N_LEGS)),) * 3,
+                      np.empty((0, N_LEGS, 2))), F
+    Qt, Vt, At, G, diag = tree_state(robot, q, qd, qdd)
     for arr, col in ((Qt, 0), (Vt, 2), (At, 4)):
         arr[P.sway_v] = Y[:, col:col + 2].T
-    tau = np.empty_like(Qt, order="F")
-    pool = rnea._pool(robot, g, 1)
-    pin.rneaInParallel(1, pool, Qt, Vt, At, tau)
-    cond = np.empty(n)
-    rnea.project(tau, G, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, bool(checks), X, cond)
+    X, cond, tau = rnea_projected(robot, Qt, Vt, At, G, g, conditioning=conditioning)
     F[:, 4:6] = tau[P.sway_v].T + P.damping * Y[:, 2:4]
     model, data = P.model, P.data
     for k in range(n):
@@ -142,13 +163,4 @@ def forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
         e = data.oMf[P.payload].translation - tip
         F[k, 0:3] = f
         F[k, 3] = f @ e / np.linalg.norm(e)
-    health = ws.new_health()
-    opts = Options(legs=True, conditioning=bool(checks), limits=bool(limits),
-                   warn=thresholds.warn, error=thresholds.error)
-    lim = cable_arrays(robot).limits            # the robot's, for the checks' messages
-    lim = Limits(lim.arm[:robot.hybrid.arm.n], lim.stroke, lim.ujoint)
-    ws.record_chunk(X, cond, diag[0], diag[1], diag[2], np.stack([diag[3], diag[4]], -1), q, 0,
-                    opts, lim, kappa, health)
-    ws.enforce(health, (q, qd, qdd), lim if limits else None, kappa, thresholds,
-               (ws.LEG_JACOBIAN, ws.GIMBAL), t)
-    return X, F, kappa
+    return Forces(X, cond, diag[0], diag[1], diag[2], np.stack([diag[3], diag[4]], -1)), F

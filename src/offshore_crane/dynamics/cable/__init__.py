@@ -362,9 +362,21 @@ def _forces(robot, t, q, qd, qdd, Y, g, method, limits, checks, thresholds, wors
     if method == "kane":
         X, F, kappa = _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds)
     else:
+        from offshore_crane.dynamics.constants import Limits, cable_arrays
+        from offshore_crane.dynamics.kernels import Options
         from offshore_crane.reference import cable as ref
 
-        X, F, kappa = ref.forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds)
+        r, F = ref.forces(robot, q, qd, qdd, Y, g, conditioning=bool(checks))
+        X, kappa, health = r.X, np.empty((3, n)) if checks else None, ws.new_health()
+        lim = cable_arrays(robot).limits            # the robot's arm joints, for the checks
+        lim = Limits(lim.arm[:robot.hybrid.arm.n], lim.stroke, lim.ujoint)
+        if n:                                       # the reference checks nothing
+            ws.record_chunk(X, r.condition, r.length, r.cos_theta2, r.height, r.theta, q, 0,
+                            Options(legs=True, conditioning=bool(checks), limits=bool(limits),
+                                    warn=thresholds.warn, error=thresholds.error),
+                            lim, kappa, health)
+        ws.enforce(health, (q, qd, qdd), lim if limits else None, kappa, thresholds,
+                   (ws.LEG_JACOBIAN, ws.GIMBAL), t)
     return CableResult(
         t=t, q=q, qd=qd, qdd=qdd, X=X, sway=Y[:, 0:2].copy(), sway_rate=Y[:, 2:4].copy(),
         sway_accel=Y[:, 4:6].copy(), tension=F[:, 3].copy(), force_tip=F[:, 0:3].copy(),

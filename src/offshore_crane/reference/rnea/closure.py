@@ -1,40 +1,29 @@
-"""The RNEA reference path: Pinocchio's RNEA on the equivalent tree, projected on u.
+"""The RNEA reference's loop closure: tree states that put each leg's tip on its anchor.
 
-It shares nothing with Kane's code but the URDF (it reads the joint placements, axes and
-frames from Pinocchio's own model of it):
-
-1. **Loop closure** (:func:`tree_state`): for each leg, the passive U-joint angles and the
-   leg length that put frame ``leg{i}_tip`` on frame ``platform_anchor{i}``, by Newton's
-   method on the tip position of the leg's serial chain; their rates and accelerations
-   from the chain's 3x3 Jacobian: ``J θ̇ = v_S``, ``J θ̈ = a_S − (J̇ θ̇)``, where ``v_S``,
-   ``a_S`` follow from the platform's chain of virtual joints. Both chains' kinematics are
-   a generic forward recursion over 1-DOF joints (compiled with Numba), tested against
-   Pinocchio's forward kinematics (``tests/test_reference.py``). With ``backend="numpy"``
-   the closure uses Pinocchio's frame placements and Jacobians instead, sample by sample
-   (slow, a second opinion on the first).
-2. ``τ = RNEA(q_tree, v_tree, a_tree)`` [N, N·m] by ``pin.rneaInParallel``.
-3. With ``G = ∂v_tree/∂u`` (its leg rows ``J⁻¹ ∂v_S/∂u``), the virtual power of the tree
-   equals that of the mechanism: ``Gᵀ S X = Gᵀ τ``, ``S`` placing X on the actuated
-   joints; so ``(T1, T2, Fs) = τ_arm`` and ``Jlᵀ Fl = (Gᵀ τ)[0:6]`` with ``Jl`` the
-   leg-length rows of G, solved with LAPACK.
+For each leg, the passive U-joint angles and the leg length that put frame ``leg{i}_tip``
+on frame ``platform_anchor{i}``, by Newton's method on the tip position of the leg's
+serial chain; their rates and accelerations from the chain's 3x3 Jacobian:
+``J θ̇ = v_S``, ``J θ̈ = a_S − (J̇ θ̇)``, where ``v_S``, ``a_S`` follow from the platform's
+chain of virtual joints. Both chains' kinematics are a generic forward recursion over
+1-DOF joints read from Pinocchio's model (:mod:`.tree`), compiled with Numba; Pinocchio's
+own forward kinematics checks them (``tests/robot/test_kinematics.py``), and a plain
+per-sample Pinocchio closure checks the whole path
+(``tests/dynamics/test_kane_vs_rnea.py``).
 
 Frames: the base frame is Pinocchio's world (the URDF root ``base``); units SI.
 """
 
 from __future__ import annotations
 
-import weakref
-from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Any
 
 import numpy as np
 from numba import njit
 
-from offshore_crane.conventions import ARM_JOINTS, LEG_TIPS, N_LEGS, PLATFORM_ANCHORS, PLATFORM_JOINTS
-from offshore_crane.errors import ModelError, NumericalError, require
+from offshore_crane.conventions import N_LEGS
+from offshore_crane.errors import NumericalError
+from offshore_crane.reference.rnea.tree import tree
 
-#: Samples per block: the tree's Q, V, A, τ arrays (4 x 27 doubles a sample) stay bounded.
-BLOCK = 1 << 16
 #: Newton on a leg's tip position stops when the residual is below this, relative to
 #: 1 m + |S| (a few ulps of the positions: the reference closes the loops to round-off);
 #: from the previous samples' extrapolation it takes 2 evaluations, from zero angles
@@ -43,110 +32,11 @@ RESIDUAL_TOL = 4e-16
 MAX_NEWTON = 60
 MAX_TURN = 0.5
 
-_MODELS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
-
-
-class Chain(NamedTuple):
-    """Serial chains of 1-DOF joints read from Pinocchio's model, stacked.
-
-    Attributes:
-        R, p: ``(m, n, 3, 3)``, ``(m, n, 3)`` joint placements in the parent joint frame.
-        axis: ``(m, n, 3)`` unit axis in the joint frame; ``prismatic``: ``(m, n)``.
-        R_end, p_end: ``(m, 3, 3)``, ``(m, 3)`` the end frame in the last joint's frame.
-        coordinate: ``(m, n)`` index of each joint's coordinate (in q1..q9, or -1).
-        v_index: ``(m, n)`` velocity index of each joint in the tree.
-    """
-
-    R: np.ndarray
-    p: np.ndarray
-    axis: np.ndarray
-    prismatic: np.ndarray
-    R_end: np.ndarray
-    p_end: np.ndarray
-    coordinate: np.ndarray
-    v_index: np.ndarray
-
-
-@dataclass(frozen=True)
-class Tree:
-    """What the reference reads of Pinocchio's model of the URDF."""
-
-    platform: Chain       # one chain per anchor (6), the platform's virtual joints
-    legs: Chain           # one chain per leg tip (6): u1, u2, slide
-    arm_v: np.ndarray     # velocity indices of the arm joints (0 or 3)
-    plat_v: np.ndarray    # velocity indices of q1..q6's joints
-    nv: int
-    L: float              # mean |S_i − O2| [m]: scales the rotation rows of Jlᵀ
-
-
-def _joint_axis(pin, jmodel):
-    """Unit axis (in the joint frame) and type of a 1-DOF joint from its motion subspace."""
-    data = jmodel.createData()
-    jmodel.calc(data, np.zeros(jmodel.nq))
-    S = np.asarray(data.S).reshape(6)
-    lin, ang = S[:3], S[3:]
-    if np.linalg.norm(ang) > 0.5:
-        return ang / np.linalg.norm(ang), False
-    return lin / np.linalg.norm(lin), True
-
-
-def _chain(pin, model, frame: str, coordinates: dict) -> tuple:
-    fid = model.getFrameId(frame)
-    if fid >= len(model.frames):
-        raise NumericalError(f"the tree has no frame '{frame}'", name=frame)
-    f = model.frames[fid]
-    joints = []
-    j = f.parentJoint
-    while j > 0:
-        joints.append(j)
-        j = model.parents[j]
-    joints.reverse()
-    R, p, axis, prism, coord, vidx = [], [], [], [], [], []
-    for j in joints:
-        M = model.jointPlacements[j]
-        a, is_p = _joint_axis(pin, model.joints[j])
-        R.append(M.rotation)
-        p.append(M.translation)
-        axis.append(a)
-        prism.append(is_p)
-        coord.append(coordinates.get(model.names[j], -1))
-        vidx.append(model.idx_vs[j])
-    return (np.array(R), np.array(p), np.array(axis), np.array(prism), f.placement.rotation,
-            f.placement.translation, np.array(coord), np.array(vidx))
-
-
-def _stack(chains) -> Chain:
-    return Chain(*(np.ascontiguousarray(np.array([c[k] for c in chains])) for k in range(8)))
-
-
-def tree(robot) -> Tree:
-    """The reference's view of ``robot.pinocchio_model`` (cached per robot)."""
-    out = _MODELS.get(robot)
-    if out is None:
-        pin = require("pinocchio", "pin", "The RNEA reference")
-        model = robot.pinocchio_model
-        coords = {name: k for k, name in enumerate(PLATFORM_JOINTS)}
-        plat = _stack([_chain(pin, model, a, coords) for a in PLATFORM_ANCHORS])
-        legs = _stack([_chain(pin, model, t, {}) for t in LEG_TIPS])
-        if (not (plat.v_index == plat.v_index[0]).all()
-                or sorted(plat.coordinate[0]) != list(range(6)) or legs.v_index.shape[1] != 3
-                or not (legs.prismatic == [False, False, True]).all()):
-            raise ModelError("the RNEA reference needs the six platform anchors on the "
-                             "platform's six virtual joints and three joints per leg "
-                             "(revolute, revolute, prismatic)",
-                             element="platform")
-        arm_v = np.array([model.idx_vs[model.getJointId(n)] for n in ARM_JOINTS
-                          if model.existJointName(n)], dtype=np.int64)
-        plat_v = np.array([model.idx_vs[model.getJointId(n)] for n in PLATFORM_JOINTS],
-                          dtype=np.int64)
-        L = float(np.mean([np.linalg.norm(p) for p in plat.p_end]))
-        out = _MODELS[robot] = Tree(plat, legs, arm_v, plat_v, model.nv, L)
-    return out
-
 
 # --------------------------------------------------------------------------- compiled
 # Numba is imported with this module (which the dynamics package imports lazily, when the
-# reference runs): the compiled closure and projection below.
+# reference runs). Every compiled helper of the closure lives here: Numba's cache does not
+# follow a change of a function inlined from another file.
 jit = njit(cache=True, nogil=True, error_model="numpy")
 ijit = njit(cache=True, nogil=True, error_model="numpy", inline="always")
 
@@ -463,112 +353,9 @@ def closure(pR, pp, pax, ppr, ppe, pco, pvi, lR, lp, lax, lpr, lpe, lvi,
             diag[3, k, l] = th[l, 0]
             diag[4, k, l] = th[l, 1]
 
-@jit
-def qr_solve(A, b, x, Q, R, want_cond):
-    """``x = A⁻¹ b`` for a 6x6 ``A`` by Householder QR (``Q``, ``R`` (6, 6) workspaces:
-    the reflectors and the triangle); the 1-norm condition number ``‖A‖₁ ‖A⁻¹‖₁`` when
-    ``want_cond`` (else 0); inf and a NaN solution for a singular or non-finite A."""
-    n = 6
-    for i in range(n):
-        for j in range(n):
-            R[i, j] = A[i, j]
-            Q[i, j] = 0.0
-    for k in range(n):
-        norm = 0.0
-        for i in range(k, n):
-            norm += R[i, k] * R[i, k]
-        norm = np.sqrt(norm)
-        if not norm > 0.0:
-            for i in range(n):
-                x[i] = np.nan
-            return np.inf
-        alpha = -norm if R[k, k] >= 0.0 else norm
-        vnorm = 0.0
-        for i in range(k, n):
-            Q[i, k] = R[i, k] - (alpha if i == k else 0.0)
-            vnorm += Q[i, k] * Q[i, k]
-        for j in range(k, n):                 # R ← (I − 2 v vᵀ / vᵀv) R
-            dotv = 0.0
-            for i in range(k, n):
-                dotv += Q[i, k] * R[i, j]
-            f = 2.0 * dotv / vnorm
-            for i in range(k, n):
-                R[i, j] -= f * Q[i, k]
-        Q[k, k] = Q[k, k] / np.sqrt(vnorm)    # keep v normalised in Q's column k
-        for i in range(k + 1, n):
-            Q[i, k] = Q[i, k] / np.sqrt(vnorm)
-    cond = 0.0
-    if want_cond:
-        norm_a = 0.0
-        norm_inv = 0.0
-        for j in range(n):
-            sa = 0.0
-            for i in range(n):
-                sa += abs(A[i, j])
-            norm_a = max(norm_a, sa)
-        for j in range(n):
-            for i in range(n):
-                x[i] = 1.0 if i == j else 0.0
-            _qr_apply(Q, R, x)
-            si = 0.0
-            for i in range(n):
-                si += abs(x[i])
-            norm_inv = max(norm_inv, si)
-        cond = norm_a * norm_inv
-    for i in range(n):
-        x[i] = b[i]
-    _qr_apply(Q, R, x)
-    return cond
 
-
-@jit
-def _qr_apply(Q, R, x):
-    """``x ← R⁻¹ Qᵀ x`` with the unit reflectors in Q's columns."""
-    n = 6
-    for k in range(n):
-        dotv = 0.0
-        for i in range(k, n):
-            dotv += Q[i, k] * x[i]
-        for i in range(k, n):
-            x[i] -= 2.0 * dotv * Q[i, k]
-    for i in range(n - 1, -1, -1):
-        s_ = x[i]
-        for j in range(i + 1, n):
-            s_ -= R[i, j] * x[j]
-        x[i] = s_ / R[i, i]
-
-
-@jit
-def project(tau, G, plat_v, leg_v, arm_v, iL, want_cond, X, cond):
-    """``B = Gᵀ τ`` and the actuator forces: ``(T1, T2, Fs) = τ_arm`` and the legs from
-    ``Jlᵀ Fl = B[0:6]`` (rows of the rotation coordinates scaled by 1/L), solved by QR;
-    ``cond`` receives that system's 1-norm condition number."""
-    N = tau.shape[1]
-    na = arm_v.shape[0]
-    A = np.empty((6, 6))
-    rhs = np.empty(6)
-    x = np.empty(6)
-    Q = np.empty((6, 6))
-    R = np.empty((6, 6))
-    for k in range(N):
-        for b in range(3):
-            X[k, b] = tau[arm_v[b], k] if b < na else np.nan
-        for r in range(6):
-            B = tau[plat_v[r], k]
-            for l in range(6):
-                for j in range(3):
-                    B += tau[leg_v[l, j], k] * G[k, l, j, r]
-            f = iL if r >= 3 else 1.0
-            rhs[r] = B * f
-            for l in range(6):
-                A[r, l] = G[k, l, 2, r] * f
-        c = qr_solve(A, rhs, x, Q, R, want_cond)
-        cond[k] = c
-        for l in range(6):
-            X[k, 3 + l] = x[l]
-
-
-def tree_state(robot, q, qd, qdd):
+def tree_state(robot: Any, q: np.ndarray, qd: np.ndarray,
+               qdd: np.ndarray) -> tuple[np.ndarray, ...]:
     """Tree positions, rates and accelerations that close the loops (compiled closure).
 
     Args:
@@ -603,59 +390,8 @@ def tree_state(robot, q, qd, qdd):
     return Q, V, A, G, diag
 
 
-_POOLS: dict = {}
-
-
-def _pool(robot, gravity, threads: int):
-    """A ``pin.ModelPool`` of the tree with this gravity, reused across calls."""
-    import pinocchio as pin
-
-    key = (id(robot), tuple(float(x) for x in gravity), threads)
-    entry = _POOLS.get(key)
-    if entry is None or entry[0]() is not robot:
-        model = robot.pinocchio_model.copy()
-        model.gravity.linear = np.asarray(gravity, dtype=float)
-        entry = _POOLS[key] = (weakref.ref(robot), pin.ModelPool(model, threads))
-    return entry[1]
-
-
-def run(robot, limits, q, qd, qdd, g, opts, X, kappa, health, threads: int = 1) -> None:
-    """Actuator forces by the reference path, block by block, checked like the kernels.
-
-    Args:
-        limits: the robot's :class:`~offshore_crane.dynamics.constants.Limits` (for the
-            workspace checks' messages; the values checked come from this path's own tree
-            states).
-        q, qd, qdd: ``(N, 9)`` float64; ``g`` ``(3,)`` [m/s²].
-        opts: :class:`~offshore_crane.dynamics.kernels.Options` (legs always computed).
-        X, kappa, health: outputs, as the kernels'.
-        threads: threads of ``pin.rneaInParallel``.
-    """
-    import pinocchio as pin
-
-    from offshore_crane.robot.kinematics import workspace as ws
-
-    T = tree(robot)
-    pool = _pool(robot, g, threads)
-    N = q.shape[0]
-    for start in range(0, N, BLOCK):
-        sl = slice(start, min(start + BLOCK, N))
-        ws.check_finite((q[sl], qd[sl], qdd[sl]), start, health)
-        if health[0] >= 0:
-            return
-        Q, V, A, G, diag = tree_state(robot, q[sl], qd[sl], qdd[sl])
-        tau = np.empty_like(Q, order="F")
-        pin.rneaInParallel(threads, pool, Q, V, A, tau)
-        cond = np.empty(Q.shape[1])
-        project(tau, G, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, opts.conditioning,
-                X[sl], cond)
-        X[sl, T.arm_v.size:3] = np.nan
-        ws.record_chunk(X[sl], cond, diag[0], diag[1], diag[2], np.stack([diag[3], diag[4]], -1),
-                        q[sl], start, opts, limits, None if kappa is None else kappa[:, sl],
-                        health)
-
-
-def tree_states(robot, q, qd, qdd):
+def tree_states(robot: Any, q: np.ndarray, qd: np.ndarray,
+                qdd: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`tree_state` as ``(N, nv)`` arrays ``(q_tree, v_tree, a_tree)`` (Pinocchio's
     joint order), for analysis and tests."""
     Q, V, A, _, _ = tree_state(robot, np.atleast_2d(q), np.atleast_2d(qd), np.atleast_2d(qdd))
