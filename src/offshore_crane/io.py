@@ -316,6 +316,27 @@ def read_toml(path, what: str = "file") -> dict:
         raise InputError(f"{where}: not valid TOML: {exc}", name=where) from None
 
 
+def toml_value(value) -> str:
+    """``value`` as it would be written in TOML, for messages that quote a file's value:
+    ``true``/``false``, strings in double quotes (JSON escapes are valid TOML basic
+    strings), floats at full precision, whole ones without ``.0`` (``0.1``, ``2``, ``inf``), lists and inline
+    tables recursively; anything else by ``str``."""
+    import json
+
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, float):
+        text = repr(float(value))           # shortest round-trip form; 2.0 shown as 2
+        return text[:-2] if text.endswith(".0") else text
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{k} = {toml_value(v)}" for k, v in value.items()) + " }"
+    return str(value)
+
+
 @contextlib.contextmanager
 def signals_as_exceptions():
     """In the main thread: SIGTERM raises :class:`Terminated`, SIGINT KeyboardInterrupt

@@ -401,8 +401,7 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     from offshore_crane.robot import load_robot
 
     robot = robot or load_robot()
-    q = np.zeros((1, 9))
-    q[0, 2] = float(robot.parameters.get("home_height", 0.5))
+    q = robot.home_pose()[None, :]
     out = []
     for method in ("kane", "kane-explicit", "rnea"):
         t0 = time.perf_counter()

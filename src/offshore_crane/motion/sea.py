@@ -1214,10 +1214,9 @@ def _sea_motion(duration, rate, hs, tp, heading_deg, scale, robot, **options):
     operation = options.pop("operation", None)
     time_grid(duration, rate)                           # validates duration, rate, size
     scale = _real(scale, "scale", "-", _SCALE_HINT, low=0.0)
-    home = np.zeros(9)
     try:
-        home[2] = float(robot.parameters["home_height"])
-    except (AttributeError, KeyError, TypeError, ValueError):
+        home = robot.home_pose()
+    except AttributeError:
         raise SeaStateError("robot must come from offshore_crane.load_robot() (its "
                             "parameters give home_height)", name="robot") from None
     if operation is not None:

@@ -94,6 +94,25 @@ class Robot:
         h = self.parameters.get("home_height")
         return None if h is None else float(h)
 
+    def home_pose(self) -> "np.ndarray":
+        """q ``(9,)`` of the home pose [m, rad]: zeros except ``q3 = home_height``.
+
+        Raises:
+            InputError: the description gives no home height (set ``home.height`` in
+                it, or pass the pose explicitly).
+        """
+        import numpy as np
+
+        from offshore_crane.errors import InputError
+
+        h = self.home_height
+        if h is None:
+            raise InputError("the robot has no known home height: set home.height in its "
+                             "description or give the pose q explicitly", name="q")
+        q = np.zeros(9)
+        q[2] = h
+        return q
+
     def without_hanging_payload(self) -> "Robot":
         """This robot, or for a payload on a cable the same robot without it (its
         kinematics and workspace, which the payload does not change, for checks that

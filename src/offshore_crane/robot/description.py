@@ -167,6 +167,7 @@ import numpy as np
 
 from offshore_crane.conventions import INERTIA_RTOL
 from offshore_crane.errors import DescriptionError
+from offshore_crane.io import toml_value
 from offshore_crane.robot.expressions import ExpressionError, evaluate
 
 FORMAT = 1
@@ -427,20 +428,6 @@ def read_toml(path) -> dict:
 
 
 # ======================================================================= flattening
-def _show(value) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, str):
-        return repr(value)
-    if isinstance(value, float):
-        return f"{value:.15g}"
-    if isinstance(value, (list, tuple)):
-        return "[" + ", ".join(_show(v) for v in value) + "]"
-    if isinstance(value, dict):
-        return "{ " + ", ".join(f"{k} = {_show(v)}" for k, v in value.items()) + " }"
-    return str(value)
-
-
 class _Values:
     """The description as flat ``{dotted leaf name: raw value}`` with each leaf's origin.
 
@@ -461,7 +448,7 @@ class _Values:
     def add_table(self, table, schema: dict, prefix: str, origin: str):
         name = prefix[:-1] if prefix else ""
         if not isinstance(table, dict):
-            self.fail(name, f"{_show(table)} must be a table (keys "
+            self.fail(name, f"{toml_value(table)} must be a table (keys "
                       f"{', '.join(schema)})", origin)
         for key, value in table.items():
             full = prefix + key
@@ -497,13 +484,13 @@ class _Values:
             self._vector(name, leaf, value, origin, n, [str(i) for i in range(1, n + 1)])
         elif kind == "points6":
             if not isinstance(value, list) or len(value) != N_LEGS:
-                self.fail(name, f"{_show(value)} must be a list of 6 points [x, y, z] "
+                self.fail(name, f"{toml_value(value)} must be a list of 6 points [x, y, z] "
                           f"{_unit(leaf)}(leg 1 first)", origin)
             for i, point in enumerate(value, 1):
                 self._vector(f"{name}.{i}", leaf, point, origin, 3, XYZ)
         elif kind == "inertia":
             if not isinstance(value, dict):
-                self.fail(name, f"{_show(value)} must be a table {{ ixx = ..., iyy = ..., "
+                self.fail(name, f"{toml_value(value)} must be a table {{ ixx = ..., iyy = ..., "
                           "izz = ..., ixy = ..., ixz = ..., iyz = ... }} [kg·m²]", origin)
             for key, v in value.items():
                 if key not in INERTIA_KEYS:
@@ -513,7 +500,7 @@ class _Values:
 
     def _vector(self, name, leaf, value, origin, n, names):
         if not isinstance(value, list) or len(value) != n:
-            self.fail(name, f"{_show(value)} must be a list of {n} numbers {_unit(leaf)}"
+            self.fail(name, f"{toml_value(value)} must be a list of {n} numbers {_unit(leaf)}"
                       .rstrip(), origin)
         for c, v in zip(names, value):
             self._scalar(f"{name}.{c}", leaf, v, origin)
@@ -537,10 +524,10 @@ class _Values:
             ok = (isinstance(value, (int, float, str)) and not isinstance(value, bool))
             need = (f"a number {_unit(leaf)}".rstrip() + " or an expression in quotes")
         if not ok:
-            self.fail(name, f"{_show(value)} must be {need}", origin)
+            self.fail(name, f"{toml_value(value)} must be {need}", origin)
         if isinstance(value, float) and not math.isfinite(value) and not (
                 value == math.inf and name.startswith("actuators.")):
-            self.fail(name, f"{_show(value)} is not a finite number", origin)
+            self.fail(name, f"{toml_value(value)} is not a finite number", origin)
         self.raw[name] = value
         self.origin[name] = origin
 
@@ -603,7 +590,7 @@ class _Numbers:
             raise KeyError(name)
         raw = v.raw[name]
         if isinstance(raw, bool) or not isinstance(raw, (int, float, str)):
-            v.fail(name, f"{_show(raw)} is not a number")
+            v.fail(name, f"{toml_value(raw)} is not a number")
         if name in self.stack:
             cycle = " -> ".join(self.stack[self.stack.index(name):] + [name])
             v.fail(name, f"expressions refer to each other in a cycle: {cycle}")
@@ -878,7 +865,7 @@ class _Resolver:
         """Error on field ``name``; the overrides that touch it or ``involved`` are shown."""
         fields = [k for k in self.v.raw if any(_overlap(k, p) for p in (name, *involved))]
         fields = self.n.depends(fields) | {name, *involved}
-        over = [f"{k} = {_show(v)}" for k, v in self.overrides.items()
+        over = [f"{k} = {toml_value(v)}" for k, v in self.overrides.items()
                 if any(_overlap(k, p) for p in fields)]
         where = self.v.path + (f" with override {', '.join(over)}" if over else "")
         raise DescriptionError(f"{where}: {name}: {message}", path=self.path, field=name)
@@ -1006,7 +993,7 @@ class _Resolver:
                 value = (self.n.vector(f"{name}.size") if key == "size"
                          else self.n(f"{name}.{key}"))
                 if np.any(np.asarray(value) < 0.0):
-                    self.fail(f"{name}.{key}", f"{_show(np.asarray(value).tolist())} m "
+                    self.fail(f"{name}.{key}", f"{toml_value(np.asarray(value).tolist())} m "
                               "must not be negative")
                 shape[key] = value
         return shape

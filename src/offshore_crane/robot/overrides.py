@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from offshore_crane.errors import DescriptionError, InputError
+from offshore_crane.io import toml_value
 from offshore_crane.robot.description import (MAGNITUDE_LIMIT, Leaf, _boolean, _components, field_names,
                           schema_lookup)
 from offshore_crane.robot.expressions import ExpressionError, names as expression_names
@@ -103,15 +104,7 @@ class Conflict:
     cli: object
 
     def __str__(self) -> str:
-        return f"{self.field}: the scene sets {_text(self.scene)}, --set gives {_text(self.cli)}"
-
-
-def _text(value) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, float):
-        return f"{value:g}"
-    return repr(value) if isinstance(value, str) else str(value)
+        return f"{self.field}: the scene sets {toml_value(self.scene)}, --set gives {toml_value(self.cli)}"
 
 
 def _fail(source: str, name: str, message: str):

@@ -93,7 +93,6 @@ file and the key, e.g. ``scenes/x.toml: [payload] mass = -1: must be ≥ 0 kg``.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import statistics
@@ -106,6 +105,7 @@ import numpy as np
 from offshore_crane.conventions import ARM_ACTUATORS, ACTUATOR_UNITS, ACTUATORS, GRAVITY, INERTIA_RTOL, LEG_ACTUATORS
 from offshore_crane.dynamics import LEG_MODELS, METHODS
 from offshore_crane.errors import SceneError
+from offshore_crane.io import toml_value
 
 SECTIONS = ("robot", "subsystems", "payload", "cable", "actuators", "trajectory", "sea",
             "operation", "control")
@@ -277,19 +277,6 @@ class Scene:
 
 
 # --------------------------------------------------------------------------- reading
-def _show(value) -> str:
-    """``value`` as it would be written in TOML."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)
-    if isinstance(value, dict):
-        return "{ " + ", ".join(f"{k} = {_show(v)}" for k, v in value.items()) + " }"
-    if isinstance(value, (list, tuple)):
-        return "[" + ", ".join(_show(v) for v in value) + "]"
-    return str(value)
-
-
 class _Reader:
     """Checks the values of one scene table; errors name ``where`` and the key."""
 
@@ -309,7 +296,7 @@ class _Reader:
 
     def fail(self, key: str, problem: str):
         prefix = f"[{self.section}] " if self.section else ""
-        self.fail_key(key, f"{prefix}{key} = {_show(self.table[key])}: {problem}")
+        self.fail_key(key, f"{prefix}{key} = {toml_value(self.table[key])}: {problem}")
 
     def get(self, key: str, default=None):
         return self.table.get(key, default)
@@ -374,7 +361,7 @@ class _Reader:
 def _section(where: str, data: dict, name: str, known: tuple) -> _Reader:
     table = data.get(name, {})
     if not isinstance(table, dict):
-        raise SceneError(f"{where}: {name} = {_show(table)}: must be a table [{name}]",
+        raise SceneError(f"{where}: {name} = {toml_value(table)}: must be a table [{name}]",
                          path=where, name=name)
     return _Reader(where, name, table, known)
 
@@ -384,20 +371,20 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
     ``robot_description`` (checked by :func:`_check_robot` when the Scene is made)."""
     robot = data.get("robot", {})
     if not isinstance(robot, dict):
-        raise SceneError(f"{where}: robot = {_show(robot)}: must be a table [robot]",
+        raise SceneError(f"{where}: robot = {toml_value(robot)}: must be a table [robot]",
                          path=where, name="robot")
     robot = dict(robot)
     description = robot.pop("description", None)
     if description is not None:
         if not isinstance(description, str) or not description:
-            raise SceneError(f"{where}: [robot] description = {_show(description)}: must be "
+            raise SceneError(f"{where}: [robot] description = {toml_value(description)}: must be "
                              "the path of a robot description file (TOML)", path=where,
                              name="robot.description")
         p = Path(description)
         if not p.is_absolute() and base is not None:
             p = base / p
         if not p.is_file():
-            raise SceneError(f"{where}: [robot] description = {_show(description)}: no such "
+            raise SceneError(f"{where}: [robot] description = {toml_value(description)}: no such "
                              f"file {p} (relative paths start at the scene file's folder)",
                              path=where, name="robot.description")
         description = str(p)
@@ -418,7 +405,7 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
         payload["arm.enabled"] = sub["arm"]
     actuators = data.get("actuators", {})
     if not isinstance(actuators, dict):
-        raise SceneError(f"{where}: actuators = {_show(actuators)}: must be a table "
+        raise SceneError(f"{where}: actuators = {toml_value(actuators)}: must be a table "
                          "[actuators]", path=where, name="actuators")
     payload.update(_normalised(where, {"actuators": actuators}, "[actuators]", flatten=True))
     for name, value in _normalised(where, payload, None).items():
@@ -438,7 +425,7 @@ def _plain(value) -> str:
         return "[" + ", ".join(_plain(v) for v in value) + "]"
     if isinstance(value, dict):
         return "{ " + ", ".join(f"{k} = {_plain(v)}" for k, v in value.items()) + " }"
-    return _show(value)
+    return toml_value(value)
 
 
 def _same_value(a, b) -> bool:
@@ -609,7 +596,7 @@ def _check_sea(scene: "Scene") -> None:
     if scene.trajectory != "sea":
         if scene.sea:
             fail("sea", f"[sea] applies to [trajectory] source = \"sea\", not "
-                 f"{_show(scene.trajectory)}")
+                 f"{toml_value(scene.trajectory)}")
         if scene.operation is not None:
             fail("operation", "[operation] applies to [trajectory] source = \"sea\"")
         return
@@ -808,17 +795,17 @@ def check_scene(scene: Scene) -> None:
         if absent:
             why = ("[subsystems] platform = false (no legs)" if not scene.platform
                    else "[subsystems] arm = false")
-            raise SceneError(f"{where}: outputs = {_show(list(scene.outputs))}: "
+            raise SceneError(f"{where}: outputs = {toml_value(list(scene.outputs))}: "
                              f"{', '.join(absent)} do not exist with {why}",
                              path=scene.path, name="outputs")
     if scene.leg_model != "full" and not scene.platform:
-        raise SceneError(f"{where}: [subsystems] leg_model = {_show(scene.leg_model)}: "
+        raise SceneError(f"{where}: [subsystems] leg_model = {toml_value(scene.leg_model)}: "
                          "applies to the Stewart platform, but platform = false (no legs)",
                          path=scene.path, name="subsystems.leg_model")
     if scene.leg_model != "full" and scene.methods != ("kane",):
-        raise SceneError(f"{where}: [subsystems] leg_model = {_show(scene.leg_model)}: an "
+        raise SceneError(f"{where}: [subsystems] leg_model = {toml_value(scene.leg_model)}: an "
                          f"approximation offered by method kane only, but methods = "
-                         f"{_show(list(scene.methods))}", path=scene.path,
+                         f"{toml_value(list(scene.methods))}", path=scene.path,
                          name="subsystems.leg_model")
     hanging = scene.payload.cable_length > 0
     if scene.cable and not hanging:
@@ -826,11 +813,11 @@ def check_scene(scene: Scene) -> None:
                          "cable_length = 0 (welded): set cable_length > 0 or remove [cable]",
                          path=scene.path, name="cable")
     if hanging and scene.leg_model != "full":
-        raise SceneError(f"{where}: [subsystems] leg_model = {_show(scene.leg_model)}: the "
+        raise SceneError(f"{where}: [subsystems] leg_model = {toml_value(scene.leg_model)}: the "
                          "hanging load is computed with the full leg model only",
                          path=scene.path, name="subsystems.leg_model")
     if hanging and "kane-explicit" in scene.methods:
-        raise SceneError(f"{where}: methods = {_show(list(scene.methods))}: with a payload on "
+        raise SceneError(f"{where}: methods = {toml_value(list(scene.methods))}: with a payload on "
                          "a cable the methods are kane and rnea (the Pinocchio reference of "
                          "the swing)", path=scene.path, name="methods")
 
@@ -861,7 +848,7 @@ def deck_pose(scene: Scene, robot) -> np.ndarray:
     """q1..q6 ``(6,)`` of the fixed deck [m, rad]: ``scene.deck_pose`` or home."""
     if scene.deck_pose is not None:
         return np.array(scene.deck_pose)
-    return np.array([0.0, 0.0, float(robot.parameters["home_height"]), 0.0, 0.0, 0.0])
+    return robot.home_pose()[:6]
 
 
 def sea_trajectory(scene: Scene, robot, check: bool = True):

@@ -487,8 +487,7 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     if robot.hybrid.cable is None:
         robot = cable_robot(robot, length=1.0, mass=1.0)
     t = np.array([0.0, 1e-3])
-    q = np.zeros((2, 9))
-    q[:, 2] = robot.home_height
+    q = np.repeat(robot.home_pose()[None, :], 2, axis=0)
     inverse_dynamics(robot, t, q, 0 * q, 0 * q, limits=False)
     from offshore_crane.simulation.swing import simulate_swing
     from offshore_crane.simulation.control import Controller

@@ -240,8 +240,7 @@ def export(robot, q=None, *, sway=None, gravity=GRAVITY, limits: bool = False,
 
     g = as_gravity(gravity)
     if q is None:
-        q = np.zeros(9)
-        q[2] = _home_height(robot)
+        q = robot.home_pose()
     q = as_samples("q", q)[0]
     if len(q) != 1:
         raise InputError(f"q must be one configuration (9,), got {len(q)} samples",
@@ -288,13 +287,6 @@ def _check_limits(urdf, positions: dict, virtual) -> None:
             raise WorkspaceError(f"the pose puts joint '{name}' at {value:.6g} {unit}, outside its "
                                  f"range [{j.lower:g}, {j.upper:g}] {unit}: give a pose "
                                  "inside the workspace", joint=name, value=value)
-
-
-def _home_height(robot) -> float:
-    h = robot.home_height
-    if h is None:
-        raise InputError("the robot has no known home height: give q", name="q")
-    return h
 
 
 def _num(x) -> str:
