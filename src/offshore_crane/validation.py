@@ -94,3 +94,17 @@ def as_gravity(gravity) -> np.ndarray:
         g.flags.writeable = False
         _DEFAULT_GRAVITY[key] = g
     return g
+
+
+def as_pair(value, name: str, unit: str) -> np.ndarray:
+    """``value`` as two finite floats ``(2,)`` (e.g. the sway angles φ1, φ2 [rad]);
+    ``name`` and ``unit`` are for the message."""
+    try:
+        v = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be two numbers [{unit}], got {value!r}",
+                         name=name) from None
+    if v.shape != (2,) or not np.isfinite(v).all():
+        raise InputError(f"{name} must be two finite numbers [{unit}], got {value!r}",
+                         name=name)
+    return v

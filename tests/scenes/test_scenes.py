@@ -21,7 +21,7 @@ from offshore_crane.robot.overrides import normalise
 from conftest import relative_error
 from offshore_crane import scenes
 from offshore_crane.__main__ import main
-from offshore_crane import dynamics
+from offshore_crane.dynamics import runtime
 from offshore_crane.dynamics import REGISTRY, solve
 from offshore_crane.dynamics.kernels import Options
 from offshore_crane.robot.kinematics import legs as leg_kinematics
@@ -44,7 +44,7 @@ def example(name: str) -> scenes.Scene:
 @pytest.fixture
 def numpy_kernel(monkeypatch):
     """Make solve() use the NumPy backend (whose Python functions can be traced)."""
-    monkeypatch.setattr(dynamics, "numba_available", lambda: False)
+    monkeypatch.setattr(runtime, "numba_available", lambda: False)
 
 
 # --------------------------------------------------------------------------- examples

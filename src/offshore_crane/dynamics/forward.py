@@ -63,9 +63,9 @@ _DEFAULT_THRESHOLDS = ws.Thresholds()
 def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, checks=True,
          limits=True, thresholds=_DEFAULT_THRESHOLDS, t=None,
          threads=1) -> EquationsOfMotion:
-    from offshore_crane.dynamics import _compiled, _threaded, _threads
+    from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded, thread_count
 
-    c = _compiled()
+    c = compiled_kernels()
     q, single = as_samples("q", q, finite=False)
     N = q.shape[0]
     qd = np.zeros_like(q) if qd is None else as_samples("qd", qd, finite=False)[0]
@@ -94,7 +94,7 @@ def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, chec
         health = ws.new_health()
         run(0, 1, health)
     else:
-        health = _threaded(run, N, _threads(threads))
+        health = run_threaded(run, N, thread_count(threads))
     if ws.is_clean(health):                    # the common case: nothing to report
         return _result(out, (qdd, M, h, A), kappa if checks else None)
     ws.check_inputs(health, (q, qd, Xa))
@@ -139,7 +139,7 @@ def _lean(robot, q, qd, X, gravity):
     is unusual (then the general path runs, and reports)."""
     if not (_is_state(q) and _is_state(qd) and _is_state(X)):
         return None
-    from offshore_crane.dynamics import _compiled
+    from offshore_crane.dynamics.runtime import compiled_kernels
 
     arrays = robot_arrays(robot)
     if arrays.kane.n_arm != 3:
@@ -149,7 +149,7 @@ def _lean(robot, q, qd, X, gravity):
     kappa = np.empty((3, 1))
     health = ws.new_health()
     t = _DEFAULT_THRESHOLDS
-    _compiled().forward(arrays.flat, arrays.layout, arrays.prismatic, q[None], qd[None],
+    compiled_kernels().forward(arrays.flat, arrays.layout, arrays.prismatic, q[None], qd[None],
                         X[None], g, True, False, False, False, True, True, t.warn, t.error,
                         0, 1, qdd, _UNUSED99, _UNUSED9, _UNUSED99, kappa, health)
     return qdd[0] if ws.is_clean(health) else None

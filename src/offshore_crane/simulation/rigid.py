@@ -28,76 +28,17 @@ carries the :class:`SimulationResult` up to that sample (``error.result``).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
 from offshore_crane.simulation.control import LAW_CODES, Controller
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError, SimulationError
 from offshore_crane.validation import as_gravity
+from offshore_crane.simulation.record import SimulationResult, reference_grid, steps
 
 INTEGRATORS = ("rk4", "dop853")
 #: Stop codes of the compiled loop.
 OK, WORKSPACE, SINGULAR, DIVERGED = 0, 1, 2, 3
-
-
-@dataclass
-class SimulationResult:
-    """A simulated run, sampled at the output times (every sample kept on a stop).
-
-    Attributes:
-        t: ``(N,)`` [s].
-        q, qd, qdd: ``(N, 9)`` state and accelerations [m, rad, /s, /s²].
-        q_ref, qd_ref: ``(N, 9)`` the reference.
-        X_cmd, X: ``(N, 9)`` commanded and applied (saturated) actuator forces [N·m, N]
-            at the start of each output interval.
-        saturated: ``(N, 9)`` True where the command exceeded a limit.
-        energy: ``(N,)`` mechanical energy T + V [J] (V of gravity, zero at the base).
-        power: ``(N,)`` actuators' power Σ X_k · (rate of joint k) [W].
-        integrator, step: What integrated it and its step [s] (RK4) or tolerances.
-        stop: None, or the reason the run stopped early.
-        sway, sway_rate: ``(N, 2)`` with a payload on a cable: φ1, φ2 [rad] and their
-            rates [rad/s] (docs/cable.md); None otherwise.
-        tension: ``(N,)`` the cable's tension [N], or None.
-    """
-
-    t: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    qdd: np.ndarray
-    q_ref: np.ndarray
-    qd_ref: np.ndarray
-    X_cmd: np.ndarray
-    X: np.ndarray
-    saturated: np.ndarray
-    energy: np.ndarray
-    power: np.ndarray
-    integrator: str = "rk4"
-    step: float = 0.0
-    stop: str | None = None
-    info: dict = field(default_factory=dict)
-    sway: np.ndarray | None = None
-    sway_rate: np.ndarray | None = None
-    tension: np.ndarray | None = None
-
-    @property
-    def error(self) -> np.ndarray:
-        """Tracking error ``q − q_ref`` ``(N, 9)``."""
-        return self.q - self.q_ref
-
-    def __len__(self) -> int:
-        return len(self.t)
-
-    def truncated(self, n: int) -> "SimulationResult":
-        """The first ``n`` samples."""
-        arrays = {k: getattr(self, k)[:n] for k in ("t", "q", "qd", "qdd", "q_ref", "qd_ref",
-                                                     "X_cmd", "X", "saturated", "energy",
-                                                     "power")}
-        cable = {k: None if getattr(self, k) is None else getattr(self, k)[:n]
-                 for k in ("sway", "sway_rate", "tension")}
-        return SimulationResult(**arrays, integrator=self.integrator, step=self.step,
-                                stop=self.stop, info=self.info, **cable)
 
 
 # --------------------------------------------------------------------------- compiled
@@ -110,50 +51,6 @@ def _loop():
 
 
 # --------------------------------------------------------------------------- public
-def _reference_grid(reference, t0: float, h: float, n_steps: int):
-    tt = t0 + np.arange(2 * n_steps + 1) * (0.5 * h)
-    q, qd, qdd = reference(tt)
-    return tt, np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd)
-
-
-def steps(duration, step, rate, control_rate) -> tuple[int, int, int]:
-    """``(n_steps, out_every, hold)``: integration steps in ``duration`` [s] at ``step``
-    [s], steps per output sample (output ``rate`` [Hz], None: every step) and per control
-    period (``control_rate`` [Hz], None: 0, the law at every stage).
-
-    Raises:
-        InputError: a non-positive or non-finite duration or step, a duration shorter
-            than a step, a rate whose period is not a whole number of steps, a control
-            rate above the integration rate.
-    """
-    for name, value in (("duration", duration), ("step", step)):
-        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
-            raise InputError(f"{name} = {value!r} s: must be positive and finite", name=name)
-    n_steps = int(round(duration / step))
-    if n_steps < 1:
-        raise InputError(f"duration {duration} s is shorter than one step {step} s",
-                         name="duration")
-    out_every = 1
-    if rate is not None:
-        ratio = 1.0 / (rate * step)
-        if not (np.isfinite(ratio) and abs(ratio - round(ratio)) < 1e-9 and round(ratio) >= 1):
-            raise InputError(f"output rate {rate} Hz: 1/rate must be a multiple of the step "
-                             f"{step} s", name="rate")
-        out_every = int(round(ratio))
-    hold = 0
-    if control_rate is not None:
-        ratio = 1.0 / (control_rate * step)
-        if ratio < 1.0 - 1e-9:
-            raise InputError(f"control rate {control_rate} Hz is above the integration "
-                             f"rate {1.0 / step:g} Hz: lower it or shorten the step",
-                             name="control_rate")
-        if abs(ratio - round(ratio)) > 1e-9:
-            raise InputError(f"control rate {control_rate} Hz: its period must be a "
-                             f"multiple of the step {step} s", name="control_rate")
-        hold = int(round(ratio))
-    return n_steps, out_every, hold
-
-
 def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=None, *,
              gravity=GRAVITY, step: float = 1e-3, rate: float | None = None,
              integrator: str = "rk4", limits: bool = True, rtol: float = 1e-10,
@@ -215,7 +112,7 @@ def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=No
                          f"{', '.join(INTEGRATORS)}", name="integrator")
     n_steps, out_every, hold = steps(duration, step, rate, controller.rate)
     g = as_gravity(gravity)
-    tt, qr, qdr, qddr = _reference_grid(reference, t0, step, n_steps)
+    tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
     q0 = qr[0].copy() if q0 is None else np.asarray(q0, dtype=float).reshape(9).copy()
     qd0 = qdr[0].copy() if qd0 is None else np.asarray(qd0, dtype=float).reshape(9).copy()
     if not (np.isfinite(q0).all() and np.isfinite(qd0).all()):
@@ -283,7 +180,7 @@ def _python_law(robot, duration, reference, q0, qd0, law, gravity, step, rate, l
 
     n_steps, out_every, _ = steps(duration, step, rate, None)
     g = as_gravity(gravity)
-    tt, qr, qdr, qddr = _reference_grid(reference, t0, step, n_steps)
+    tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
     y = np.concatenate([qr[0] if q0 is None else np.asarray(q0, float).reshape(9),
                         qdr[0] if qd0 is None else np.asarray(qd0, float).reshape(9)])
     lo, hi = Controller().bounds(robot)
@@ -389,12 +286,16 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
 
 
 def warm_up(robot=None) -> list[tuple[str, float]]:
-    """Compile (or load from the cache) the simulation loop: ``[(name, seconds)]``."""
+    """Compile (or load from the cache) the simulation loops, the rigid robot's and the
+    hanging load's (:func:`offshore_crane.simulation.swing.warm_up`):
+    ``[(name, seconds), ...]``."""
     import time
 
     from offshore_crane.robot import load_robot
     from offshore_crane.motion.trajectories import table1
+    from offshore_crane.simulation.swing import warm_up as warm_up_swing
 
+    robot = robot or load_robot()
     t0 = time.perf_counter()
-    simulate(robot or load_robot(), 2e-3, table1, step=1e-3)
-    return [("simulation loop", time.perf_counter() - t0)]
+    simulate(robot.without_hanging_payload(), 2e-3, table1, step=1e-3)
+    return [("simulation loop", time.perf_counter() - t0)] + warm_up_swing(robot)

@@ -68,11 +68,12 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
         SimulationError: the run stopped (workspace, singular, diverged, slack cable);
             ``error.result`` keeps every sample computed before.
     """
-    from offshore_crane.dynamics.cable import _pair, cable_robot
-    from offshore_crane.dynamics import _compiled
+    from offshore_crane.dynamics.cable import cable_robot
+    from offshore_crane.validation import as_pair
+    from offshore_crane.dynamics.runtime import compiled_kernels
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
-    from offshore_crane.simulation.rigid import SimulationResult, _reference_grid, steps
+    from offshore_crane.simulation.record import SimulationResult, reference_grid, steps
 
     controller = controller or Controller()
     robot = cable_robot(robot)
@@ -86,14 +87,14 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
                          "leave noise_q, noise_qd at zero", name="noise_q")
     n_steps, out_every, hold = steps(duration, step, rate, controller.rate)
     g = as_gravity(gravity)
-    tt, qr, qdr, qddr = _reference_grid(reference, t0, step, n_steps)
+    tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
     q0 = qr[0].copy() if q0 is None else np.asarray(q0, dtype=float).reshape(9).copy()
     qd0 = qdr[0].copy() if qd0 is None else np.asarray(qd0, dtype=float).reshape(9).copy()
-    sway0, rate0 = _pair(initial, "initial", "rad"), _pair(initial_rate, "initial_rate",
+    sway0, rate0 = as_pair(initial, "initial", "rad"), as_pair(initial_rate, "initial_rate",
                                                             "rad/s")
     if not (np.isfinite(q0).all() and np.isfinite(qd0).all()):
         raise InputError("the initial state q0, qd0 must be finite", name="q0")
-    _compiled()
+    compiled_kernels()
     plant, ctrl = cable_arrays(robot), cable_arrays(model)
     damp_p, damp_c = robot.hybrid.sway_damping, model.hybrid.sway_damping
     kp, kd = controller.gains
@@ -238,3 +239,26 @@ def _slack_or_workspace(robot, res, limits):
             if first is None or exc.index < first[0]:
                 first = (exc.index, str(exc).split(" at sample")[0] + " (outside its limits)")
     return first
+
+
+def warm_up(robot=None) -> list[tuple[str, float]]:
+    """Compile (or load from the cache) the simulation loop with a hanging load (the
+    anti-sway law included): ``[(name, seconds)]``."""
+    import time
+
+    from offshore_crane.dynamics.cable import cable_robot
+    from offshore_crane.robot import load_robot
+
+    t0 = time.perf_counter()
+    robot = robot or load_robot()
+    if robot.hybrid.cable is None:
+        robot = cable_robot(robot, length=1.0, mass=1.0)
+    home = robot.home_pose()
+
+    def rest(tt):
+        q = np.repeat(home[None, :], len(tt), axis=0)
+        return q, 0 * q, 0 * q
+
+    simulate_swing(robot, 2e-3, rest, controller=Controller(anti_sway=0.1), step=1e-3,
+                   limits=False)
+    return [("hanging-load simulation loop", time.perf_counter() - t0)]

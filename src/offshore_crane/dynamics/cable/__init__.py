@@ -44,7 +44,7 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import (InputError, ModelError, NumericalError, SingularConfigurationError,
                      SlackCableError)
 from offshore_crane.robot.kinematics import workspace as ws
-from offshore_crane.validation import as_gravity, as_samples
+from offshore_crane.validation import as_gravity, as_pair, as_samples
 
 METHODS = ("kane", "pinocchio")
 SLACK = ("error", "warn")
@@ -160,18 +160,6 @@ def _uniform_times(t, N: int) -> tuple[np.ndarray, float]:
                          f"it): step {k} is {d[k]:.9g} s against a mean {dt:.9g} s; "
                          "resample the motion on a uniform grid", name="t", index=k)
     return t, dt
-
-
-def _pair(value, name: str, unit: str) -> np.ndarray:
-    try:
-        v = np.asarray(value, dtype=float).reshape(-1)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be two numbers [{unit}], got {value!r}",
-                         name=name) from None
-    if v.shape != (2,) or not np.isfinite(v).all():
-        raise InputError(f"{name} must be two finite numbers [{unit}], got {value!r}",
-                         name=name)
-    return v
 
 
 def cable_robot(robot, length=None, mass=None):
@@ -295,8 +283,8 @@ def inverse_dynamics(robot, t, q, qd, qdd, *, reference=None, gravity=GRAVITY,
                          "the same number", name="qd")
     t, dt = _uniform_times(t, N)
     g = as_gravity(gravity)
-    phi0 = _pair(initial, "initial", "rad")
-    rate0 = _pair(initial_rate, "initial_rate", "rad/s")
+    phi0 = as_pair(initial, "initial", "rad")
+    rate0 = as_pair(initial_rate, "initial_rate", "rad/s")
     c2 = np.cos(phi0[1]) ** 2
     if not c2 * thresholds.error > 1.0:
         raise InputError(f"initial sway phi2 = {phi0[1]:.6g} rad lies on the singular set "
@@ -341,11 +329,11 @@ def inverse_dynamics(robot, t, q, qd, qdd, *, reference=None, gravity=GRAVITY,
 
 
 def _integrate_kane(robot, Q, Qd, Qdd, g, h, sub, y0, thresholds):
-    from offshore_crane.dynamics import _compiled
+    from offshore_crane.dynamics.runtime import compiled_kernels
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
 
-    _compiled()
+    compiled_kernels()
     arrays = cable_arrays(robot)
     n_out = (Q.shape[0] - 1) // (2 * sub) + 1
     Y = np.full((n_out, 6), np.nan)
@@ -386,11 +374,11 @@ def _forces(robot, t, q, qd, qdd, Y, g, method, limits, checks, thresholds, wors
 
 
 def _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
-    from offshore_crane.dynamics import _compiled, _threaded
+    from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
 
-    _compiled()
+    compiled_kernels()
     arrays = cable_arrays(robot)
     n = len(t)
     q11 = np.ascontiguousarray(np.concatenate([q, Y[:, 0:2]], axis=1))
@@ -407,7 +395,7 @@ def _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
                 qd11, qdd11, g, checks, limits, thresholds.warn, thresholds.error, start, stop,
                 X, kappa, health, F)
 
-    health = _threaded(run, n, 1)
+    health = run_threaded(run, n, 1)
     ws.enforce(health, (q, qd, qdd), arrays.limits if limits else None,
                kappa if checks else None, thresholds, (ws.LEG_JACOBIAN, ws.GIMBAL), t)
     return X, F, kappa if checks else None
@@ -477,7 +465,9 @@ def swing(robot, trajectory, **options) -> CableResult:
 
 
 def warm_up(robot=None) -> list[tuple[str, float]]:
-    """Compile (or load from the cache) the swing's kernels: ``[(name, seconds)]``."""
+    """Compile (or load from the cache) the hanging load's inverse-dynamics kernels
+    (the swing integrated along a motion): ``[(name, seconds)]``. The simulation loop
+    with a hanging load has its own (:func:`offshore_crane.simulation.swing.warm_up`)."""
     import time
 
     from offshore_crane.robot import load_robot
@@ -489,10 +479,4 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     t = np.array([0.0, 1e-3])
     q = np.repeat(robot.home_pose()[None, :], 2, axis=0)
     inverse_dynamics(robot, t, q, 0 * q, 0 * q, limits=False)
-    from offshore_crane.simulation.swing import simulate_swing
-    from offshore_crane.simulation.control import Controller
-
-    simulate_swing(robot, 2e-3, lambda tt: (q[[0] * len(tt)], 0 * q[[0] * len(tt)],
-                                            0 * q[[0] * len(tt)]),
-                   controller=Controller(anti_sway=0.1), step=1e-3, limits=False)
     return [("hanging-load kernels", time.perf_counter() - t0)]

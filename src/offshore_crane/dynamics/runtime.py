@@ -1,0 +1,102 @@
+"""Where the dynamics run: the compiled backend's availability and kernels, the choice of
+backend, and the split of samples into contiguous blocks run in threads.
+
+Shared by inverse dynamics (:mod:`.inverse`), forward dynamics (:mod:`.forward`), the
+hanging load (:mod:`.cable`) and the simulation loops.
+"""
+
+from __future__ import annotations
+
+import os
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from offshore_crane.errors import BackendMissingError, InputError
+from offshore_crane.robot.kinematics import workspace as ws
+
+BACKENDS = ("auto", "numpy", "numba")
+_CPUS = os.cpu_count() or 1
+
+
+def numba_available() -> bool:
+    """True when Numba is installed (looked up once, without importing it)."""
+    if not _NUMBA:
+        import importlib.util
+
+        _NUMBA.append(importlib.util.find_spec("numba") is not None)
+    return _NUMBA[0]
+
+
+_NUMBA: list = []
+
+
+def compiled_kernels():
+    """The compiled kernels module (:mod:`.compiled`), imported on first use.
+
+    Raises:
+        BackendMissingError: Numba is not installed.
+    """
+    if not _COMPILED:
+        if not numba_available():
+            raise BackendMissingError("backend='numba' needs Numba: pip install numba",
+                                      package="numba")
+        from offshore_crane.dynamics import compiled
+
+        _COMPILED.append(compiled)
+    return _COMPILED[0]
+
+
+_COMPILED: list = []
+
+
+def blocks(N: int, threads: int) -> list[tuple[int, int]]:
+    """``min(threads, N)`` contiguous ``(start, stop)`` ranges covering samples 0..N-1."""
+    edges = np.linspace(0, N, min(threads, N) + 1).astype(int)
+    return list(zip(edges[:-1], edges[1:]))
+
+
+def run_threaded(run, N: int, threads: int) -> np.ndarray:
+    """Run ``run(start, stop, health)`` on blocks in threads; the merged health record."""
+    if threads == 1 or N == 1:
+        health = ws.new_health()
+        run(0, N, health)
+        return health
+    ranges = blocks(N, threads)
+    records = [ws.new_health() for _ in ranges]
+    with ThreadPoolExecutor(len(ranges)) as pool:
+        list(pool.map(lambda b: run(*b[0], b[1]), zip(ranges, records)))
+    return ws.merge(records)
+
+
+def quick_backend(n: int) -> str:
+    """The backend that finishes ``n`` samples first in a process that may not have loaded
+    Numba yet: ``"numba"`` when it is loaded already or ``n ≥`` :data:`NUMBA_MIN` (and
+    installed), else ``"numpy"``. For one-off evaluations (a command's run, a workspace
+    check); long-lived callers keep ``"auto"``."""
+    import sys
+
+    from offshore_crane.conventions import NUMBA_MIN
+
+    if "numba" in sys.modules or n >= NUMBA_MIN:
+        return "numba" if numba_available() else "numpy"
+    return "numpy"
+
+
+def resolve_backend(backend: str) -> str:
+    """``"auto"`` → ``"numba"`` (installed: it is a dependency) else ``"numpy"``."""
+    if backend not in BACKENDS:
+        raise InputError(f"unknown backend {backend!r}: use one of {', '.join(BACKENDS)}",
+                         name="backend")
+    if backend == "auto":
+        return "numba" if numba_available() else "numpy"
+    return backend
+
+
+def thread_count(threads) -> int:
+    """``threads`` checked (a positive integer) and capped at the CPU count."""
+    if threads == 1:
+        return 1
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
+        raise InputError(f"threads must be a positive integer, got {threads!r}", name="threads")
+    return int(min(threads, _CPUS))

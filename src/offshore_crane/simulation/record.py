@@ -1,0 +1,117 @@
+"""What a simulation run records and the time grid it steps on: :class:`SimulationResult`,
+the step counts (:func:`steps`) and the reference at every RK4 stage (:func:`reference_grid`).
+Shared by the rigid robot's loop (:mod:`.rigid`) and the hanging load's (:mod:`.swing`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from offshore_crane.errors import InputError
+
+
+@dataclass
+class SimulationResult:
+    """A simulated run, sampled at the output times (every sample kept on a stop).
+
+    Attributes:
+        t: ``(N,)`` [s].
+        q, qd, qdd: ``(N, 9)`` state and accelerations [m, rad, /s, /s²].
+        q_ref, qd_ref: ``(N, 9)`` the reference.
+        X_cmd, X: ``(N, 9)`` commanded and applied (saturated) actuator forces [N·m, N]
+            at the start of each output interval.
+        saturated: ``(N, 9)`` True where the command exceeded a limit.
+        energy: ``(N,)`` mechanical energy T + V [J] (V of gravity, zero at the base).
+        power: ``(N,)`` actuators' power Σ X_k · (rate of joint k) [W].
+        integrator, step: What integrated it and its step [s] (RK4) or tolerances.
+        stop: None, or the reason the run stopped early.
+        sway, sway_rate: ``(N, 2)`` with a payload on a cable: φ1, φ2 [rad] and their
+            rates [rad/s] (docs/cable.md); None otherwise.
+        tension: ``(N,)`` the cable's tension [N], or None.
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    q_ref: np.ndarray
+    qd_ref: np.ndarray
+    X_cmd: np.ndarray
+    X: np.ndarray
+    saturated: np.ndarray
+    energy: np.ndarray
+    power: np.ndarray
+    integrator: str = "rk4"
+    step: float = 0.0
+    stop: str | None = None
+    info: dict = field(default_factory=dict)
+    sway: np.ndarray | None = None
+    sway_rate: np.ndarray | None = None
+    tension: np.ndarray | None = None
+
+    @property
+    def error(self) -> np.ndarray:
+        """Tracking error ``q − q_ref`` ``(N, 9)``."""
+        return self.q - self.q_ref
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def truncated(self, n: int) -> "SimulationResult":
+        """The first ``n`` samples."""
+        arrays = {k: getattr(self, k)[:n] for k in ("t", "q", "qd", "qdd", "q_ref", "qd_ref",
+                                                     "X_cmd", "X", "saturated", "energy",
+                                                     "power")}
+        cable = {k: None if getattr(self, k) is None else getattr(self, k)[:n]
+                 for k in ("sway", "sway_rate", "tension")}
+        return SimulationResult(**arrays, integrator=self.integrator, step=self.step,
+                                stop=self.stop, info=self.info, **cable)
+
+
+def reference_grid(reference, t0: float, h: float, n_steps: int):
+    """The reference at every RK4 stage time: ``(tt, q, qd, qdd)``, ``tt (2 n_steps + 1,)``
+    = t0 + k·h/2 [s] and ``(2 n_steps + 1, 9)`` C-contiguous arrays from
+    ``reference(tt)`` [m, rad, /s, /s²]."""
+    tt = t0 + np.arange(2 * n_steps + 1) * (0.5 * h)
+    q, qd, qdd = reference(tt)
+    return tt, np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd)
+
+
+def steps(duration, step, rate, control_rate) -> tuple[int, int, int]:
+    """``(n_steps, out_every, hold)``: integration steps in ``duration`` [s] at ``step``
+    [s], steps per output sample (output ``rate`` [Hz], None: every step) and per control
+    period (``control_rate`` [Hz], None: 0, the law at every stage).
+
+    Raises:
+        InputError: a non-positive or non-finite duration or step, a duration shorter
+            than a step, a rate whose period is not a whole number of steps, a control
+            rate above the integration rate.
+    """
+    for name, value in (("duration", duration), ("step", step)):
+        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
+            raise InputError(f"{name} = {value!r} s: must be positive and finite", name=name)
+    n_steps = int(round(duration / step))
+    if n_steps < 1:
+        raise InputError(f"duration {duration} s is shorter than one step {step} s",
+                         name="duration")
+    out_every = 1
+    if rate is not None:
+        ratio = 1.0 / (rate * step)
+        if not (np.isfinite(ratio) and abs(ratio - round(ratio)) < 1e-9 and round(ratio) >= 1):
+            raise InputError(f"output rate {rate} Hz: 1/rate must be a multiple of the step "
+                             f"{step} s", name="rate")
+        out_every = int(round(ratio))
+    hold = 0
+    if control_rate is not None:
+        ratio = 1.0 / (control_rate * step)
+        if ratio < 1.0 - 1e-9:
+            raise InputError(f"control rate {control_rate} Hz is above the integration "
+                             f"rate {1.0 / step:g} Hz: lower it or shorten the step",
+                             name="control_rate")
+        if abs(ratio - round(ratio)) > 1e-9:
+            raise InputError(f"control rate {control_rate} Hz: its period must be a "
+                             f"multiple of the step {step} s", name="control_rate")
+        hold = int(round(ratio))
+    return n_steps, out_every, hold
