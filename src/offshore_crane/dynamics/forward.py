@@ -22,6 +22,7 @@ accelerations from Pinocchio's constraint dynamics on the equivalent tree
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -31,7 +32,25 @@ from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.validation import as_gravity, as_samples
 from offshore_crane.dynamics.constants import robot_arrays
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from offshore_crane.robot import Robot
+
 FORWARD_METHODS = ("kane", "pinocchio")
+
+
+class Terms(NamedTuple):
+    """Which parts of ``M q̈ + h = A X`` one pass of the forward kernel writes (the
+    kernel's four flags, in its argument order)."""
+
+    qdd: bool = False
+    M: bool = False
+    h: bool = False
+    A: bool = False
+
+
+ACCELERATIONS = Terms(qdd=True)
 
 
 @dataclass
@@ -60,9 +79,9 @@ _QDD_NAMES = tuple(f"q̈{c_[1:]}" for c_ in COORDINATES)
 _DEFAULT_THRESHOLDS = ws.Thresholds()
 
 
-def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, checks=True,
-         limits=True, thresholds=_DEFAULT_THRESHOLDS, t=None,
-         threads=1) -> EquationsOfMotion:
+def _run(robot, q, qd, X, gravity, terms: Terms, *, checks: bool = True, limits: bool = True,
+         thresholds: ws.Thresholds = _DEFAULT_THRESHOLDS, t=None,
+         threads: int = 1) -> EquationsOfMotion:
     from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded, thread_count
 
     c = compiled_kernels()
@@ -79,14 +98,14 @@ def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, chec
     if X is not None and na < 3:
         Xa = Xa.copy()
         Xa[:, na:3] = 0.0                     # actuators that do not exist
-    out = dict(qdd=np.empty((N, 9)) if qdd else np.empty((1, 9)),
-               M=np.zeros((N, 9, 9)) if M else np.empty((1, 9, 9)),
-               h=np.zeros((N, 9)) if h else np.empty((1, 9)),
-               A=np.zeros((N, 9, 9)) if A else np.empty((1, 9, 9)))
+    out = dict(qdd=np.empty((N, 9)) if terms.qdd else np.empty((1, 9)),
+               M=np.zeros((N, 9, 9)) if terms.M else np.empty((1, 9, 9)),
+               h=np.zeros((N, 9)) if terms.h else np.empty((1, 9)),
+               A=np.zeros((N, 9, 9)) if terms.A else np.empty((1, 9, 9)))
     kappa = np.empty((3, N)) if checks else np.empty((3, 1))
 
     def run(start, stop, health):
-        c.forward(arrays.flat, arrays.layout, arrays.prismatic, q, qd, Xa, g, qdd, M, h, A,
+        c.forward(arrays.flat, arrays.layout, arrays.prismatic, q, qd, Xa, g, *terms,
                   checks, limits, thresholds.warn, thresholds.error, start, stop, out["qdd"],
                   out["M"], out["h"], out["A"], kappa, health)
 
@@ -96,7 +115,7 @@ def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, chec
     else:
         health = run_threaded(run, N, thread_count(threads))
     if ws.is_clean(health):                    # the common case: nothing to report
-        return _result(out, (qdd, M, h, A), kappa if checks else None)
+        return _result(out, terms, kappa if checks else None)
     ws.check_inputs(health, (q, qd, Xa))
     if limits:
         ws.check_workspace(health, arrays.limits, q, t)
@@ -112,10 +131,10 @@ def _run(robot, q, qd, X, gravity, *, qdd=False, M=False, h=False, A=False, chec
     if checks:
         ws.check_singularities(health, kappa, thresholds, t, (ws.GIMBAL, ws.ATTITUDE))
     ws.check_outputs(health, _QDD_NAMES, (q, qd, Xa), t)
-    return _result(out, (qdd, M, h, A), kappa if checks else None)
+    return _result(out, terms, kappa if checks else None)
 
 
-def _result(out: dict, wanted, kappa) -> EquationsOfMotion:
+def _result(out: dict, wanted: Terms, kappa) -> EquationsOfMotion:
     res = EquationsOfMotion(**{k: (v if flag else None)
                                for (k, v), flag in zip(out.items(), wanted)})
     if kappa is not None:
@@ -150,40 +169,46 @@ def _lean(robot, q, qd, X, gravity):
     health = ws.new_health()
     t = _DEFAULT_THRESHOLDS
     compiled_kernels().forward(arrays.flat, arrays.layout, arrays.prismatic, q[None], qd[None],
-                        X[None], g, True, False, False, False, True, True, t.warn, t.error,
-                        0, 1, qdd, _UNUSED99, _UNUSED9, _UNUSED99, kappa, health)
+                               X[None], g, *ACCELERATIONS, True, True, t.warn, t.error,
+                               0, 1, qdd, _UNUSED99, _UNUSED9, _UNUSED99, kappa, health)
     return qdd[0] if ws.is_clean(health) else None
 
 
-def mass_matrix(robot, q, **options) -> np.ndarray:
+def mass_matrix(robot: Robot, q: ArrayLike, **options) -> np.ndarray:
     """Generalized inertia ``M`` ``(N, 9, 9)`` [kg, kg·m, kg·m²] at ``q`` ``(N, 9)``
-    (symmetric positive definite; a ``(9,)`` q gives ``(9, 9)``)."""
+    [m, rad] (symmetric positive definite; a ``(9,)`` q gives ``(9, 9)``). ``options``:
+    ``checks``, ``limits``, ``thresholds``, ``t``, ``threads``."""
     single = np.ndim(q) == 1
-    M = _run(robot, q, None, None, GRAVITY, M=True, **options).M
+    M = _run(robot, q, None, None, GRAVITY, Terms(M=True), **options).M
     return M[0] if single else M
 
 
-def bias_forces(robot, q, qd, gravity=GRAVITY, **options) -> np.ndarray:
-    """Velocity and gravity terms ``h`` ``(N, 9)`` [N, N·m]: ``M q̈ + h = A X``."""
+def bias_forces(robot: Robot, q: ArrayLike, qd: ArrayLike, gravity: ArrayLike = GRAVITY,
+                **options) -> np.ndarray:
+    """Velocity and gravity terms ``h`` ``(N, 9)`` [N, N·m] at ``q``, ``qd`` ``(N, 9)``
+    [m, rad, m/s, rad/s] under ``gravity`` ``(3,)`` [m/s²]: ``M q̈ + h = A X``."""
     single = np.ndim(q) == 1
-    h = _run(robot, q, qd, None, gravity, h=True, **options).h
+    h = _run(robot, q, qd, None, gravity, Terms(h=True), **options).h
     return h[0] if single else h
 
 
-def actuation_matrix(robot, q, **options) -> np.ndarray:
-    """``A`` ``(N, 9, 9)``: generalized forces per unit actuator force, ``[[0, Jᵀ], [I3,
-    0]]`` (rows q1..q9, columns T1, T2, Fs, Fl1..Fl6)."""
+def actuation_matrix(robot: Robot, q: ArrayLike, **options) -> np.ndarray:
+    """``A`` ``(N, 9, 9)`` at ``q`` ``(N, 9)``: generalized forces per unit actuator force,
+    ``[[0, Jᵀ], [I3, 0]]`` (rows q1..q9, columns T1, T2, Fs, Fl1..Fl6; dimensionless or
+    [m] / [1/m] as the row and column units require)."""
     single = np.ndim(q) == 1
-    A = _run(robot, q, None, None, GRAVITY, A=True, **options).A
+    A = _run(robot, q, None, None, GRAVITY, Terms(A=True), **options).A
     return A[0] if single else A
 
 
-def equations_of_motion(robot, q, qd, gravity=GRAVITY, **options) -> EquationsOfMotion:
+def equations_of_motion(robot: Robot, q: ArrayLike, qd: ArrayLike,
+                        gravity: ArrayLike = GRAVITY, **options) -> EquationsOfMotion:
     """``M``, ``h`` and ``A`` in one pass (see the module docstring)."""
-    return _run(robot, q, qd, None, gravity, M=True, h=True, A=True, **options)
+    return _run(robot, q, qd, None, gravity, Terms(M=True, h=True, A=True), **options)
 
 
-def forward_dynamics(robot, q, qd, X, gravity=GRAVITY, method: str = "kane",
+def forward_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, X: ArrayLike,
+                     gravity: ArrayLike = GRAVITY, method: str = "kane",
                      **options) -> np.ndarray:
     """Accelerations ``q̈`` ``(N, 9)`` [m/s², rad/s²] under actuator forces X.
 
@@ -217,5 +242,5 @@ def forward_dynamics(robot, q, qd, X, gravity=GRAVITY, method: str = "kane",
 
         out = pin_fd(robot, q, qd, X, gravity=gravity)
         return out
-    qdd = _run(robot, q, qd, X, gravity, qdd=True, **options).qdd
+    qdd = _run(robot, q, qd, X, gravity, ACCELERATIONS, **options).qdd
     return qdd[0] if single else qdd

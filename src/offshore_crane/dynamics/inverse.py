@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import lru_cache
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
@@ -26,6 +27,11 @@ from offshore_crane.validation import as_gravity, as_samples, same_length
 from offshore_crane.dynamics.constants import robot_arrays
 from offshore_crane.dynamics.kernels import Options, allocate, run_numpy, run_python
 from offshore_crane.dynamics.runtime import compiled_kernels, resolve_backend, run_threaded, thread_count
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from offshore_crane.robot import Robot
 
 METHODS = ("kane", "kane-explicit", "rnea")
 LEG_MODELS = tuple(LEG_MODEL_CODES)
@@ -191,8 +197,10 @@ def _options(*args) -> Options:
     return Options(*args)
 
 
-def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model: str = "full",
-          outputs=None, t=None, limits: bool = True, checks: bool = True,
+def solve(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, method: str = "kane",
+          gravity: ArrayLike = GRAVITY, *, leg_model: str = "full",
+          outputs: str | Sequence[str] | None = None, t: ArrayLike | None = None,
+          limits: bool = True, checks: bool = True,
           thresholds: ws.Thresholds = ws.Thresholds(), backend: str = "auto",
           threads: int = 1) -> Result:
     """Inverse dynamics with validation, workspace limits and the singularity policy.
@@ -282,7 +290,8 @@ def solve(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY, *, leg_model
                   pruned=tuple(pruned), backend=backend)
 
 
-def inverse_dynamics(robot, q, qd, qdd, method: str = "kane", gravity=GRAVITY,
+def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike,
+                     method: str = "kane", gravity: ArrayLike = GRAVITY,
                      **options) -> np.ndarray:
     """Actuator forces that produce the motion ``(q, qd, qdd)``.
 

@@ -28,6 +28,8 @@ carries the :class:`SimulationResult` up to that sample (``error.result``).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Callable
+
 import numpy as np
 
 from offshore_crane.simulation.control import LAW_CODES, Controller
@@ -35,6 +37,16 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError, SimulationError
 from offshore_crane.validation import as_gravity
 from offshore_crane.simulation.record import SimulationResult, reference_grid, steps
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from offshore_crane.robot import Robot
+
+#: A reference motion: ``reference(t (n,) [s]) -> (q, qd, qdd)``, each ``(n, 9)``.
+Reference = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
+#: A Python control law ``law(t [s], q, qd, q_ref, qd_ref, qdd_ref (9,)) -> X (9,)``.
+Law = Callable[..., np.ndarray]
 
 INTEGRATORS = ("rk4", "dop853")
 #: Stop codes of the compiled loop.
@@ -51,8 +63,9 @@ def _loop():
 
 
 # --------------------------------------------------------------------------- public
-def simulate(robot, duration: float, reference, q0=None, qd0=None, controller=None, *,
-             gravity=GRAVITY, step: float = 1e-3, rate: float | None = None,
+def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike | None = None,
+             qd0: ArrayLike | None = None, controller: Controller | Law | None = None, *,
+             gravity: ArrayLike = GRAVITY, step: float = 1e-3, rate: float | None = None,
              integrator: str = "rk4", limits: bool = True, rtol: float = 1e-10,
              atol: float = 1e-12, t0: float = 0.0, **cable) -> SimulationResult:
     """Simulate the robot from ``(q0, q̇0)`` for ``duration`` seconds.
