@@ -82,7 +82,7 @@ def load_chain(urdf, tip: str | None = None, base: str | None = None) -> SerialC
         base: Link the chain is mounted on (held still); default the URDF's root link.
 
     Returns:
-        :class:`~offshore_crane.robot.kinematics.chain.SerialChain`: ``joint_names`` ``(n,)``,
+        :class:`~offshore_crane.robot.chain.SerialChain`: ``joint_names`` ``(n,)``,
         per joint its placement in the parent body ``p_parent_joint`` ``(n, 3)`` [m],
         ``R_parent_joint`` ``(n, 3, 3)``, unit ``axis`` ``(n, 3)`` (joint frame),
         ``prismatic`` ``(n,)``, limits ``lower``/``upper`` ``(n,)`` [rad or m, ±inf when

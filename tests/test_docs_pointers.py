@@ -1,0 +1,81 @@
+"""Every pointer in the docs leads somewhere: file paths quoted in README.md and docs/*.md
+exist in the repository, and every dotted ``offshore_crane.…`` name written in the docs or
+in the package's docstrings resolves (a module, or an attribute of one). A file moved or
+renamed without its mentions fails here instead of misleading a reader."""
+
+from __future__ import annotations
+
+import importlib
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "src" / "offshore_crane"
+DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+#: A quoted file name: `a/b/c.py`, `c.py`, `docs/x.md`, `models/….xacro`, `data.csv`.
+FILE = re.compile(r"`([\w./-]*\w\.(?:py|md|toml|xacro|csv|png|gif|json))[`:]")
+DOTTED = re.compile(r"\boffshore_crane(?:\.[A-Za-z_]\w*)+(?![\w.]*\.(?:xacro|urdf|toml))")
+#: Files a run writes (named in the docs as outputs, not part of the repository).
+WRITTEN = {"bench.csv", "results.csv", "envelope.csv", "run.csv", "_manifest.json",
+           "forces.csv", "forces.png", "sway.png", "scene.toml", "my_platform.toml",
+           "lab.mjcf", "my_scene.toml", "my_grid.toml", "grid.toml", "motion.csv"}
+
+
+def _repository_files() -> list[str]:
+    skip = {".git", ".venv", "__pycache__", "build", "node_modules"}
+    return [p.relative_to(ROOT).as_posix() for p in ROOT.rglob("*")
+            if p.is_file() and not skip & set(p.relative_to(ROOT).parts)]
+
+
+def _exists(name: str, files: list[str]) -> bool:
+    """``name`` is a repository path, or the tail of one (``dynamics/forward.py`` names
+    ``src/offshore_crane/dynamics/forward.py``; a bare ``forward.py`` any such file)."""
+    name = name.lstrip("./")
+    return any(f == name or f.endswith("/" + name) for f in files)
+
+
+def test_quoted_files_exist():
+    files = _repository_files()
+    missing = []
+    for doc in DOCS:
+        for n, line in enumerate(doc.read_text(encoding="utf-8").splitlines(), 1):
+            for name in FILE.findall(line):
+                if Path(name).name in WRITTEN or name.startswith(("/", "~")):
+                    continue
+                if not _exists(name, files):
+                    missing.append(f"{doc.relative_to(ROOT)}:{n}: {name}")
+    assert not missing, "files named in the docs that do not exist:\n" + "\n".join(missing)
+
+
+def _resolves(dotted: str) -> bool:
+    parts = dotted.split(".")
+    for cut in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module(".".join(parts[:cut]))
+        except ImportError:
+            continue
+        for attr in parts[cut:]:
+            fields = getattr(obj, "__dataclass_fields__", {})
+            if not hasattr(obj, attr) and attr not in fields:
+                return False
+            obj = getattr(obj, attr, None)
+        return True
+    return False
+
+
+def _dotted_names() -> dict[str, str]:
+    found = {}
+    sources = DOCS + sorted(PACKAGE.rglob("*.py"))
+    for path in sources:
+        for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            for name in DOTTED.findall(line):
+                found.setdefault(name.rstrip("."), f"{path.relative_to(ROOT)}:{n}")
+    return found
+
+
+def test_dotted_names_resolve():
+    """Docstrings' ``:mod:`offshore_crane.x``` / ``:func:`offshore_crane.x.f``` and the
+    docs' names (imports heavy modules: it is a docs check, run once)."""
+    bad = [f"{where}: {name}" for name, where in sorted(_dotted_names().items())
+           if not _resolves(name)]
+    assert not bad, "names that do not resolve:\n" + "\n".join(bad)
