@@ -18,7 +18,8 @@ DOTTED = re.compile(r"\boffshore_crane(?:\.[A-Za-z_]\w*)+(?![\w.]*\.(?:xacro|urd
 #: Files a run writes (named in the docs as outputs, not part of the repository).
 WRITTEN = {"bench.csv", "results.csv", "envelope.csv", "run.csv", "_manifest.json",
            "forces.csv", "forces.png", "sway.png", "scene.toml", "my_platform.toml",
-           "lab.mjcf", "my_scene.toml", "my_grid.toml", "grid.toml", "motion.csv"}
+           "lab.mjcf", "my_scene.toml", "my_grid.toml", "grid.toml", "motion.csv",
+           "utilisation-worst-case.png"}
 
 
 def _repository_files() -> list[str]:
