@@ -14,7 +14,9 @@ PACKAGE = ROOT / "src" / "offshore_crane"
 DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 #: A quoted file name: `a/b/c.py`, `c.py`, `docs/x.md`, `models/….xacro`, `data.csv`.
 FILE = re.compile(r"`([\w./-]*\w\.(?:py|md|toml|xacro|csv|png|gif|json))[`:]")
-DOTTED = re.compile(r"\boffshore_crane(?:\.[A-Za-z_]\w*)+(?![\w.]*\.(?:xacro|urdf|toml))")
+DOTTED = re.compile(r"\boffshore_crane(?:\.[A-Za-z_]\w*)+")
+#: Endings that make a dotted name a file name (``offshore_crane.urdf.xacro``).
+FILE_ENDINGS = {"xacro", "urdf", "toml", "py", "md", "json", "csv"}
 #: Files a run writes (named in the docs as outputs, not part of the repository).
 WRITTEN = {"bench.csv", "results.csv", "envelope.csv", "run.csv", "_manifest.json",
            "forces.csv", "forces.png", "sway.png", "scene.toml", "my_platform.toml",
@@ -70,6 +72,8 @@ def _dotted_names() -> dict[str, str]:
     for path in sources:
         for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
             for name in DOTTED.findall(line):
+                if name.rsplit(".", 1)[-1] in FILE_ENDINGS:
+                    continue
                 found.setdefault(name.rstrip("."), f"{path.relative_to(ROOT)}:{n}")
     return found
 
