@@ -6,7 +6,11 @@ Two implementations meet here: the formulas of the Kane kernels
 forward kinematics checks the reference, finite differences check the formulas.
 """
 
+import pytest
+
 import numpy as np
+
+import offshore_crane as oc
 import pinocchio as pin
 
 from offshore_crane.conventions import LEG_JOINTS
@@ -98,3 +102,51 @@ def test_formulas_agree_with_the_reference_closure(robot):
                        (vt, np.concatenate([legs.theta_d, legs.rate[..., None]], -1)),
                        (at, np.concatenate([legs.theta_dd, legs.accel[..., None]], -1))):
         assert np.abs(tree[:, cols] - ours).max() < 1e-12
+
+
+# --------------------------------------------------------------------------- workspace
+@pytest.mark.parametrize("ujoint_limit", [None, 0.35])
+def test_check_workspace_equals_the_solvers_limits(ujoint_limit):
+    """The kinematic workspace check raises exactly what inverse dynamics with
+    ``limits=True`` raises (same message, joint, sample and value) or passes when it
+    passes, on seeded random poses around home: arm joints pinned or free, every limit
+    category met (a narrowed U-joint limit makes the U-joint category appear)."""
+    from offshore_crane.dynamics import solve
+    from offshore_crane.errors import WorkspaceError
+    from offshore_crane.robot.kinematics import check_workspace
+
+    robot = oc.load_robot(overrides=None if ujoint_limit is None else
+                          {"legs.ujoint.limit": ujoint_limit})
+    rng = np.random.default_rng(61)
+    home = robot.home_pose()
+    spread = np.array([0.3, 0.3, 0.4, 0.6, 0.6, 0.6, 2.0, 2.0, 0.2])
+    seen = set()
+
+    def outcome(f):
+        try:
+            f()
+        except WorkspaceError as exc:
+            return str(exc), exc.joint, exc.index, exc.value
+        return None
+
+    for trial in range(600):
+        q = home + rng.normal(size=(12, 9)) * spread * rng.uniform(0.0, 1.5)
+        if trial % 2:
+            q[:, 6:] = 0.0                        # let the legs' categories show
+        t = 0.01 * np.arange(12)
+        ours = outcome(lambda: check_workspace(robot, q, t))
+        numpy_, numba_ = (outcome(lambda: solve(robot, q, 0 * q, 0 * q, t=t, limits=True,
+                                                 checks=False, backend=b))
+                          for b in ("numpy", "numba"))
+        assert ours == numpy_, trial              # the same formulas run by NumPy: identical
+        # compiled: the same verdict; the value to round-off (Numba's atan2/sqrt differ by
+        # an ulp or two from NumPy's: 1e-12 relative is a thousand times that)
+        assert (ours is None) == (numba_ is None), trial
+        if ours is not None:
+            assert ours[1:3] == numba_[1:3], trial
+            np.testing.assert_allclose(ours[3], numba_[3], rtol=1e-12)
+        if ours is not None:
+            seen.add("height" if "below its U-joint" in ours[0] else "arm"
+                     if ours[1].startswith("arm") else ours[1].split("_")[1].rstrip("0123456789"))
+    assert seen == ({"height", "slide", "arm", "u"} if ujoint_limit else
+                    {"height", "slide", "arm"})

@@ -12,24 +12,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from offshore_crane.dynamics.formulas import KaneConstants
+from offshore_crane.robot.kinematics.workspace import Limits, limits_of
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 _CABLE_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
-
-
-@dataclass(frozen=True)
-class Limits:
-    """Workspace limits the kernels check, as flat arrays.
-
-    Attributes:
-        arm: ``(na, 2)`` lower and upper limit of each arm joint [rad or m].
-        stroke: ``(6, 2)`` shortest and longest leg length [m].
-        ujoint: ``(6, 2, 2)`` [leg, axis, (lower, upper)] U-joint angles [rad].
-    """
-
-    arm: np.ndarray
-    stroke: np.ndarray
-    ujoint: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -84,8 +70,7 @@ def build(model) -> RobotArrays:
         thin_It=f(0.5 * (leg_I[:, 0, 0] + leg_I[:, 1, 1])), lo_cz=f(model.lower_com[:, 2]),
         up_cz=f(model.upper_com[:, 2]),
         L=float(np.linalg.norm(model.p_platform_S, axis=1).mean()))
-    limits = Limits(arm=f(np.stack([arm.lower, arm.upper], axis=-1).reshape(arm.n, 2)),
-                    stroke=f(model.stroke), ujoint=f(model.ujoint_limits))
+    limits = limits_of(model)
     values = {**kane._asdict(), "lim_arm": limits.arm, "lim_stroke": limits.stroke,
               "lim_ujoint": limits.ujoint}
     parts = [np.asarray(values[name], dtype=float) for name in FIELDS]

@@ -118,7 +118,7 @@ def _run(robot, q, qd, X, gravity, terms: Terms, *, checks: bool = True, limits:
         return _result(out, terms, kappa if checks else None)
     ws.check_inputs(health, (q, qd, Xa))
     if limits:
-        ws.check_workspace(health, arrays.limits, q, t)
+        ws.check_limits(health, arrays.limits, q, t)
     att_error = health[ws.KAPPA + 4 * ws.ATTITUDE + 3]
     if att_error >= 0 and not checks:           # M singular (Cholesky) without κ measured
         k = int(att_error)

@@ -1131,13 +1131,12 @@ class SeaMotion:
 
 
 def _violation(robot, q, t):
-    """The WorkspaceError that ``solve(..., limits=True)`` raises for ``q``, or None."""
-    from offshore_crane.dynamics import quick_backend, solve
+    """The WorkspaceError that ``q`` meets (:func:`offshore_crane.robot.kinematics.check_workspace`),
+    or None."""
+    from offshore_crane.robot.kinematics import check_workspace
 
-    zeros = np.zeros_like(q)
     try:
-        solve(robot.without_hanging_payload(), q, zeros, zeros, t=t, limits=True, checks=False,
-              backend=quick_backend(len(q)))
+        check_workspace(robot, q, t)
     except WorkspaceError as exc:
         return exc
     return None

@@ -169,7 +169,7 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
         res = res.truncated(n_done)
         if status[0] == WORKSPACE:
             try:
-                ws.check_workspace(health, plant.limits, res.q[-1:], None)
+                ws.check_limits(health, plant.limits, res.q[-1:], None)
                 cause = "left the workspace"
             except Exception as exc:          # the WorkspaceError's text names the limit
                 cause = str(exc).split(" at sample")[0] + " (outside its limits)"
@@ -228,10 +228,9 @@ def _python_law(robot, duration, reference, q0, qd0, law, gravity, step, rate, l
     rates = legs(robot, res.q, res.qd).rate
     res.power = (res.X[:, :3] * res.qd[:, 6:9]).sum(axis=1) + (res.X[:, 3:] * rates).sum(1)
     if limits:
-        from offshore_crane.dynamics import solve
+        from offshore_crane.robot.kinematics import check_workspace
 
-        zero = np.zeros_like(res.q)
-        solve(robot, res.q, zero, zero, t=res.t, limits=True, checks=False)
+        check_workspace(robot, res.q, res.t)
     return res
 
 

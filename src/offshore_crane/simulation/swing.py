@@ -221,8 +221,8 @@ def _finish(robot, res, sway_acc, g, limits) -> None:
 
 def _slack_or_workspace(robot, res, limits):
     """``(sample, cause)`` of the first slack-cable sample or workspace violation."""
-    from offshore_crane.dynamics import solve
     from offshore_crane.errors import WorkspaceError
+    from offshore_crane.robot.kinematics import check_workspace
 
     slack = ~(res.tension > 0.0)
     first = None
@@ -232,9 +232,7 @@ def _slack_or_workspace(robot, res, limits):
                     "push, the pendulum model no longer holds)")
     if limits:
         try:
-            zero = np.zeros_like(res.q)
-            solve(robot.without_hanging_payload(), res.q, zero, zero, t=res.t, limits=True,
-                  checks=False)
+            check_workspace(robot, res.q, res.t)
         except WorkspaceError as exc:
             if first is None or exc.index < first[0]:
                 first = (exc.index, str(exc).split(" at sample")[0] + " (outside its limits)")

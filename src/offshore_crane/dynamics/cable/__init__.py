@@ -350,7 +350,8 @@ def _forces(robot, t, q, qd, qdd, Y, g, method, limits, checks, thresholds, wors
     if method == "kane":
         X, F, kappa = _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds)
     else:
-        from offshore_crane.dynamics.constants import Limits, cable_arrays
+        from offshore_crane.dynamics.constants import cable_arrays
+        from offshore_crane.robot.kinematics.workspace import Limits
         from offshore_crane.dynamics.kernels import Options
         from offshore_crane.reference import cable as ref
 

@@ -15,7 +15,7 @@ import numpy as np
 
 from offshore_crane.robot.kinematics import formulas as F
 
-__all__ = ["LegState", "legs", "platform_pose"]
+__all__ = ["LegState", "check_workspace", "leg_positions", "legs", "platform_pose"]
 
 
 @dataclass
@@ -115,3 +115,51 @@ def _array(value, N: int) -> np.ndarray:
     if isinstance(value, (tuple, list)):
         return np.stack([_array(v, N) for v in value])
     return np.broadcast_to(np.asarray(value, dtype=float), (N,))
+
+
+def leg_positions(robot, q) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The legs' position quantities along ``q`` ``(N, 9)`` [m, rad], no rates:
+    ``(length (N, 6) [m], height (N, 6) [m] of each sphere centre S_i above its U-joint
+    centre P_i in the base frame, theta (N, 6, 2) [rad] U-joint angles)``, from the same
+    formulas as :func:`legs` and the dynamics kernels."""
+    q = _samples(q)
+    m = robot.hybrid
+    qT = q.T
+    R = F.attitude(qT)[0]
+    p = (qT[0], qT[1], qT[2])
+    length, height, theta = [], [], []
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for i, RU in enumerate(m.R_base_U):
+            _, d, l_i, _, _, dx, dy, dz, h = F.leg_geometry(p, R, m.p_platform_S[i],
+                                                            m.p_base_P[i], RU[:, 0],
+                                                            RU[:, 1], RU[:, 2])
+            length.append(l_i)
+            height.append(d[2])
+            theta.append(np.stack(F.ujoint_angles(dx, dy, dz, h), axis=-1))
+    return np.stack(length, axis=1), np.stack(height, axis=1), np.stack(theta, axis=1)
+
+
+def check_workspace(robot, q, t=None) -> None:
+    """Raise :class:`~offshore_crane.errors.WorkspaceError` for the first sample of ``q``
+    ``(N, 9)`` [m, rad] outside the robot's workspace: arm joints outside their limits,
+    a sphere centre not above its U-joint (platform below the base), a leg length outside
+    its stroke, a U-joint angle outside its limits — the checks and messages of the
+    dynamics' ``limits=True``, from the positions alone (no dynamics evaluated; a hanging
+    payload changes nothing here).
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot`.
+        q: ``(N, 9)`` or ``(9,)`` coordinates [m, rad], finite.
+        t: ``(N,)`` times [s] for the message, or None.
+
+    Raises:
+        InputError: q is not finite or has the wrong shape. WorkspaceError: as above.
+    """
+    from offshore_crane.robot.kinematics import workspace as ws
+
+    q = _samples(q)
+    length, height, theta = leg_positions(robot, q)
+    limits = ws.limits_of(robot.hybrid)
+    health = ws.new_health()
+    ws.record_limits(health, limits, q, length, height, theta)
+    ws.check_limits(health, limits, q, None if t is None else np.asarray(t, dtype=float))

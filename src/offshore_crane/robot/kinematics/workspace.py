@@ -97,6 +97,31 @@ _FIRST = np.array([BAD_INPUT, BAD_OUTPUT, *range(VIOLATION, BAD_OUTPUT, 3),
                    *(KAPPA + 4 * k + j for k in range(len(KINDS)) for j in (2, 3))])
 
 
+@dataclass(frozen=True)
+class Limits:
+    """Workspace limits the kernels check, as flat arrays.
+
+    Attributes:
+        arm: ``(na, 2)`` lower and upper limit of each arm joint [rad or m].
+        stroke: ``(6, 2)`` shortest and longest leg length [m].
+        ujoint: ``(6, 2, 2)`` [leg, axis, (lower, upper)] U-joint angles [rad].
+    """
+
+    arm: np.ndarray
+    stroke: np.ndarray
+    ujoint: np.ndarray
+
+
+def limits_of(model) -> Limits:
+    """The :class:`Limits` of a robot's hybrid model (``robot.hybrid``: the URDF's joint
+    limits and the legs' strokes), as float64 arrays."""
+    arm = model.arm
+    return Limits(arm=np.asarray(np.stack([arm.lower, arm.upper], axis=-1), dtype=float
+                                 ).reshape(arm.n, 2),
+                  stroke=np.asarray(model.stroke, dtype=float),
+                  ujoint=np.asarray(model.ujoint_limits, dtype=float))
+
+
 def new_health() -> np.ndarray:
     """An empty health record: no sample found yet (-1), worst κ −inf."""
     return _EMPTY.copy()
@@ -119,7 +144,7 @@ def enforce(health: np.ndarray, arrays, limits, kappa, thresholds, error_kinds, 
     h = health.tolist()
     check_inputs(h, arrays)
     if limits is not None:
-        check_workspace(h, limits, arrays[0], t)
+        check_limits(h, limits, arrays[0], t)
     if kappa is not None:
         check_singularities(h, kappa, thresholds, t, error_kinds)
     check_outputs(h, ACTUATORS, arrays, t)
@@ -165,13 +190,13 @@ def check_inputs(health: np.ndarray, arrays) -> None:
                      f"{j + 1}); every value must be finite", name=name, index=k)
 
 
-def check_workspace(health: np.ndarray, limits, q: np.ndarray, t=None) -> None:
+def check_limits(health: np.ndarray, limits: Limits, q: np.ndarray, t=None) -> None:
     """Raise :class:`WorkspaceError` for the first limit violation, category by category
     in :data:`CATEGORIES` order (a platform below the base is named before the U-joint
     angles and leg lengths it distorts).
 
     Args:
-        limits: :class:`~offshore_crane.dynamics.constants.Limits` of the robot.
+        limits: :class:`Limits` of the robot.
         q: ``(N, 9)`` coordinates (for the arm's messages).
     """
     for c, category in enumerate(CATEGORIES):
@@ -294,6 +319,26 @@ def check_finite(arrays, offset, health):
             return
 
 
+def record_limits(health: np.ndarray, limits: Limits, q: np.ndarray, length, height, theta,
+                  offset: int = 0, legs: bool = True) -> None:
+    """Record the first violation of each limit category in a chunk of samples: the arm
+    joints of ``q`` ``(n, 9)``, and with ``legs`` the sphere heights above the U-joints
+    ``height`` ``(n, 6)`` [m] (≤ 0: platform below the base), the leg lengths ``length``
+    ``(n, 6)`` [m] and the U-joint angles ``theta`` ``(n, 6, 2)`` [rad]."""
+    na = limits.arm.shape[0]
+    x = q[:, 6:6 + na]
+    _record(health, VIOLATION, offset,
+            _first_hit((x < limits.arm[:, 0]) | (x > limits.arm[:, 1])), x)
+    if legs:
+        c = VIOLATION + 3
+        _record(health, c, offset, _first_hit(height <= 0.0), height)
+        _record(health, c + 3, offset, _first_hit((length < limits.stroke[:, 0])
+                                                  | (length > limits.stroke[:, 1])), length)
+        th = theta.reshape(len(q), 12)
+        lo, hi = limits.ujoint[..., 0].reshape(12), limits.ujoint[..., 1].reshape(12)
+        _record(health, c + 6, offset, _first_hit((th < lo) | (th > hi)), th)
+
+
 def record_chunk(X, cond, length, cos2, height, theta, q, offset, opts, limits, kappa,
                  health):
     """Record a chunk's condition numbers, workspace violations and non-finite results.
@@ -305,7 +350,7 @@ def record_chunk(X, cond, length, cos2, height, theta, q, offset, opts, limits, 
         theta: ``(n, 6, 2)`` U-joint angles [rad] (read with ``opts.limits``), or None.
         q: ``(n, 9)`` the chunk's coordinates; ``offset``: index of its first sample.
         opts: with ``legs``, ``conditioning``, ``limits``, ``warn``, ``error``.
-        limits: :class:`~offshore_crane.dynamics.constants.Limits`.
+        limits: :class:`Limits`.
         kappa: ``(3, n)`` view of the output condition numbers, or None.
     """
     na = limits.arm.shape[0]
@@ -321,18 +366,7 @@ def record_chunk(X, cond, length, cos2, height, theta, q, offset, opts, limits, 
             else:
                 kappa[:2] = np.nan
         if opts.limits:
-            x = q[:, 6:6 + na]
-            _record(health, VIOLATION, offset,
-                    _first_hit((x < limits.arm[:, 0]) | (x > limits.arm[:, 1])), x)
-            if opts.legs:
-                c = VIOLATION + 3
-                _record(health, c, offset, _first_hit(height <= 0.0), height)
-                _record(health, c + 3, offset, _first_hit((length < limits.stroke[:, 0])
-                                                          | (length > limits.stroke[:, 1])),
-                        length)
-                th = theta.reshape(len(q), 12)
-                lo, hi = limits.ujoint[..., 0].reshape(12), limits.ujoint[..., 1].reshape(12)
-                _record(health, c + 6, offset, _first_hit((th < lo) | (th > hi)), th)
+            record_limits(health, limits, q, length, height, theta, offset, opts.legs)
         cols = list(range(na)) + (list(range(3, 9)) if opts.legs else [])
         hit = _first_hit(~np.isfinite(X[:, cols]))
         _record(health, BAD_OUTPUT, offset, hit and (hit[0], cols[hit[1]]))
