@@ -40,9 +40,14 @@ __all__ = ["Operation", "operation"]
 _UNITS = ("rad", "rad", "m")
 
 
-def _as_times(t) -> tuple[np.ndarray, bool]:
-    """``t`` as a 1-D float array and whether it was a scalar; raise SeaStateError if it
-    is not numeric, has more than one axis or holds a non-finite value."""
+def as_times(t) -> tuple[np.ndarray, bool]:
+    """Times for a motion source evaluated at any times: ``(t (N,) [s] float64, whether t
+    was a scalar)``.
+
+    Raises:
+        SeaStateError: t is not numeric, has more than one axis or holds a non-finite
+            value (naming the sample).
+    """
     try:
         arr = np.asarray(t, dtype=float)
     except (TypeError, ValueError):
@@ -156,7 +161,7 @@ class Operation:
         Raises:
             SeaStateError: ``t`` not numeric, not 1-D, or not finite.
         """
-        t, scalar = _as_times(t)
+        t, scalar = as_times(t)
         T, P = self.times, self.positions
         n = t.shape[0]
         q = np.empty((n, 3))
