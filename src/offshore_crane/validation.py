@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from offshore_crane.errors import InputError
+from offshore_crane.errors import InputError, TrajectoryError
 
 
 def as_samples(name: str, x, width: int = 9, finite: bool = True) -> tuple[np.ndarray, bool]:
@@ -108,3 +108,33 @@ def as_pair(value, name: str, unit: str) -> np.ndarray:
         raise InputError(f"{name} must be two finite numbers [{unit}], got {value!r}",
                          name=name)
     return v
+
+
+#: A time axis is uniform when every step is within this fraction of the mean step: times
+#: written with 7 significant digits (a CSV from a spreadsheet) pass; a missing or doubled
+#: sample (a step off by 100 %) or a drifting clock does not. A time error of 1e-6 of a
+#: step is far below what finite differences or RK4 on that grid can resolve.
+UNIFORM_STEP_RTOL = 1e-6
+
+
+def uniform_step(t: np.ndarray, what: str = "the motion") -> float:
+    """The mean step ``h`` [s] of an increasing, uniform time axis ``t`` ``(N,)`` (N ≥ 2,
+    finite: the caller checks those); one rule for every path that steps along samples
+    (finite differences, the swing's RK4).
+
+    Raises:
+        TrajectoryError: a step differs from ``h`` by more than :data:`UNIFORM_STEP_RTOL`
+            relative (naming the step, its value and the mean), or ``h ≤ 0``.
+    """
+    n = len(t)
+    d = np.diff(t)
+    h = (t[-1] - t[0]) / (n - 1)
+    uneven = ~(np.abs(d - h) <= UNIFORM_STEP_RTOL * h)
+    if uneven.any():
+        k = int(np.argmax(uneven))
+        raise TrajectoryError(
+            f"the time axis is not uniform: step {k} (t[{k + 1}] - t[{k}] = {float(d[k])!r} "
+            f"s) differs from the mean step {float(h)!r} s by more than "
+            f"{UNIFORM_STEP_RTOL:g} relative: resample {what} on a uniform grid.",
+            name="t", index=k)
+    return float(h)

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from offshore_crane.errors import TrajectoryError
+from offshore_crane.validation import uniform_step
 
 __all__ = [
     "TABLE1_PERIOD",
@@ -256,15 +257,7 @@ def finite_difference(t, q, order: int = 4):
         raise TrajectoryError(
             f"q is not finite at sample {k}: give finite samples.", name="q", index=k)
 
-    dt = np.diff(t)
-    h = (t[-1] - t[0]) / (n - 1)  # mean step [s]
-    uneven = np.abs(dt - h) > 1e-6 * h
-    if uneven.any():
-        k = int(np.argmax(uneven))
-        raise TrajectoryError(
-            f"the time axis is not uniform: step {k} (t[{k + 1}] - t[{k}] = {float(dt[k])!r} s) "
-            f"differs from the mean step {float(h)!r} s by more than 1e-6 relative: resample the "
-            "trajectory on a uniform grid.", name="t", index=k)
+    h = uniform_step(t, "the trajectory")  # mean step [s]
 
     half = order // 2
     derivatives = []

@@ -44,7 +44,7 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import (InputError, ModelError, NumericalError, SingularConfigurationError,
                      SlackCableError)
 from offshore_crane.robot.kinematics import workspace as ws
-from offshore_crane.validation import as_gravity, as_pair, as_samples
+from offshore_crane.validation import as_gravity, as_pair, as_samples, uniform_step
 
 METHODS = ("kane", "pinocchio")
 SLACK = ("error", "warn")
@@ -152,14 +152,7 @@ def _uniform_times(t, N: int) -> tuple[np.ndarray, float]:
     if not np.isfinite(t).all():
         k = int(np.argmax(~np.isfinite(t)))
         raise InputError(f"t[{k}] is {t[k]}: every time must be finite", name="t", index=k)
-    d = np.diff(t)
-    dt = float((t[-1] - t[0]) / (N - 1))
-    if not dt > 0 or np.abs(d - dt).max() > 1e-9 * max(abs(t[-1]), abs(t[0]), dt):
-        k = int(np.argmax(np.abs(d - dt)))
-        raise InputError(f"the time axis must be uniform and increasing (RK4 steps along "
-                         f"it): step {k} is {d[k]:.9g} s against a mean {dt:.9g} s; "
-                         "resample the motion on a uniform grid", name="t", index=k)
-    return t, dt
+    return t, uniform_step(t, "the motion (the swing's RK4 steps along it)")
 
 
 def cable_robot(robot, length=None, mass=None):
