@@ -145,7 +145,8 @@ def xacro_arguments() -> dict[str, str]:
     return arguments()
 
 
-def load_robot(description=None, overrides: dict | None = None, **aliases) -> Robot:
+def load_robot(description: str | os.PathLike | None = None, overrides: dict | None = None,
+               **aliases) -> Robot:
     """Load a robot from its description file, with overrides.
 
     Examples: ``load_robot()`` (the lab design), ``load_robot("my_platform.toml")``,

@@ -36,7 +36,7 @@ from functools import lru_cache
 
 from offshore_crane.errors import DescriptionError, InputError
 from offshore_crane.io import toml_value
-from offshore_crane.robot.description import (MAGNITUDE_LIMIT, Leaf, _boolean, _components, field_names,
+from offshore_crane.robot.description import (MAGNITUDE_LIMIT, Leaf, as_boolean, leaf_components, field_names,
                           schema_lookup)
 from offshore_crane.robot.expressions import ExpressionError, names as expression_names
 
@@ -137,7 +137,7 @@ def _value(name: str, value, source: str, shown: str):
     """Check one override value; numbers written as text become floats."""
     _, node, comp = schema_lookup(name)
     if isinstance(node, Leaf) and node.kind == "bool":
-        b = _boolean(value)
+        b = as_boolean(value)
         if b is None:
             _fail(source, name, f"robot parameter {shown}={value!r} must be true or false "
                   "(1 or 0)")
@@ -351,7 +351,7 @@ def alias_table() -> list[tuple[str, str, str]]:
     """``[(alias, dotted name, unit)]`` for the documentation."""
     units = {}
     for name, leaf in field_names():
-        for comp in _components(leaf):
+        for comp in leaf_components(leaf):
             units[".".join((name, *comp))] = leaf.unit
     return [(a, n, units.get(n, "")) for a, n in ALIASES.items()]
 

@@ -1,0 +1,177 @@
+"""What a resolved description holds: bodies, arm joints, actuator capacities
+(:class:`Description`, the input of the xacro).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from offshore_crane.robot.description.geometry import floats, inertia6, visual
+from offshore_crane.robot.description.schema import ARM_BODIES, FORMAT, N_LEGS
+
+
+# ========================================================================== results
+@dataclass(frozen=True)
+class Capacities:
+    """The actuators' capacities, in the order of X (T1, T2, Fs, Fl1..Fl6).
+
+    Attributes:
+        names: ``(9,)`` actuator names.
+        push_max: ``(9,)`` largest force [N] (torque [N·m]) along + of the joint, ≥ 0;
+            ``inf`` when not given.
+        pull_max: ``(9,)`` largest magnitude along −, ≥ 0; ``inf`` when not given.
+        speed_max: ``(9,)`` largest |rate| [m/s or rad/s]; ``inf`` when not given.
+        power_max: ``(9,)`` largest |force × rate| [W]; ``inf`` when not given.
+    """
+
+    names: tuple
+    push_max: np.ndarray
+    pull_max: np.ndarray
+    speed_max: np.ndarray
+    power_max: np.ndarray
+
+    def effort(self) -> np.ndarray:
+        """``(9,)`` URDF effort limits: ``max(push_max, pull_max)``."""
+        return np.maximum(self.push_max, self.pull_max)
+
+
+@dataclass(frozen=True)
+class Body:
+    """Mass properties and drawing of one rigid body, in its frame.
+
+    Attributes:
+        mass: [kg]. com: ``(3,)`` [m]. inertia: ``(3, 3)`` about the CoM [kg·m²].
+        visual: ``{"type", "radius", "length", "size", "xyz"}`` of its drawing.
+    """
+
+    mass: float
+    com: np.ndarray
+    inertia: np.ndarray
+    visual: dict
+
+
+@dataclass(frozen=True)
+class ArmJoint:
+    """An arm joint and the body it moves.
+
+    Attributes:
+        origin: ``(3,)`` joint origin in the parent body frame [m]. rpy: ``(3,)`` [rad].
+        axis: ``(3,)`` unit axis in the joint frame. lower, upper: limits [rad or m].
+        prismatic: True for ``arm_slide``. body: :class:`Body` in the joint frame.
+    """
+
+    origin: np.ndarray
+    rpy: np.ndarray
+    axis: np.ndarray
+    lower: float
+    upper: float
+    prismatic: bool
+    body: Body
+
+
+@dataclass(frozen=True)
+class Description:
+    """A resolved robot description: every number explicit, checked.
+
+    Attributes:
+        name, source: Label and provenance text.
+        path: The file it was read from.
+        overrides: ``{dotted name: value}`` applied to the file.
+        home_height: q3 of the home pose [m].
+        p_base_P: ``(6, 3)`` U-joint centres, base frame [m].
+        p_platform_S: ``(6, 3)`` sphere centres, platform frame [m].
+        a1: ``(6, 3)`` first U-joint axes (unit), base frame.
+        R_base_U: ``(6, 3, 3)`` the ``leg{i}_u1`` joint frames (y = a1, z = the leg
+            direction at zero U-joint angles).
+        rpy_U: ``(6, 3)`` the same as URDF rpy [rad].
+        lower, upper: ``(6,)`` tuples of :class:`Body` (part frames).
+        part_length: ``(6, 2)`` lower and upper part lengths [m].
+        stroke: ``(6, 2)`` [m]. ujoint_limit: ``(6,)`` [rad].
+        platform: :class:`Body` (platform frame, origin O2).
+        base_visual: drawing of the base.
+        arm: None without arm, else ``{"column": (origin, rpy, Body), "link1":
+            ArmJoint, "link2": ..., "slider": ..., "tip": (origin, rpy)}``.
+        payload: :class:`Body` in the arm_tip frame (mass 0: none).
+        cable_length: [m].
+        sway_damping: [N·m·s/rad].
+        capacities: :class:`Capacities`.
+        values: ``{dotted name: value}`` of every numeric field given (after overrides
+            and expressions).
+    """
+
+    name: str
+    source: str
+    path: str
+    overrides: dict
+    home_height: float
+    p_base_P: np.ndarray
+    p_platform_S: np.ndarray
+    a1: np.ndarray
+    R_base_U: np.ndarray
+    rpy_U: np.ndarray
+    lower: tuple
+    upper: tuple
+    part_length: np.ndarray
+    stroke: np.ndarray
+    ujoint_limit: np.ndarray
+    platform: Body
+    base_visual: dict
+    arm: dict | None
+    payload: Body
+    cable_length: float
+    sway_damping: float
+    capacities: Capacities
+    values: dict = field(repr=False)
+
+    @property
+    def has_arm(self) -> bool:
+        """True when the crane arm is present."""
+        return self.arm is not None
+
+    def xacro_data(self) -> dict:
+        """The numbers the xacro reads (plain lists and floats; see the xacro)."""
+        return _xacro_data(self)
+
+
+def _body_data(b: Body) -> dict:
+    return {"mass": float(b.mass), "com": floats(b.com), "inertia": inertia6(b.inertia),
+            "visual": visual(b.visual)}
+
+
+def _xacro_data(d: Description) -> dict:
+    caps = d.capacities
+    # URDF effort and velocity fields: the capacities, 0 where the description gives none
+    # (urdfdom, behind Pinocchio, refuses "inf"). They document only: the library reads
+    # the capacities from the description (Robot.capacities), never from the URDF.
+    effort, speed = (np.where(np.isfinite(x), x, 0.0) for x in (caps.effort(),
+                                                                caps.speed_max))
+    legs = []
+    for i in range(N_LEGS):
+        legs.append({
+            "i": i + 1, "P": floats(d.p_base_P[i]), "rpy": floats(d.rpy_U[i]),
+            "S": floats(d.p_platform_S[i]), "ulim": float(d.ujoint_limit[i]),
+            "stroke": floats(d.stroke[i]), "effort": float(effort[3 + i]),
+            "velocity": float(speed[3 + i]), "lower": _body_data(d.lower[i]),
+            "upper": _body_data(d.upper[i])})
+    data = {"format": FORMAT, "name": d.name, "base": {"visual": visual(d.base_visual)},
+            "platform": _body_data(d.platform), "legs": legs, "arm": None,
+            "payload": {"mass": float(d.payload.mass), "com": floats(d.payload.com),
+                        "inertia": inertia6(d.payload.inertia),
+                        "cable_length": float(d.cable_length),
+                        "sway_damping": float(d.sway_damping)}}
+    if d.arm is not None:
+        origin, rpy, column = d.arm["column"]
+        arm = {"column": {"origin": floats(origin), "rpy": floats(rpy),
+                          **_body_data(column)}}
+        for k, body in enumerate(ARM_BODIES):
+            j = d.arm[body]
+            arm[body] = {"origin": floats(j.origin), "rpy": floats(j.rpy),
+                         "axis": floats(j.axis), "lower": float(j.lower),
+                         "upper": float(j.upper), "effort": float(effort[k]),
+                         "velocity": float(speed[k]), **_body_data(j.body)}
+        tip_origin, tip_rpy = d.arm["tip"]
+        arm["tip"] = {"origin": floats(tip_origin), "rpy": floats(tip_rpy)}
+        data["arm"] = arm
+    return data
