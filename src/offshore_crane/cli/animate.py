@@ -17,7 +17,7 @@ SIZE, FPS = "640x480", 30.0
 def add_source_options(p) -> None:
     """``--scene``, ``--trajectory``, ``--from``, ``--duration``, the robot and gravity
     (shared by ``animate`` and ``view``)."""
-    from offshore_crane.cli import add_robot_options
+    from offshore_crane.cli.common import add_robot_options
 
     p.add_argument("--scene", metavar="FILE.toml", help="scene file: robot, trajectory "
                    "(e.g. scenes/sea_state_crane.toml)")
@@ -38,7 +38,7 @@ def scene_of(args):
     """The scene of ``--scene`` / ``--trajectory`` with ``--robot``, ``--set``,
     ``--gravity`` applied."""
     from offshore_crane import scenes
-    from offshore_crane.cli import robot_scene
+    from offshore_crane.cli.common import robot_scene
 
     if args.run_csv is not None and args.trajectory is not None:
         raise InputError("--from and --trajectory both give the motion: choose one",

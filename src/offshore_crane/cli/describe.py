@@ -10,7 +10,7 @@ from __future__ import annotations
 
 
 def add_parser(sub) -> None:
-    from offshore_crane.cli import add_robot_options
+    from offshore_crane.cli.common import add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("describe", help="a robot description, resolved, as YAML",

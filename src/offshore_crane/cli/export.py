@@ -16,7 +16,7 @@ CHECK_SAMPLES = 50
 
 
 def add_parser(sub) -> None:
-    from offshore_crane.cli import add_robot_options
+    from offshore_crane.cli.common import add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("export", help="the robot as a MuJoCo model (MJCF)",
@@ -54,7 +54,7 @@ def run(args) -> int:
 
     from offshore_crane import scenes
     from offshore_crane.io import plan_outputs, write_text
-    from offshore_crane.cli import comma_numbers, robot_scene
+    from offshore_crane.cli.common import comma_numbers, robot_scene
 
     if args.mjcf is None:
         raise InputError("export: give --mjcf FILE.xml (the only format so far)",

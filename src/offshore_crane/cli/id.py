@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from offshore_crane.conventions import ACTUATOR_UNITS, ACTUATORS, AGREEMENT_RTOL, NUMBA_MIN
 from offshore_crane.errors import InputError
-from offshore_crane.cli import add_robot_options
+from offshore_crane.cli.common import add_robot_options
 
 RELATIVE_LIMIT = AGREEMENT_RTOL
 
@@ -73,57 +73,8 @@ def add_options(p, plot_help: str = "write a figure like the paper's Fig. 3 (PNG
                    "(default 1)")
 
 
-def _thresholds(args):
-    from offshore_crane.robot.kinematics.workspace import Thresholds
-
-    try:
-        return Thresholds(warn=args.warn_cond, error=args.error_cond)
-    except ValueError as exc:
-        raise InputError(str(exc), name="--warn-cond") from None
-
-
 _METHOD_LABELS = {"kane": "Kane", "kane-explicit": "Kane (explicit)", "rnea": "RNEA"}
 #: With a payload on a cable, "rnea" runs the swing's Pinocchio reference.
-
-
-def _scene(args):
-    """The scene to run: ``--scene`` (or the default one) with the explicit flags applied."""
-    from offshore_crane.scenes import Scene, load_scene, with_overrides, with_trajectory
-
-    from offshore_crane.cli import robot_scene
-
-    scene = robot_scene(args, load_scene(args.scene) if args.scene else Scene())
-    methods = None
-    if args.method:
-        methods = ("kane", "rnea") if args.method == "both" else (args.method,)
-    outputs = None if not args.outputs else tuple(o.strip() for o in args.outputs.split(","))
-    unknown = [o for o in outputs or () if o not in ACTUATORS]
-    if unknown:
-        raise InputError(f"--outputs: unknown {', '.join(map(repr, unknown))}: choose among "
-                         f"{', '.join(ACTUATORS)}", name="--outputs")
-    where = f"{args.scene} with the command-line options" if args.scene else "command line"
-    scene = with_trajectory(scene, where, args.trajectory)
-    scene = with_overrides(scene, where, trajectory=args.trajectory, duration=args.duration,
-                           rate=args.rate, fd_order=args.fd_order, methods=methods,
-                           leg_model=args.leg_model, outputs=outputs,
-                           gravity=None if args.gravity is None else tuple(args.gravity))
-    cable = {k: v for k, v in (("initial", args.initial_sway), ("slack", args.slack),
-                               ("substeps", args.substeps)) if v is not None}
-    if cable:
-        if not scene.payload.cable_length > 0:
-            flags = ", ".join(f"--{k.replace('initial', 'initial-sway')}" for k in cable)
-            raise InputError(f"{flags}: applies to a payload on a cable; set "
-                             "payload.cable_length > 0 (--set, or the scene's [payload])",
-                             name="--initial-sway")
-        if "substeps" in cable and cable["substeps"] < 1:
-            raise InputError(f"--substeps {cable['substeps']}: give an integer >= 1",
-                             name="--substeps")
-        scene = with_overrides(scene, where, cable={**scene.cable, **cable})
-    table1 = scene.trajectory == "table1"
-    if table1 and args.fd_order is not None:
-        raise InputError("--fd-order applies to a CSV trajectory only (table1 has analytic "
-                         "derivatives): leave it out", name="--fd-order")
-    return scene                    # a CSV with --duration/--rate: trajectories.load says
 
 
 def run(args) -> int:
@@ -131,16 +82,16 @@ def run(args) -> int:
 
     from offshore_crane import scenes
     from offshore_crane.outputs.report import format_summary, plot, summary_rows, write_csv
-    from offshore_crane.cli import plan
+    from offshore_crane.cli.common import id_scene, plan, thresholds
 
-    scene = _scene(args)
+    scene = id_scene(args)
     outputs, say = plan(args, scene)
     robot = scenes.load_robot(scene)
     traj = scenes.load_trajectory(scene, robot)
     from offshore_crane.dynamics import quick_backend
 
     backend = args.backend or quick_backend(len(traj.t))
-    options = dict(limits=not args.no_limits, thresholds=_thresholds(args),
+    options = dict(limits=not args.no_limits, thresholds=thresholds(args),
                    backend=backend, threads=args.threads)
     done = scenes.run(scene, robot, traj, **options)
     res, t = done.result, traj.t

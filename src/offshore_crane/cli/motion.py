@@ -19,7 +19,7 @@ WELCH_SEGMENT_S = 20.48
 
 def add_parser(sub) -> None:
     from offshore_crane.conventions import SPECTRA
-    from offshore_crane.cli import add_robot_options
+    from offshore_crane.cli.common import add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("motion", help="platform and crane motion from a sea state",
@@ -65,7 +65,7 @@ def _scene(args):
     from dataclasses import replace
 
     from offshore_crane import scenes
-    from offshore_crane.cli import robot_scene
+    from offshore_crane.cli.common import robot_scene
 
     scene = scenes.load_scene(args.scene) if args.scene else scenes.Scene()
     sea = dict(scene.sea)

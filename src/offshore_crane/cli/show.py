@@ -9,7 +9,7 @@ from __future__ import annotations
 
 
 def add_parser(sub) -> None:
-    from offshore_crane.cli import add_robot_options
+    from offshore_crane.cli.common import add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("show", help="a still picture of one pose, frames labelled",
@@ -42,7 +42,7 @@ def run(args) -> int:
     from offshore_crane.outputs.visual.animate import still
     from offshore_crane.outputs.visual.poses import has_cable
     from offshore_crane.outputs.visual.render import parse_camera
-    from offshore_crane.cli import comma_numbers, robot_scene
+    from offshore_crane.cli.common import comma_numbers, robot_scene
     from offshore_crane.cli.animate import parse_size
 
     width, height = parse_size(args.size)

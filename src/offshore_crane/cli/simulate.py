@@ -18,7 +18,7 @@ CSV_HEADER = ",".join(["t_s", *COORDINATES, *(f"{c}_ref" for c in COORDINATES),
 
 def add_parser(sub) -> None:
     from offshore_crane.simulation.control import LAWS
-    from offshore_crane.cli import add_robot_options
+    from offshore_crane.cli.common import add_robot_options
 
     p = sub.add_parser("simulate", help="simulate the robot under a controller",
                        description=__doc__.splitlines()[0].split(": ", 1)[1] + " "
@@ -78,7 +78,7 @@ def run(args) -> int:
     from offshore_crane import scenes
     from offshore_crane.errors import SimulationError
     from offshore_crane.simulation.rigid import simulate
-    from offshore_crane.cli import plan, robot_scene
+    from offshore_crane.cli.common import plan, robot_scene
 
     scene = robot_scene(args, scenes.load_scene(args.scene) if args.scene else scenes.Scene())
     scene = scenes.with_trajectory(scene, "command line", args.trajectory)

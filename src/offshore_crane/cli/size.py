@@ -59,15 +59,16 @@ def run(args) -> int:
     from offshore_crane.studies import sweep
     from offshore_crane.conventions import ACTUATORS
     from offshore_crane.studies.sizing import CAPACITIES, format_envelope, format_verdict, verdict
-    from offshore_crane.cli import plan
-    from offshore_crane.cli.id import RELATIVE_LIMIT, _scene, _thresholds
+    from offshore_crane.cli.common import plan
+    from offshore_crane.cli.common import id_scene, thresholds
+    from offshore_crane.cli.id import RELATIVE_LIMIT
 
     if args.seeds < 1:
         raise InputError(f"--seeds {args.seeds}: must be ≥ 1", name="--seeds")
     if not (math.isfinite(args.exposure) and args.exposure > 0):
         raise InputError(f"--exposure {args.exposure:g}: must be a positive number of hours",
                          name="--exposure")
-    scene = _scene(args)
+    scene = id_scene(args)
     sea = scene.trajectory == "sea"
     if args.seeds > 1 and not sea:
         raise InputError(f"--seeds {args.seeds}: seeds draw random seas, but the trajectory "
@@ -82,7 +83,7 @@ def run(args) -> int:
     robot = scenes.load_robot(scene)
     backend = args.backend or "auto"
     options = dict(backend=backend, threads=args.threads, limits=not args.no_limits,
-                   thresholds=_thresholds(args))
+                   thresholds=thresholds(args))
     first = int(scene.sea.get("seed", 0)) if sea else None
     runs = []
     for s in range(args.seeds):

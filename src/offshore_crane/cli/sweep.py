@@ -17,7 +17,7 @@ from offshore_crane.errors import InputError
 
 
 def add_parser(sub) -> None:
-    from offshore_crane.cli import add_robot_options
+    from offshore_crane.cli.common import add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("sweep", help="sizing over a grid of sea states and parameters",
@@ -80,7 +80,7 @@ def run(args) -> int:
     from offshore_crane.studies import sweep
     from offshore_crane.io import plan_outputs
     from offshore_crane.studies.sizing import CAPACITIES
-    from offshore_crane.cli import robot_scene
+    from offshore_crane.cli.common import robot_scene
 
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers {args.workers}: must be ≥ 1", name="--workers")

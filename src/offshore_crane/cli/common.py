@@ -1,0 +1,134 @@
+"""Helpers the sub-commands share: robot options (``--robot``, ``--set``) and the scene
+they give, the scene and thresholds of the ``id`` options (``id`` and ``size`` take the
+same), output planning, comma-separated numbers."""
+
+from __future__ import annotations
+
+from offshore_crane.conventions import ACTUATORS
+from offshore_crane.errors import InputError
+
+
+def plan(args, scene):
+    """Check ``--out`` and ``--plot`` of a scene-driven command before computing.
+
+    Returns:
+        ``(outputs, say)``: the :func:`~offshore_crane.io.plan_outputs` targets, and the
+        function that prints the command's report (to standard error when an output goes
+        to standard output).
+    """
+    from offshore_crane.io import FIGURE_FORMATS, plan_outputs
+
+    inputs = [args.scene, scene.trajectory if scene.trajectory != "table1" else None,
+              scene.robot_description]
+    outputs = plan_outputs({"--out": args.out, "--plot": args.plot}, inputs,
+                           {"--plot": FIGURE_FORMATS})
+    if any(o.kind == "stdout" for o in outputs.values()):
+        return outputs, lambda *a: print(*a, file=sys.stderr)
+    return outputs, print
+
+
+def add_robot_options(p) -> None:
+    """``--robot PATH`` and ``--set NAME=VALUE`` (one path: :func:`robot_scene`)."""
+    p.add_argument("--robot", metavar="FILE.toml",
+                   help="robot description file (default: the scene's, else the shipped "
+                   "lab design; see docs/robot-description.md)")
+    p.add_argument("--set", action="append", metavar="NAME=VALUE",
+                   help="override a robot field by its dotted name or alias, e.g. "
+                   "legs.lower.mass=3.1, payload.com=[0,0,-0.05], with_arm=0; repeatable; "
+                   "an override that contradicts the scene is an error")
+
+
+def robot_scene(args, scene):
+    """``scene`` with ``--robot`` and ``--set`` applied, both checked like the scene's
+    own robot fields (:func:`offshore_crane.scenes.with_robot_overrides`).
+
+    Raises:
+        SceneError: ``--robot`` names another description than the scene's, or a
+            ``--set`` contradicts the scene.
+        DescriptionError: a bad ``--set`` (unknown name, not a number, ...).
+    """
+    import os
+    from dataclasses import replace
+
+    from offshore_crane.errors import SceneError
+    from offshore_crane.robot.overrides import parse_set
+    from offshore_crane.scenes import with_robot_overrides
+
+    if args.robot is not None:
+        given = os.path.abspath(args.robot)
+        if not os.path.isfile(given):
+            raise InputError(f"--robot {args.robot}: no such file (a robot description, "
+                             "TOML)", name="--robot")
+        own = scene.robot_description
+        if own is not None and os.path.abspath(own) != given:
+            raise SceneError(f"{scene.where()}: --robot {args.robot} contradicts the "
+                             f"scene's [robot] description = {own}: give one",
+                             path=scene.path, name="robot.description")
+        scene = replace(scene, robot_description=args.robot, arm=None, payload=None)
+    return with_robot_overrides(scene, parse_set(args.set))
+
+
+def comma_numbers(text: str, n: int, option: str) -> list[float]:
+    """``n`` finite numbers from ``"a,b,c"`` (``--pose``, ``--sway``).
+
+    Raises:
+        InputError: not ``n`` finite comma-separated numbers (naming the option).
+    """
+    import math
+
+    try:
+        values = [float(x) for x in text.replace(" ", "").split(",")]
+    except ValueError:
+        values = []
+    if len(values) != n or not all(math.isfinite(v) for v in values):
+        raise InputError(f"{option} {text}: give {n} finite comma-separated numbers",
+                         name=option)
+    return values
+
+
+def thresholds(args):
+    """The singularity policy of ``--warn-cond`` and ``--error-cond``."""
+    from offshore_crane.robot.kinematics.workspace import Thresholds
+
+    try:
+        return Thresholds(warn=args.warn_cond, error=args.error_cond)
+    except ValueError as exc:
+        raise InputError(str(exc), name="--warn-cond") from None
+
+
+def id_scene(args):
+    """The scene to run: ``--scene`` (or the default one) with the explicit flags applied."""
+    from offshore_crane.scenes import Scene, load_scene, with_overrides, with_trajectory
+
+    scene = robot_scene(args, load_scene(args.scene) if args.scene else Scene())
+    methods = None
+    if args.method:
+        methods = ("kane", "rnea") if args.method == "both" else (args.method,)
+    outputs = None if not args.outputs else tuple(o.strip() for o in args.outputs.split(","))
+    unknown = [o for o in outputs or () if o not in ACTUATORS]
+    if unknown:
+        raise InputError(f"--outputs: unknown {', '.join(map(repr, unknown))}: choose among "
+                         f"{', '.join(ACTUATORS)}", name="--outputs")
+    where = f"{args.scene} with the command-line options" if args.scene else "command line"
+    scene = with_trajectory(scene, where, args.trajectory)
+    scene = with_overrides(scene, where, trajectory=args.trajectory, duration=args.duration,
+                           rate=args.rate, fd_order=args.fd_order, methods=methods,
+                           leg_model=args.leg_model, outputs=outputs,
+                           gravity=None if args.gravity is None else tuple(args.gravity))
+    cable = {k: v for k, v in (("initial", args.initial_sway), ("slack", args.slack),
+                               ("substeps", args.substeps)) if v is not None}
+    if cable:
+        if not scene.payload.cable_length > 0:
+            flags = ", ".join(f"--{k.replace('initial', 'initial-sway')}" for k in cable)
+            raise InputError(f"{flags}: applies to a payload on a cable; set "
+                             "payload.cable_length > 0 (--set, or the scene's [payload])",
+                             name="--initial-sway")
+        if "substeps" in cable and cable["substeps"] < 1:
+            raise InputError(f"--substeps {cable['substeps']}: give an integer >= 1",
+                             name="--substeps")
+        scene = with_overrides(scene, where, cable={**scene.cable, **cable})
+    table1 = scene.trajectory == "table1"
+    if table1 and args.fd_order is not None:
+        raise InputError("--fd-order applies to a CSV trajectory only (table1 has analytic "
+                         "derivatives): leave it out", name="--fd-order")
+    return scene                    # a CSV with --duration/--rate: trajectories.load says
