@@ -27,6 +27,7 @@ from offshore_crane import conventions, spatial
 from offshore_crane.motion import trajectories
 from offshore_crane.cli import main
 from offshore_crane.outputs.export import mjcf
+from offshore_crane.outputs.export.mjcf import tree as mjcf_tree
 
 from problems import random_states
 
@@ -163,7 +164,7 @@ def test_quaternions_match_mujoco():
     for R in mats:
         ref = np.empty(4)
         mujoco.mju_mat2Quat(ref, R.reshape(-1))
-        got = mjcf._quat(R)
+        got = mjcf_tree._quat(R)
         assert np.allclose(got, ref, atol=1e-15) or np.allclose(got, -ref, atol=1e-15)
         back = np.empty(9)
         mujoco.mju_quat2Mat(back, got)
