@@ -10,6 +10,7 @@
 from __future__ import annotations
 
 import ast
+import inspect
 from pathlib import Path
 
 import grimp
@@ -157,3 +158,25 @@ def test_the_top_level_is_small_and_shadows_no_module():
     assert not set(offshore_crane.__all__) & modules
     for name in offshore_crane.__all__:
         assert getattr(offshore_crane, name) is not None
+
+
+def test_no_name_shadows_a_sub_module():
+    """A package's attribute named like one of its sub-modules is that sub-module: a
+    function re-exported under a sub-module's name would hide it (``from pkg import x``
+    then depends on import order)."""
+    import importlib
+
+    bad = []
+    for path, module, is_package in _modules():
+        if not is_package:
+            continue
+        package = importlib.import_module(module)
+        for child in path.parent.iterdir():
+            name = child.stem if child.suffix == ".py" else child.name
+            if name.startswith("_") or not (child.suffix == ".py" or
+                                            (child / "__init__.py").is_file()):
+                continue
+            value = getattr(package, name, None)
+            if value is not None and not inspect.ismodule(value):
+                bad.append(f"{module}.{name} is {type(value).__name__}, not the sub-module")
+    assert not bad, "\n".join(bad)

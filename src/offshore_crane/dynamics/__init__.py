@@ -15,11 +15,18 @@ __all__ = ["APPROXIMATIONS", "BACKENDS", "LEG_MODELS", "METHODS", "PYTHON_MAX", 
            "resolve_backend", "solve", "warm_up"]
 
 
-def warm_up(robot=None) -> list[tuple[str, float]]:
-    """Compile (or load from the cache) every compiled kernel: ``[(name, seconds), ...]``.
+def warm_up(robot=None, methods: tuple[str, ...] = METHODS,
+            forward: bool = True) -> list[tuple[str, float]]:
+    """Compile (or load from the cache) the compiled kernels: ``[(name, seconds), ...]``.
 
     Call it once before starting parallel workers, so that they load the cache rather
     than compile the same kernels at once.
+
+    Args:
+        robot: The robot whose kernels to load (default: the default description).
+        methods: The inverse-dynamics methods to load (default all of :data:`METHODS`;
+            ``"rnea"`` also imports Pinocchio).
+        forward: Load the forward-dynamics kernel too.
     """
     import time
 
@@ -28,10 +35,12 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     robot = robot or load_robot()
     q = robot.home_pose()[None, :]
     out = []
-    for method in ("kane", "kane-explicit", "rnea"):
+    for method in dict.fromkeys(methods):
         t0 = time.perf_counter()
         solve(robot, q, 0 * q, 0 * q, method=method, backend="numba", limits=False)
         out.append((f"{method} kernels", time.perf_counter() - t0))
+    if not forward:
+        return out
     from offshore_crane.dynamics.forward import forward_dynamics
 
     t0 = time.perf_counter()

@@ -5,7 +5,7 @@ frames from Pinocchio's own model of it (``robot.pinocchio_model``, the names of
 ``docs/conventions.md``), and imports only Pinocchio, NumPy, Numba and the package's
 ground floor.
 
-1. :mod:`.tree`: the serial chains read from Pinocchio's model (:func:`tree`).
+1. :mod:`.tree`: the serial chains read from Pinocchio's model (:func:`read_tree`).
 2. :mod:`.closure`: loop closure (:func:`tree_state`): for each leg, the passive
    U-joint angles and leg length that put ``leg{i}_tip`` on ``platform_anchor{i}``
    (Newton on the leg chain's tip), their rates and accelerations (compiled with Numba).
@@ -24,8 +24,8 @@ from offshore_crane.reference.rnea.closure import (MAX_NEWTON, MAX_TURN, RESIDUA
                                                    tree_state, tree_states)
 from offshore_crane.reference.rnea.projection import (BLOCK, Forces, actuator_forces, pool,
                                                       project, rnea_projected)
-from offshore_crane.reference.rnea.tree import Chain, Tree, tree
+from offshore_crane.reference.rnea.tree import Chain, Tree, read_tree
 
 __all__ = ["BLOCK", "MAX_NEWTON", "MAX_TURN", "RESIDUAL_TOL", "Chain", "Forces", "Tree",
-           "actuator_forces", "pool", "project", "rnea_projected", "tree", "tree_state",
+           "actuator_forces", "pool", "project", "read_tree", "rnea_projected", "tree_state",
            "tree_states"]

@@ -22,7 +22,7 @@ from numba import njit
 
 from offshore_crane.conventions import N_LEGS
 from offshore_crane.errors import NumericalError
-from offshore_crane.reference.rnea.tree import tree
+from offshore_crane.reference.rnea.tree import read_tree
 
 #: Newton on a leg's tip position stops when the residual is below this, relative to
 #: 1 m + |S| (a few ulps of the positions: the reference closes the loops to round-off);
@@ -370,7 +370,7 @@ def tree_state(robot: Any, q: np.ndarray, qd: np.ndarray,
     Raises:
         NumericalError: Newton's method did not close a loop (naming the sample).
     """
-    T = tree(robot)
+    T = read_tree(robot)
     N = q.shape[0]
     Q, V, A = (np.zeros((T.nv, N), order="F") for _ in range(3))
     for x, src in ((Q, q), (V, qd), (A, qdd)):

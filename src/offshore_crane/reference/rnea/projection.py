@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 
 from offshore_crane.reference.rnea.closure import tree_state
-from offshore_crane.reference.rnea.tree import tree
+from offshore_crane.reference.rnea.tree import read_tree
 
 #: Samples per block: the tree's Q, V, A, τ arrays (4 x 27 doubles a sample) stay bounded.
 #: :func:`actuator_forces` evaluates what it is given at once; callers split long inputs.
@@ -196,7 +196,7 @@ def rnea_projected(robot: Any, Q: np.ndarray, V: np.ndarray, A: np.ndarray, G: n
     """
     import pinocchio as pin
 
-    T = tree(robot)
+    T = read_tree(robot)
     N = Q.shape[1]
     tau = np.empty_like(Q, order="F")
     pin.rneaInParallel(threads, pool(robot, gravity, threads), Q, V, A, tau)

@@ -94,7 +94,7 @@ def _stack(chains) -> Chain:
     return Chain(*(np.ascontiguousarray(np.array([c[k] for c in chains])) for k in range(8)))
 
 
-def tree(robot: Any) -> Tree:
+def read_tree(robot: Any) -> Tree:
     """The reference's view of ``robot.pinocchio_model`` (cached per robot).
 
     Raises:

@@ -1,0 +1,112 @@
+"""Where the cases run: in this process, on joblib workers, or on a Dask cluster (with a
+connection timeout), the kernels warmed up once per process.
+"""
+
+from __future__ import annotations
+
+from offshore_crane.errors import SchedulerError
+from offshore_crane.studies.sweep.cases import run_task
+from offshore_crane.studies.sweep.grid import install_hint
+
+
+#: Seconds to wait for a Dask scheduler before calling it unreachable.
+CONNECT_TIMEOUT = 3.0
+#: Default Dask ``LocalCluster`` size (``--scheduler local``) when ``workers`` is not given.
+LOCAL_WORKERS = 2
+
+
+# =========================================================================== backends
+def check_scheduler(scheduler) -> str | None:
+    from offshore_crane.errors import InputError
+
+    if scheduler is None or scheduler == "local":
+        return scheduler
+    if not isinstance(scheduler, str) or "://" not in scheduler:
+        raise InputError(f"--scheduler {scheduler!r}: give 'local' (a Dask LocalCluster on "
+                         "this machine) or a scheduler address tcp://HOST:PORT",
+                         name="scheduler")
+    return scheduler
+
+
+def connect(scheduler: str, workers: int | None = None, timeout: float = CONNECT_TIMEOUT):
+    """A ``dask.distributed.Client``: on a new ``LocalCluster`` (``"local"``: processes,
+    ``workers`` of one thread each, no dashboard) or connected to ``tcp://HOST:PORT``.
+
+    Returns:
+        ``(client, cluster or None)``.
+
+    Raises:
+        SchedulerError: the scheduler cannot be reached within ``timeout`` [s] (or the
+            local cluster does not start).
+    """
+    distributed = install_hint("distributed", "--scheduler (Dask)")
+    import logging
+
+    try:
+        if scheduler == "local":
+            cluster = distributed.LocalCluster(n_workers=workers or LOCAL_WORKERS,
+                                               threads_per_worker=1, processes=True,
+                                               dashboard_address=None)
+            return distributed.Client(cluster), cluster
+        logging.getLogger("distributed").setLevel(logging.CRITICAL)
+        return distributed.Client(scheduler, timeout=f"{timeout}s"), None
+    except (OSError, TimeoutError) as exc:
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise SchedulerError(f"--scheduler {scheduler}: cannot reach the Dask scheduler "
+                             f"within {timeout:g} s ({reason}): start it (dask scheduler) or "
+                             "check the address; nothing was run or written",
+                             address=scheduler, reason=reason) from None
+
+
+def run_in_process(payloads):
+    for p in payloads:
+        yield run_task(p)
+
+
+def run_on_joblib(payloads, workers: int):
+    joblib = install_hint("joblib", "--workers (parallel cases)")
+    parallel = joblib.Parallel(n_jobs=workers, backend="loky",
+                               return_as="generator_unordered", batch_size=1)
+    yield from parallel(joblib.delayed(run_task)(p) for p in payloads)
+
+
+def run_on_dask(payloads, client):
+    distributed = install_hint("distributed", "--scheduler (Dask)")
+    if not payloads:
+        return
+    futures = client.map(run_task, payloads, pure=False)
+    try:
+        for _, result in distributed.as_completed(futures, with_results=True):
+            yield result
+    finally:
+        client.cancel(futures)
+
+
+def warm_up_scene(scene) -> None:
+    """Compile or load, once in this process, the kernels this sweep's cases use: the
+    inverse dynamics of the scene's first method (and Kane's, which a simulated case
+    uses for its condition numbers; not the RNEA path's Pinocchio unless the scene asks
+    for it), the hanging load's kernels, the simulation loops for a scene with
+    ``[control]`` -- each by its column's own ``warm_up``."""
+    from offshore_crane import scenes
+    from offshore_crane.dynamics import numba_available, warm_up
+
+    if not numba_available():
+        return
+    from offshore_crane.dynamics.cable import warm_up as warm_up_cable
+
+    robot = scenes.load_robot(scene).without_hanging_payload()
+    warm_up(robot, methods=(scene.methods[0], "kane"), forward=False)
+    warm_up_cable()            # any case may hang its payload (a grid's cable_length)
+    if scene.control:
+        from offshore_crane.simulation.rigid import warm_up as warm_up_simulation
+
+        warm_up_simulation()
+
+
+def warm_up_workers(client, scene) -> None:
+    """Load (or compile) the kernels on a remote cluster's workers one at a time, so
+    that workers sharing a cache never compile it at once (the first compiles, the others
+    load)."""
+    for address in sorted(client.scheduler_info()["workers"]):
+        client.run(warm_up_scene, scene, workers=[address])

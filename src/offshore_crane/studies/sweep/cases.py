@@ -1,0 +1,187 @@
+"""One case of a sweep: its run (inverse dynamics, optional simulation), its envelope as one
+row, and the row's schema.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from offshore_crane.errors import OffshoreCraneError
+from offshore_crane.studies.sweep.grid import Grid, case_id, case_scene, install_hint
+
+
+#: Columns of a row besides the grid's keys and the envelope (:func:`row_schema`).
+CASE_COLUMNS = (("case_id", "string"), ("status", "string"), ("error_type", "string"),
+                ("error", "string"), ("warnings", "int64"))
+
+
+# =========================================================================== one case
+@dataclass
+class CaseRun:
+    """One scene run and its envelope.
+
+    Attributes:
+        scene, robot, trajectory: What ran.
+        kind: ``"inverse dynamics"`` or ``"simulation"``.
+        t, q, qd, X: ``(N,)`` [s], ``(N, 9)`` the motion [m, rad, /s] and the actuator
+            forces [N·m, N] the envelope is of (the simulation's applied forces).
+        result: The :class:`~offshore_crane.dynamics.Result` (condition numbers), of
+            the inverse dynamics of the simulated motion for a simulation.
+        simulation: The :class:`~offshore_crane.simulation.rigid.SimulationResult`, or None.
+        envelope: :class:`~offshore_crane.studies.sizing.Envelope`.
+        seconds: Run time of the trajectory and the dynamics (the case's own
+            computation) [s].
+    """
+
+    scene: object
+    robot: object
+    trajectory: object
+    kind: str
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    X: np.ndarray
+    result: object
+    simulation: object
+    envelope: object
+    seconds: float
+
+
+def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads: int = 1,
+           limits: bool = True, thresholds=None, method: str | None = None) -> CaseRun:
+    """Run one scene and take its envelope: the inverse dynamics of its trajectory
+    (method ``scene.methods[0]``), or, when the scene has a ``[control]`` section, the
+    forward simulation under its controller over the trajectory's span (the envelope is
+    of the applied forces; the condition numbers of the inverse dynamics of the
+    simulated motion).
+
+    With a payload on a cable (``payload.cable_length > 0``) the inverse dynamics is the
+    swing's (:func:`offshore_crane.dynamics.cable.swing`, the scene's ``[cable]`` options) and the
+    envelope gains the largest sway and the tension range; a slack cable fails the case.
+
+    Raises:
+        The errors of the loaders, of :func:`offshore_crane.dynamics.solve`, of
+        :mod:`offshore_crane.dynamics.cable` (:class:`~offshore_crane.errors.SlackCableError`) and
+        of :func:`offshore_crane.simulation.rigid.simulate`.
+    """
+    from offshore_crane import scenes
+    from offshore_crane.dynamics import solve
+    from offshore_crane.robot.kinematics.workspace import Thresholds
+    from offshore_crane.studies.sizing import conditions, envelope
+
+    thresholds = thresholds or Thresholds()
+    robot = robot or scenes.load_robot(scene)
+    t0 = time.perf_counter()
+    traj = trajectory or scenes.load_trajectory(scene, robot)
+    options = dict(limits=limits, thresholds=thresholds, backend=backend, threads=threads)
+    simulation = None
+    if scene.control:
+        simulation = _simulate(scene, robot, traj, limits)
+        t, q, qd, X = simulation.t, simulation.q, simulation.qd, simulation.X
+        result = solve(robot, q, qd, simulation.qdd, "kane", scene.gravity,
+                       outputs=scene.wanted(), t=t, **options)
+        kind = "simulation"
+    else:
+        if robot.hybrid.cable is not None:            # the swing (offshore_crane.dynamics.cable)
+            result = scenes._swing(scene, robot, traj, method or scene.methods[0],
+                                   limits=limits, thresholds=thresholds)
+        else:
+            result = solve(robot, traj.q, traj.qd, traj.qdd, method or scene.methods[0],
+                           scene.gravity, leg_model=scene.leg_model, outputs=scene.wanted(),
+                           t=traj.t, **options)
+        t, q, qd, X = traj.t, traj.q, traj.qd, result.X
+        kind = "inverse dynamics"
+    seconds = time.perf_counter() - t0
+    wanted = scene.wanted()
+    arm = any(n in wanted for n in ("T1", "T2", "Fs"))
+    legs = any(n.startswith("Fl") for n in wanted)
+    Xw = np.where([n in wanted for n in ("T1", "T2", "Fs", "Fl1", "Fl2", "Fl3", "Fl4",
+                                         "Fl5", "Fl6")], X, np.nan)
+    env = envelope(robot, t, q, qd, Xw, conditions(result), arm=arm, legs=legs,
+                   cable=getattr(result, "cable", None))
+    return CaseRun(scene, robot, traj, kind, t, q, qd, Xw, result, simulation, env, seconds)
+
+
+def _simulate(scene, robot, traj, limits: bool):
+    """The scene's controlled run over its trajectory's span (as ``offshore-crane
+    simulate --scene`` without flags)."""
+    from offshore_crane import scenes
+    from offshore_crane.simulation.rigid import simulate
+
+    c = scene.control
+    q0, qd0, _ = (x[0] for x in traj.reference(traj.t[:1]))
+    q0 = q0.copy()
+    if c.get("initial_error") is not None:
+        q0 += np.asarray(c["initial_error"], dtype=float)
+    return simulate(robot, float(traj.t[-1] - traj.t[0]), traj.reference, q0=q0, qd0=qd0,
+                    controller=scenes.controller(scene, robot), gravity=scene.gravity,
+                    step=c.get("step", 1e-3), integrator=c.get("integrator", "rk4"),
+                    limits=limits, t0=float(traj.t[0]))
+
+
+def _failed_row() -> dict:
+    """The envelope columns of a failed case: NaN, 0 and empty strings."""
+    from offshore_crane.studies.sizing import row_columns
+
+    row = {}
+    for name, kind in row_columns():
+        row[name] = math.nan if kind == "float64" else (0 if kind == "int64" else "")
+    return row
+
+
+def run_case(scene, params: dict, backend: str = "auto", timing: dict | None = None) -> dict:
+    """One case: the row of :func:`row_schema` (``case_id``, the case's values, its
+    status, error and envelope). A library error (workspace, singularity, simulation
+    stopped, missing capability) is recorded in the row (``status = "failed"``,
+    ``error_type``, ``error``) instead of raised; the row's other numbers are then NaN.
+    ``timing`` (a dict), when given, receives ``compute``: the case's own computation
+    (trajectory and dynamics, :attr:`CaseRun.seconds`) [s] — never part of the row, which
+    holds only what is reproducible."""
+    import warnings
+
+    row = {"case_id": case_id(params), **params}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            done = record(case_scene(scene, params), backend=backend, threads=1)
+        except OffshoreCraneError as exc:
+            row.update(status="failed", error_type=type(exc).__name__, error=str(exc),
+                       **_failed_row())
+            done = None
+    if done is not None:
+        row.update(status="ok", error_type="", error="", **done.envelope.row())
+    if timing is not None:
+        timing["compute"] = done.seconds if done is not None else 0.0
+    from offshore_crane.robot.kinematics.workspace import OffshoreCraneWarning
+
+    row["warnings"] = sum(issubclass(w.category, OffshoreCraneWarning) for w in caught)
+    return row
+
+
+def run_task(payload):
+    """What a worker runs: ``(scene, params, backend)`` → ``(case_id, row, seconds,
+    compute seconds)``: the run time of :func:`run_case` whole and of the case's own
+    computation [s]."""
+    scene, params, backend = payload
+    timing: dict = {}
+    t0 = time.perf_counter()
+    row = run_case(scene, params, backend, timing)
+    return row["case_id"], row, time.perf_counter() - t0, timing["compute"]
+
+
+def row_schema(grid: Grid):
+    """The ``pyarrow.Schema`` of a sweep's rows: ``case_id``, the grid's keys (float64,
+    ``seed`` int64), ``status``, ``error_type``, ``error``, ``warnings``, then the
+    envelope (:func:`offshore_crane.studies.sizing.row_columns`)."""
+    pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+    from offshore_crane.studies.sizing import row_columns
+
+    types = {"float64": pa.float64(), "int64": pa.int64(), "string": pa.string()}
+    cols = [("case_id", "string")] + [(k, "int64" if k == "seed" else "float64")
+                                      for k in grid.keys]
+    cols += list(CASE_COLUMNS[1:]) + row_columns()
+    return pa.schema([(n, types[t]) for n, t in cols])

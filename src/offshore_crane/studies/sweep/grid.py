@@ -1,0 +1,186 @@
+"""A sweep's grid: reading a grid TOML file, checking it against the scene, and the cases it
+expands to (their scenes and ids).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+import os
+from dataclasses import dataclass, replace
+
+from offshore_crane.errors import GridError
+
+
+#: Grid keys that set the scene's ``[sea]`` (full scale): Hs [m], Tp [s], heading [deg],
+#: Froude scale [-], random-phase seed.
+SEA_KEYS = ("hs", "tp", "heading", "scale", "seed")
+
+
+def install_hint(module: str, purpose: str):
+    from offshore_crane.errors import require
+
+    package = {"distributed": "distributed", "pyarrow": "pyarrow"}.get(module, module)
+    return require(module, f"{package} (or: pip install offshore-crane[sweep])", purpose)
+
+
+# =========================================================================== the grid
+@dataclass(frozen=True)
+class Grid:
+    """A checked grid: ``keys`` in product order, ``values`` their lists.
+
+    Attributes:
+        keys: Grid keys; robot fields by their dotted names, then the sea keys.
+        values: ``{key: tuple of values}``: floats (``seed``: ints).
+        where: The grid file (or ``"grid"``), for messages.
+    """
+
+    keys: tuple
+    values: dict
+    where: str = "grid"
+
+    def cases(self) -> list[dict]:
+        """The product of the lists, in order: the last key varies fastest (the seeds
+        of one case are consecutive; robot fields vary slowest, so that a worker keeps
+        its robot for many cases)."""
+        return [dict(zip(self.keys, combo))
+                for combo in itertools.product(*(self.values[k] for k in self.keys))]
+
+    def as_dict(self) -> dict:
+        return {k: list(self.values[k]) for k in self.keys}
+
+
+def _flatten(table: dict, where: str, prefix: str = "") -> dict:
+    out = {}
+    for key, value in table.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            out.update(_flatten(value, where, f"{name}."))
+        else:
+            out[name] = value
+    return out
+
+
+def load_grid(path) -> dict:
+    """Read a grid file (TOML): ``{key: list}`` with TOML's dotted keys joined
+    (``payload.mass = [...]`` and ``"payload.mass" = [...]`` alike); checked by
+    :func:`check_grid` against a scene.
+
+    Raises:
+        GridError: unreadable file, invalid TOML.
+    """
+    from offshore_crane.errors import InputError
+    from offshore_crane.io import read_toml
+
+    where = os.fspath(path)
+    try:
+        data = read_toml(where, "grid file")
+    except InputError as exc:
+        raise GridError(str(exc), path=where) from None
+    return _flatten(data, where)
+
+
+def _plain(v) -> str:
+    return json.dumps(v) if not isinstance(v, float) else f"{v:g}"
+
+
+def check_grid(scene, grid: dict, where: str = "grid") -> Grid:
+    """Check a grid against a scene, value by value, before anything runs.
+
+    Args:
+        scene: The :class:`~offshore_crane.scenes.Scene` swept.
+        grid: ``{key: list of values}`` (:func:`load_grid`, or a dict).
+        where: The grid's name in messages (its file).
+
+    Returns:
+        :class:`Grid`.
+
+    Raises:
+        GridError: not a table of lists, an unknown key (neither a sea key nor a robot
+            field), an empty list, a repeated value, a value that is not a number (an
+            integer ≥ 0 for ``seed``), a sea key on a scene that is not a sea, a key given
+            twice (an alias and its dotted name), or a value the scene's own checks refuse
+            (``hs <= 0``, a negative mass, ...), naming the key and the index.
+    """
+    from offshore_crane.errors import DescriptionError, SceneError
+    from offshore_crane.robot.overrides import normalise
+
+    if not isinstance(grid, dict) or not grid:
+        raise GridError(f"{where}: the grid is empty: give lists of values, e.g. "
+                        "hs = [1.0, 2.0]", path=where)
+    robot_keys, sea, values = [], [], {}
+    for key, raw in grid.items():
+        if not isinstance(raw, (list, tuple)):
+            raise GridError(f"{where}: {key} = {_plain(raw)}: must be a list of values, "
+                            f"e.g. {key} = [{_plain(raw)}]", path=where, key=key)
+        if not raw:
+            raise GridError(f"{where}: {key} = []: the list is empty: give at least one "
+                            "value (a grid's cases are the product of its lists)",
+                            path=where, key=key)
+        if key in SEA_KEYS:
+            name = key
+            if scene.trajectory != "sea":
+                raise GridError(f"{where}: {key}: a sea key, but the scene "
+                                f"{scene.where()} is not a sea (its [trajectory] source is "
+                                f"{scene.trajectory!r}): use a scene with source = \"sea\"",
+                                path=where, key=key)
+            sea.append(key)
+        else:
+            try:
+                name = next(iter(normalise({key: 0.0}, where)))
+            except DescriptionError as exc:
+                raise GridError(f"{where}: unknown grid key {key!r}: neither a sea key "
+                                f"({', '.join(SEA_KEYS)}) nor a robot field ({exc})",
+                                path=where, key=key) from None
+            if name in values:
+                raise GridError(f"{where}: {key} and {name} name the same robot field: "
+                                "give it once", path=where, key=key)
+            robot_keys.append(name)
+        checked = []
+        for i, v in enumerate(raw):
+            bad = isinstance(v, bool) or not isinstance(v, (int, float))
+            if key == "seed":
+                if bad or not isinstance(v, int) or v < 0:
+                    raise GridError(f"{where}: seed[{i}] = {_plain(v)}: must be an integer "
+                                    "≥ 0", path=where, key=key, index=i)
+                checked.append(int(v))
+                continue
+            if bad or not math.isfinite(v):
+                raise GridError(f"{where}: {key}[{i}] = {_plain(v)}: must be a finite "
+                                "number", path=where, key=key, index=i)
+            checked.append(float(v))
+        if len(set(checked)) != len(checked):
+            raise GridError(f"{where}: {key} = {_plain(list(raw))}: names a value twice",
+                            path=where, key=key)
+        for i, v in enumerate(checked):         # the scene's own checks, value by value
+            try:
+                case_scene(scene, {name: v}, origin=f"{where}: {key}[{i}] = {_plain(v)}")
+            except (SceneError, DescriptionError) as exc:
+                raise GridError(str(exc), path=where, key=key, index=i) from None
+        values[name] = tuple(checked)
+    keys = tuple(sorted(robot_keys)) + tuple(k for k in SEA_KEYS if k in sea)
+    return Grid(keys, values, where)
+
+
+def case_scene(scene, params: dict, origin: str | None = None):
+    """``scene`` with a case's values: sea keys into ``[sea]``, robot fields (dotted
+    names) over the scene's own (a grid value replaces the scene's, on purpose)."""
+    sea = {k: v for k, v in params.items() if k in SEA_KEYS}
+    robot = {k: v for k, v in params.items() if k not in SEA_KEYS}
+    changes = {}
+    if sea:
+        changes["sea"] = {**scene.sea, **sea}
+    if robot:
+        changes.update(robot={**scene.robot, **robot}, arm=None, payload=None)
+    if not changes:
+        return scene
+    return replace(scene, origin=origin or f"{scene.where()} case {params}", **changes)
+
+
+def case_id(params: dict) -> str:
+    """A case's identity: 16 hex digits of the SHA-256 of its values (sorted keys,
+    floats by ``repr``), stable across runs, processes and grid orders."""
+    text = json.dumps({k: params[k] for k in sorted(params)}, sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]

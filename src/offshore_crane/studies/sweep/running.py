@@ -1,0 +1,131 @@
+"""Running a sweep: every case of a grid through a backend into the store, with progress and
+resume.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+
+from offshore_crane.studies.sweep.backends import (check_scheduler, connect, run_in_process,
+                                                   run_on_dask, run_on_joblib, warm_up_scene,
+                                                   warm_up_workers)
+from offshore_crane.studies.sweep.cases import row_schema
+from offshore_crane.studies.sweep.grid import Grid, case_id, check_grid, install_hint, load_grid
+from offshore_crane.studies.sweep.store import ResultsStore, results_table
+
+
+def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=None, *,
+        progress: bool = False, stats: dict | None = None, backend: str = "auto",
+        where: str = "grid"):
+    """Run a sweep: every case of ``grid`` on ``scene``, one row per case.
+
+    Args:
+        scene: A :class:`~offshore_crane.scenes.Scene` (or a scene file path).
+        grid: ``{key: list}`` (:func:`load_grid`), a grid file path, or a :class:`Grid`.
+        workers: Parallel processes: 1 (serially, in this process), N > 1 (joblib loky
+            workers), or with ``scheduler = "local"`` the cluster's size (default 2).
+        scheduler: None (joblib or serial), ``"local"`` (a Dask ``LocalCluster``) or a
+            Dask scheduler address ``tcp://HOST:PORT``.
+        out: A results directory (resumable: finished cases are skipped), or None to
+            keep the rows in memory only.
+        progress: Show a progress bar (tqdm) on standard error.
+        stats: A dict filled with ``cases``, ``skipped``, ``ran``, ``failed``,
+            ``seconds`` (wall time from the dispatch to the last row written),
+            ``case_seconds`` (each case's run time in its worker, :func:`run_case` whole)
+            and ``compute_seconds`` (each case's own computation: trajectory and
+            dynamics) — for benchmarks.
+        backend: Kernels of every case (``"auto"``: compiled when Numba is installed),
+            resolved once here so that every worker runs the same code.
+        where: The grid's name in messages when it is a dict.
+
+    Returns:
+        ``pandas.DataFrame``: one row per case of the grid in grid order (column ``case``,
+        its index), with the columns of :func:`row_schema`.
+
+    Raises:
+        GridError, SceneError: bad grid or scene (before anything runs or is written).
+        ResultsDirectoryError: ``out`` is not a results directory of this scene.
+        SchedulerError: the scheduler cannot be reached (nothing written).
+    """
+    from offshore_crane import scenes
+    from offshore_crane.dynamics import resolve_backend
+    from offshore_crane.errors import InputError
+
+    if isinstance(scene, (str, os.PathLike)):
+        scene = scenes.load_scene(scene)
+    if isinstance(grid, (str, os.PathLike)):
+        where = os.fspath(grid)
+        grid = load_grid(grid)
+    if not isinstance(grid, Grid):
+        grid = check_grid(scene, grid, where)
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or workers < 1):
+        raise InputError(f"workers = {workers!r}: must be an integer ≥ 1", name="workers")
+    scheduler = check_scheduler(scheduler)
+    backend = resolve_backend(backend)
+    install_hint("pandas", "A sweep's results table")
+    schema = row_schema(grid)
+    cases = grid.cases()
+    ids = [case_id(c) for c in cases]
+    store = ResultsStore.open(out, scene) if out is not None else None
+    finished = store.done() if store is not None else set()
+    pending = [(scene, c, backend) for c, cid in zip(cases, ids) if cid not in finished]
+    pending = list({case_id(p[1]): p for p in pending}.values())     # each case once
+    client = cluster = None
+    if scheduler is not None and pending:
+        client, cluster = connect(scheduler, workers)
+    rows: dict = {}
+    info = {"cases": len(set(ids)), "skipped": len(set(ids) & finished), "ran": 0,
+            "failed": 0, "case_seconds": [], "compute_seconds": []}
+    try:
+        if store is not None:
+            store.create(grid)
+        if pending:
+            warm_up_scene(scene)
+            if client is not None and cluster is None:
+                warm_up_workers(client, scene)
+        t0 = time.perf_counter()
+        if client is not None:
+            results = run_on_dask(pending, client)
+        elif (workers or 1) > 1 and len(pending) > 1:
+            results = run_on_joblib(pending, min(workers, len(pending)))
+        else:
+            results = run_in_process(pending)
+        bar = None
+        if progress:
+            tqdm = install_hint("tqdm", "the progress bar")
+            bar = tqdm.tqdm(total=len(pending), unit="case", file=sys.stderr,
+                            desc="sweep", leave=False)
+        try:
+            for cid, row, seconds, compute in results:
+                if store is not None:
+                    store.write(row, schema)
+                rows[cid] = row
+                info["ran"] += 1
+                info["failed"] += row["status"] != "ok"
+                info["case_seconds"].append(seconds)
+                info["compute_seconds"].append(compute)
+                if bar is not None:
+                    bar.update()
+        finally:
+            if bar is not None:
+                bar.close()
+        info["seconds"] = time.perf_counter() - t0
+    finally:
+        if client is not None:
+            client.close()
+        if cluster is not None:
+            cluster.close()
+    if stats is not None:
+        stats.update(info)
+    fresh = [rows[c] for c in dict.fromkeys(ids) if c in rows]   # rows of this run, held
+    table = results_table(fresh, schema)
+    if store is not None and len(fresh) < len(set(ids)):         # and those run before
+        pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+        table = pa.concat_tables([table, store.read(schema, set(ids) - set(rows))])
+    df = table.to_pandas()
+    order = {cid: i for i, cid in enumerate(ids)}
+    df.insert(0, "case", df["case_id"].map(order).astype("int64"))
+    return df.sort_values("case", kind="stable").reset_index(drop=True)

@@ -1,0 +1,174 @@
+"""The results store: a Parquet dataset with a manifest naming the scene, written row by row,
+resumed after a stop.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from dataclasses import fields
+from pathlib import Path
+
+from offshore_crane.errors import ResultsDirectoryError
+from offshore_crane.studies.sweep.grid import Grid, install_hint
+
+
+MANIFEST = "_manifest.json"
+MANIFEST_FORMAT = "offshore-crane sweep results"
+
+
+# =========================================================================== the store
+def scene_hash(scene) -> str:
+    """SHA-256 of what a scene computes: its fields (but where it was read from) and the
+    content of every file it reads (robot description, trajectory CSV, vessel RAOs)."""
+    from offshore_crane.robot.description import default_description
+
+    h = hashlib.sha256()
+    data = {f.name: getattr(scene, f.name) for f in fields(scene)
+            if f.name not in ("path", "origin", "robot_description", "name",
+                              "description")}
+    h.update(json.dumps(data, sort_keys=True, default=repr).encode())
+    files = [scene.robot_description or default_description()]
+    if scene.trajectory not in ("table1", "sea"):
+        files.append(scene.trajectory)
+    if "vessel" in scene.sea and os.path.isfile(str(scene.sea["vessel"])):
+        files.append(scene.sea["vessel"])
+    for f in files:
+        h.update(b"\0" + Path(f).read_bytes())
+    return h.hexdigest()
+
+
+class ResultsStore:
+    """A sweep's results directory (see the module docstring).
+
+    Create with :meth:`open` (checks only, writes nothing), then :meth:`create` before
+    the first row; :meth:`write` stores a row atomically; :meth:`done` lists the finished
+    case ids; :meth:`read` returns the rows as a ``pyarrow.Table``.
+    """
+
+    def __init__(self, path, scene_name: str, digest: str, manifest: dict | None):
+        self.path = os.fspath(path)
+        self.scene_name = scene_name
+        self.digest = digest
+        self.manifest = manifest
+
+    @classmethod
+    def open(cls, path, scene) -> "ResultsStore":
+        """Check ``path`` for the sweep of ``scene`` (nothing is written).
+
+        Raises:
+            ResultsDirectoryError: ``path`` is a file; a directory that holds files but
+                no manifest; a manifest of another scene; a damaged manifest; a missing
+                parent directory.
+        """
+        given = os.fspath(path)
+        digest = scene_hash(scene)
+
+        def refuse(reason):
+            raise ResultsDirectoryError(f"--out {given}: {reason}", path=given, reason=reason)
+
+        if os.path.exists(given) and not os.path.isdir(given):
+            refuse("exists and is not a directory: give a results directory (new, empty, "
+                   "or of an earlier run of the same scene)")
+        if not os.path.isdir(given):
+            parent = os.path.dirname(os.path.abspath(given))
+            if not os.path.isdir(parent):
+                refuse(f"directory {os.path.dirname(given) or '.'} does not exist: create "
+                       "it first")
+            return cls(given, scene.name, digest, None)
+        manifest_path = os.path.join(given, MANIFEST)
+        if not os.path.exists(manifest_path):
+            if os.listdir(given):
+                refuse("exists and holds files but no sweep manifest (_manifest.json): "
+                       "it is not a results directory; choose a new or empty directory")
+            return cls(given, scene.name, digest, None)
+        try:
+            manifest = json.loads(Path(manifest_path).read_text(encoding="utf-8"))
+            ok = isinstance(manifest, dict) and manifest.get("format") == MANIFEST_FORMAT
+            other = manifest["scene"]["hash"] if ok else None
+        except (OSError, ValueError, KeyError, TypeError):
+            ok = False
+        if not ok:
+            refuse(f"its {MANIFEST} is damaged or not a sweep manifest: choose another "
+                   "directory")
+        if other != digest:
+            refuse(f"holds the results of another scene ({manifest['scene'].get('name')!r}"
+                   f", hash {other[:12]}), not of {scene.name!r} (hash {digest[:12]}): "
+                   "results of different scenes are never mixed; choose another directory")
+        return cls(given, scene.name, digest, manifest)
+
+    def create(self, grid: Grid) -> None:
+        """Make the directory and write (or extend) the manifest with ``grid``."""
+        from offshore_crane.io import write_text
+
+        try:
+            os.makedirs(self.path, exist_ok=True)
+        except OSError as exc:
+            raise ResultsDirectoryError(f"--out {self.path}: cannot create the directory: "
+                                        f"{exc.strerror}", path=self.path,
+                                        reason=str(exc.strerror)) from None
+        manifest = self.manifest or {"format": MANIFEST_FORMAT, "version": 1,
+                                     "scene": {"name": self.scene_name,
+                                               "hash": self.digest},
+                                     "grids": []}
+        for name in os.listdir(self.path):          # a killed run's half-written row
+            if name.startswith(".oc-") and name.endswith(".tmp"):
+                try:
+                    os.unlink(os.path.join(self.path, name))
+                except OSError:
+                    pass
+        if grid.as_dict() not in manifest["grids"]:
+            manifest["grids"].append(grid.as_dict())
+            write_text(os.path.join(self.path, MANIFEST), json.dumps(manifest, indent=1))
+        self.manifest = manifest
+
+    def part(self, cid: str) -> str:
+        return os.path.join(self.path, f"case-{cid}.parquet")
+
+    def done(self) -> set:
+        """Case ids with a row in the directory."""
+        if not os.path.isdir(self.path):
+            return set()
+        return {n[5:-8] for n in os.listdir(self.path)
+                if n.startswith("case-") and n.endswith(".parquet")}
+
+    def write(self, row: dict, schema) -> None:
+        """Store one row atomically (temporary file + rename in the directory)."""
+        from offshore_crane.io import write_bytes
+
+        write_bytes(self.part(row["case_id"]), _parquet_bytes([row], schema))
+
+    def read(self, schema, ids=None):
+        """The rows (``pyarrow.Table``) of ``ids`` (default all), unordered."""
+        pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+        import pyarrow.parquet as pq
+
+        names = sorted(self.done() if ids is None else set(ids) & self.done())
+        tables = [pq.ParquetFile(self.part(c)).read().cast(schema) for c in names]
+        return pa.concat_tables(tables) if tables else schema.empty_table()
+
+
+def _parquet_bytes(rows: list, schema) -> bytes:
+    pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+    import pyarrow.parquet as pq
+
+    table = pa.Table.from_pylist(rows, schema=schema)
+    sink = pa.BufferOutputStream()
+    # one row: no compression, dictionaries or statistics (they cost ~1 ms a part and
+    # save nothing); a reader merging the parts may rewrite them compacted
+    pq.write_table(table, sink, compression="none", use_dictionary=False,
+                   write_statistics=False)
+    return sink.getvalue().to_pybytes()
+
+
+def results_table(rows, schema):
+    pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+    return pa.Table.from_pylist(rows, schema=schema)
+
+
+def read_results(out):
+    """Every row of a results directory as a ``pandas.DataFrame`` (for a notebook)."""
+    install_hint("pandas", "A sweep's results table")     # to_pandas needs it
+    ds = install_hint("pyarrow.dataset", "A sweep's results (Parquet)")
+    return ds.dataset(os.fspath(out), format="parquet").to_table().to_pandas()
