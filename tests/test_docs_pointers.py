@@ -14,6 +14,8 @@ PACKAGE = ROOT / "src" / "offshore_crane"
 DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 #: A quoted file name: `a/b/c.py`, `c.py`, `docs/x.md`, `models/….xacro`, `data.csv`.
 FILE = re.compile(r"`([\w./-]*\w\.(?:py|md|toml|xacro|csv|png|gif|json))[`:]")
+#: A quoted source folder: `robot/description/`, `src/offshore_crane/motion/sea/`.
+FOLDER = re.compile(r"`((?:src/offshore_crane/)?(?:robot|motion|dynamics|reference|simulation|scenes|studies|outputs|cli|serial)/[\w/]*)`")
 DOTTED = re.compile(r"\boffshore_crane(?:\.[A-Za-z_]\w*)+")
 #: Endings that make a dotted name a file name (``offshore_crane.urdf.xacro``).
 FILE_ENDINGS = {"xacro", "urdf", "toml", "py", "md", "json", "csv"}
@@ -42,6 +44,10 @@ def test_quoted_files_exist():
     missing = []
     for doc in DOCS:
         for n, line in enumerate(doc.read_text(encoding="utf-8").splitlines(), 1):
+            for folder in FOLDER.findall(line):
+                path = folder.removeprefix("src/offshore_crane/").rstrip("/")
+                if not (PACKAGE / path).exists():
+                    missing.append(f"{doc.relative_to(ROOT)}:{n}: {folder}")
             for name in FILE.findall(line):
                 if Path(name).name in WRITTEN or name.startswith(("/", "~")):
                     continue

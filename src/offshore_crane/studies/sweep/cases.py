@@ -87,7 +87,7 @@ def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads
         kind = "simulation"
     else:
         if robot.hybrid.cable is not None:            # the swing (offshore_crane.dynamics.cable)
-            result = scenes._swing(scene, robot, traj, method or scene.methods[0],
+            result = scenes.run_swing(scene, robot, traj, method or scene.methods[0],
                                    limits=limits, thresholds=thresholds)
         else:
             result = solve(robot, traj.q, traj.qd, traj.qdd, method or scene.methods[0],

@@ -1,0 +1,150 @@
+"""From a scene to the pipeline's inputs: the robot, the motion (trajectory, sea state), the
+deck pose and the controller; scenes changed by command-line options.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from offshore_crane.errors import SceneError
+from offshore_crane.scenes.keys import (CONTROLLER_KEYS, SCENE_FIELDS, SEA_DURATION, SEA_RATE,
+                                        plain, scene_field)
+from offshore_crane.scenes.scene import Scene, sea_arguments
+
+
+def controller(scene: Scene, robot=None):
+    """The :class:`~offshore_crane.simulation.control.Controller` of the scene's ``[control]``
+    section (its ``model`` table overrides the scene's robot for the controller)."""
+    from offshore_crane.simulation.control import Controller
+
+    c = scene.control
+    model = None
+    if "model" in c:
+        model = load_robot(scene, c["model"])
+    return Controller(**{k: v for k, v in c.items() if k in CONTROLLER_KEYS}, model=model)
+
+
+# --------------------------------------------------------------------------- running
+def deck_pose(scene: Scene, robot) -> np.ndarray:
+    """q1..q6 ``(6,)`` of the fixed deck [m, rad]: ``scene.deck_pose`` or home."""
+    if scene.deck_pose is not None:
+        return np.array(scene.deck_pose)
+    return robot.home_pose()[:6]
+
+
+def sea_trajectory(scene: Scene, robot, check: bool = True):
+    """The model-scale record of a ``source = "sea"`` scene
+    (:func:`offshore_crane.motion.sea.platform_trajectory`, analytic rates and accelerations;
+    its ``source`` evaluates the same motion at any times).
+
+    Raises:
+        SceneError: a bad ``[sea]`` value. SeaWorkspaceError: the record leaves the
+            workspace (with the smallest scale that fits).
+    """
+    from offshore_crane.errors import SeaStateError
+    from offshore_crane.motion.sea import platform_trajectory
+
+    args = sea_arguments(scene)
+    name = (f"sea Hs {args['hs']:g} m Tp {args['tp']:g} s heading {args['heading_deg']:g}° "
+            f"at scale {args['scale']:g}")
+    try:
+        return platform_trajectory(
+            SEA_DURATION if scene.duration is None else scene.duration,
+            SEA_RATE if scene.rate is None else scene.rate, robot=robot, check=check,
+            name=name, **args)
+    except SeaStateError as exc:
+        section = "operation" if exc.name == "waypoints" else "sea"
+        raise SceneError(f"{scene.where()}: [{section}] {exc}", path=scene.path,
+                         name=f"{section}.{exc.name}") from None
+
+
+def load_robot(scene: Scene, overrides: dict | None = None):
+    """The scene's robot; ``overrides`` (dotted names or aliases) are applied on top, for
+    a model that differs from the scene's on purpose (a controller's model). Command-line
+    ``--set`` goes through :func:`with_robot_overrides` instead, which refuses
+    contradictions."""
+    from offshore_crane.robot import load_robot as _load
+    from offshore_crane.robot.overrides import normalise
+
+    return _load(scene.robot_description,
+                 {**scene.robot_overrides(), **normalise(overrides, "robot overrides")})
+
+
+def _field_owner(scene: Scene, name: str) -> str:
+    """The scene's section that sets ``name`` (for messages)."""
+    if name in SCENE_FIELDS or name.startswith("actuators."):
+        return scene_field(name)
+    return f"[robot] {name}"
+
+
+def with_robot_overrides(scene: Scene, overrides: dict, source: str = "--set") -> Scene:
+    """``scene`` with robot overrides (e.g. ``--set``) added, re-checked.
+
+    Args:
+        overrides: Checked overrides (:func:`offshore_crane.robot.overrides.parse_set`).
+
+    Raises:
+        SceneError: an override contradicts a field the scene sets (its ``[robot]``,
+            ``[payload]`` or ``[subsystems] arm``), or the result does not fit together
+            (a payload without arm, ...).
+    """
+    from offshore_crane.robot.overrides import conflicts
+
+    if not overrides:
+        return scene
+    where = scene.where()
+    clash = conflicts(scene.robot, overrides)
+    if clash:
+        c = clash[0]
+        raise SceneError(f"{where}: {source} {c.field} = {plain(c.cli)} contradicts the "
+                         f"scene's {_field_owner(scene, c.field)} = "
+                         f"{plain(c.scene)}: change the scene or drop the {source}",
+                         path=scene.path, name=c.field)
+    robot = {**scene.robot, **overrides}
+    return replace(scene, robot=robot, arm=None, payload=None,
+                   origin=f"{where} with {source}")
+
+
+def load_trajectory(scene: Scene, robot):
+    """The scene's trajectory; with ``platform = false``, q1..q6 held at the deck pose.
+
+    Returns:
+        :class:`offshore_crane.motion.trajectories.Trajectory` (``(N, 9)`` arrays).
+    """
+    from offshore_crane.motion import trajectories
+
+    if scene.trajectory == "sea":
+        return sea_trajectory(scene, robot)
+    traj = trajectories.load(scene.trajectory, duration=scene.duration, rate=scene.rate,
+                             fd_order=scene.fd_order)
+    if scene.platform:
+        return traj
+    q, qd, qdd = traj.q.copy(), traj.qd.copy(), traj.qdd.copy()
+    q[:, :6] = deck_pose(scene, robot)
+    qd[:, :6] = 0.0
+    qdd[:, :6] = 0.0
+    return trajectories.Trajectory(f"{traj.name} on a fixed deck", traj.t, q, qd, qdd)
+
+
+def with_trajectory(scene: Scene, where: str, source: str | None) -> Scene:
+    """``scene`` driven by another trajectory source (``--trajectory``): its ``[sea]``,
+    ``[operation]``, span and finite-difference order belong to its own source and are
+    dropped; the same source (or None) leaves the scene as it is."""
+    if source is None or source == scene.trajectory:
+        return scene
+    return replace(scene, origin=where, trajectory=source, sea={}, operation=None,
+                   duration=None, rate=None, fd_order=4)
+
+
+def with_overrides(scene: Scene, where: str, **changes) -> Scene:
+    """``scene`` with some fields replaced (e.g. by command-line flags), re-checked.
+
+    Raises:
+        SceneError: the result does not fit together (:func:`check_scene`).
+    """
+    changes = {k: v for k, v in changes.items() if v is not None}
+    if not changes:
+        return scene
+    return replace(scene, origin=where, **changes)

@@ -1,0 +1,85 @@
+"""The scene format's sections and keys, and the small value checks every table reader shares.
+"""
+
+from __future__ import annotations
+
+import math
+
+from offshore_crane.errors import SceneError
+from offshore_crane.io import toml_value
+
+
+SECTIONS = ("robot", "subsystems", "payload", "cable", "actuators", "trajectory", "sea",
+            "operation", "control")
+TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
+SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
+PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length", "sway_damping")
+CABLE_KEYS = ("initial", "initial_rate", "substeps", "slack")
+INERTIA_KEYS = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
+TRAJECTORY_KEYS = ("source", "duration", "rate", "fd_order")
+SEA_KEYS = ("hs", "tp", "heading", "scale", "vessel", "kind", "gamma", "spreading",
+            "directions", "seed", "point", "highpass")
+#: [sea] keys without which no sea motion exists.
+SEA_REQUIRED = ("hs", "tp", "heading", "scale")
+OPERATION_KEYS = ("waypoints",)
+#: Model-scale record of ``source = "sea"`` when [trajectory] does not say [s], [Hz].
+SEA_DURATION, SEA_RATE = 60.0, 100.0
+CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error", "noise_q",
+                "noise_qd", "seed", "model", "lower", "upper", "saturation", "anti_sway")
+#: [control] keys that are Controller arguments (the others: simulate's).
+CONTROLLER_KEYS = ("law", "kp", "kd", "rate", "lower", "upper", "saturation", "noise_q",
+                   "noise_qd", "seed", "anti_sway")
+#: Where a scene file sets the robot fields it owns besides [robot] (for messages).
+SCENE_FIELDS = {"arm.enabled": "[subsystems] arm", "payload.mass": "[payload] mass",
+                "payload.com": "[payload] offset", "payload.inertia": "[payload] inertia",
+                "payload.cable_length": "[payload] cable_length",
+                "payload.sway_damping": "[payload] sway_damping"}
+
+
+def scene_field(name: str) -> str:
+    """Where a scene file sets the robot field ``name`` besides [robot]."""
+    if name.startswith("actuators."):
+        return f"[actuators] {name[len('actuators.'):]}"
+    return SCENE_FIELDS[name]
+#: Run time of the fidelity report: median of this many runs per leg model.
+FIDELITY_REPEAT = 5
+
+
+def _finite(x) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+
+
+def is_finite_vector(v, n: int) -> bool:
+    return isinstance(v, (tuple, list)) and len(v) == n and all(_finite(x) for x in v)
+
+
+def plain(value) -> str:
+    """``value`` as TOML, floats in their shortest form (2, not 2.0)."""
+    if isinstance(value, float) and math.isfinite(value):
+        return f"{value:g}" if float(f"{value:g}") == value else repr(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(plain(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{k} = {plain(v)}" for k, v in value.items()) + " }"
+    return toml_value(value)
+
+
+def same_value(a, b) -> bool:
+    from offshore_crane.robot.overrides import conflicts
+
+    return not conflicts({"x": a}, {"x": b})
+
+
+def normalised(where: str, raw: dict, section: str | None, flatten: bool = False) -> dict:
+    """:func:`offshore_crane.robot.overrides.normalise` (of the flattened nested tables
+    with ``flatten``), its errors as SceneErrors naming the scene (and the section)."""
+    from offshore_crane.errors import DescriptionError
+    from offshore_crane.robot.overrides import flatten_table, normalise
+
+    try:
+        return normalise(flatten_table(raw, where) if flatten else raw, where)
+    except DescriptionError as exc:
+        text = str(exc)
+        if section and text.startswith(f"{where}: "):
+            text = f"{where}: {section} {text[len(where) + 2:]}"
+        raise SceneError(text, path=where, name=exc.field) from None

@@ -1,0 +1,367 @@
+"""Reading a scene file: every table checked key by key, errors naming the file, the section
+and the key.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+from offshore_crane.conventions import ACTUATORS, GRAVITY
+from offshore_crane.dynamics import LEG_MODELS, METHODS
+from offshore_crane.errors import SceneError
+from offshore_crane.io import toml_value
+from offshore_crane.scenes.keys import (CABLE_KEYS, CONTROLLER_KEYS, CONTROL_KEYS, INERTIA_KEYS,
+                                        OPERATION_KEYS, PAYLOAD_KEYS, SEA_KEYS, SECTIONS,
+                                        SUBSYSTEM_KEYS, TOP_KEYS, TRAJECTORY_KEYS, normalised,
+                                        plain, same_value, scene_field)
+from offshore_crane.scenes.scene import Scene
+
+
+# --------------------------------------------------------------------------- reading
+class _Reader:
+    """Checks the values of one scene table; errors name ``where`` and the key."""
+
+    def __init__(self, where: str, section: str | None, table: dict, known: tuple):
+        self.where, self.section, self.table = where, section, table
+        prefix = f"[{section}] " if section else ""
+        for key in table:
+            if key not in known:
+                self.fail_key(key, f"{prefix}unknown key '{key}': known keys are "
+                              f"{', '.join(known)}")
+
+    def key_name(self, key: str) -> str:
+        return f"{self.section}.{key}" if self.section else key
+
+    def fail_key(self, key: str, message: str):
+        raise SceneError(f"{self.where}: {message}", path=self.where, name=self.key_name(key))
+
+    def fail(self, key: str, problem: str):
+        prefix = f"[{self.section}] " if self.section else ""
+        self.fail_key(key, f"{prefix}{key} = {toml_value(self.table[key])}: {problem}")
+
+    def get(self, key: str, default=None):
+        return self.table.get(key, default)
+
+    def number(self, key: str, default=None, unit: str = "", minimum: float | None = None,
+               positive: bool = False):
+        if key not in self.table:
+            return default
+        v = self.table[key]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            self.fail(key, f"must be a finite number{f' [{unit}]' if unit else ''}")
+        if positive and v <= 0:
+            self.fail(key, f"must be > 0{f' {unit}' if unit else ''}")
+        if minimum is not None and v < minimum:
+            self.fail(key, f"must be ≥ {minimum:g}{f' {unit}' if unit else ''}")
+        return float(v)
+
+    def vector(self, key: str, n: int, default=None, unit: str = ""):
+        if key not in self.table:
+            return default
+        v = self.table[key]
+        if (not isinstance(v, list) or len(v) != n
+                or any(isinstance(x, bool) or not isinstance(x, (int, float))
+                       or not math.isfinite(x) for x in v)):
+            self.fail(key, f"must be a list of {n} finite numbers [{unit}]")
+        return tuple(float(x) for x in v)
+
+    def boolean(self, key: str, default: bool) -> bool:
+        if key not in self.table:
+            return default
+        if not isinstance(self.table[key], bool):
+            self.fail(key, "must be true or false")
+        return self.table[key]
+
+    def string(self, key: str, default=None, choices: tuple | None = None):
+        if key not in self.table:
+            return default
+        v = self.table[key]
+        if not isinstance(v, str):
+            self.fail(key, "must be a string" + (f": one of {', '.join(choices)}"
+                                                  if choices else ""))
+        if choices and v not in choices:
+            self.fail(key, f"must be one of {', '.join(choices)}")
+        return v
+
+    def names(self, key: str, choices: tuple):
+        """A non-empty list of distinct names out of ``choices`` (in file order)."""
+        if key not in self.table:
+            return None
+        v = self.table[key]
+        if not isinstance(v, list) or not v or not all(isinstance(x, str) for x in v):
+            self.fail(key, f"must be a non-empty list of names out of {', '.join(choices)}")
+        unknown = [x for x in v if x not in choices]
+        if unknown:
+            self.fail(key, f"unknown {', '.join(map(repr, unknown))}: choose among "
+                      f"{', '.join(choices)}")
+        if len(set(v)) != len(v):
+            self.fail(key, "names a value twice")
+        return tuple(v)
+
+
+def _section(where: str, data: dict, name: str, known: tuple) -> _Reader:
+    table = data.get(name, {})
+    if not isinstance(table, dict):
+        raise SceneError(f"{where}: {name} = {toml_value(table)}: must be a table [{name}]",
+                         path=where, name=name)
+    return _Reader(where, name, table, known)
+
+
+def _robot(where: str, data: dict, base: Path | None) -> dict:
+    """``[robot]``, ``[payload]`` and ``[subsystems] arm`` as the Scene's ``robot``,
+    ``robot_description`` (checked by :func:`_check_robot` when the Scene is made)."""
+    robot = data.get("robot", {})
+    if not isinstance(robot, dict):
+        raise SceneError(f"{where}: robot = {toml_value(robot)}: must be a table [robot]",
+                         path=where, name="robot")
+    robot = dict(robot)
+    description = robot.pop("description", None)
+    if description is not None:
+        if not isinstance(description, str) or not description:
+            raise SceneError(f"{where}: [robot] description = {toml_value(description)}: must be "
+                             "the path of a robot description file (TOML)", path=where,
+                             name="robot.description")
+        p = Path(description)
+        if not p.is_absolute() and base is not None:
+            p = base / p
+        if not p.is_file():
+            raise SceneError(f"{where}: [robot] description = {toml_value(description)}: no such "
+                             f"file {p} (relative paths start at the scene file's folder)",
+                             path=where, name="robot.description")
+        description = str(p)
+    overrides = normalised(where, robot, "[robot]", flatten=True)
+    r = _section(where, data, "payload", PAYLOAD_KEYS)
+    payload = {}
+    if "inertia" in r.table and not isinstance(r.get("inertia"), dict):
+        r.fail("inertia", f"must be a table of {', '.join(INERTIA_KEYS)} [kg·m²]")
+    if "inertia" in r.table:
+        _Reader(where, "payload.inertia", r.get("inertia"), INERTIA_KEYS)  # known keys
+    for key, name in (("mass", "payload.mass"), ("offset", "payload.com"),
+                      ("inertia", "payload.inertia"), ("cable_length", "payload.cable_length"),
+                      ("sway_damping", "payload.sway_damping")):
+        if key in r.table:
+            payload[name] = r.get(key)
+    sub = data.get("subsystems", {})
+    if isinstance(sub, dict) and "arm" in sub:
+        payload["arm.enabled"] = sub["arm"]
+    actuators = data.get("actuators", {})
+    if not isinstance(actuators, dict):
+        raise SceneError(f"{where}: actuators = {toml_value(actuators)}: must be a table "
+                         "[actuators]", path=where, name="actuators")
+    payload.update(normalised(where, {"actuators": actuators}, "[actuators]", flatten=True))
+    for name, value in normalised(where, payload, None).items():
+        if name in overrides and not same_value(overrides[name], value):
+            raise SceneError(f"{where}: {scene_field(name)} = {plain(value)} contradicts "
+                             f"[robot] {name} = {plain(overrides[name])}: give it once",
+                             path=where, name=name)
+        overrides[name] = value
+    return dict(robot=overrides, robot_description=description)
+
+
+def _trajectory(where: str, data: dict, base: Path | None) -> dict:
+    r = _section(where, data, "trajectory", TRAJECTORY_KEYS)
+    source = r.string("source", "table1")
+    out = dict(trajectory=source)
+    if source == "sea":
+        out["duration"] = r.number("duration", None, "s", positive=True)
+        out["rate"] = r.number("rate", None, "Hz", positive=True)
+        if "fd_order" in r.table:
+            r.fail("fd_order", "applies to a CSV trajectory only (a sea state has analytic "
+                   "derivatives)")
+    elif source != "table1":
+        path = Path(source)
+        if not path.is_absolute() and base is not None:
+            path = base / path
+        if not path.is_file():
+            r.fail("source", f"no such file {path} (give 'table1' or a CSV t_s,q1..q9; "
+                   "relative paths start at the scene file's folder)")
+        out["trajectory"] = str(path)
+        for key in ("duration", "rate"):
+            if key in r.table:
+                r.fail(key, "applies to table1 only (a CSV file's samples set the time axis)")
+        if "fd_order" in r.table:
+            v = r.get("fd_order")
+            if isinstance(v, bool) or v not in (2, 4, 6):
+                r.fail("fd_order", "must be 2, 4 or 6")
+            out["fd_order"] = int(v)
+    else:
+        if "fd_order" in r.table:
+            r.fail("fd_order", "applies to a CSV trajectory only (table1 has analytic "
+                   "derivatives)")
+        out["duration"] = r.number("duration", None, "s", positive=True)
+        out["rate"] = r.number("rate", None, "Hz", positive=True)
+    return out
+
+
+def _sea(where: str, data: dict, base: Path | None) -> dict:
+    """``[sea]`` and ``[operation]``: types here; values by the sea module's own checks
+    (:func:`_check_sea`, when the Scene is made)."""
+    r = _section(where, data, "sea", SEA_KEYS)
+    sea = {}
+    for key in ("hs", "tp", "heading", "scale", "gamma", "spreading", "highpass"):
+        if key in r.table:
+            sea[key] = r.number(key)
+    if "point" in r.table:
+        sea["point"] = r.vector("point", 3, unit="m")
+    for key in ("seed", "directions"):
+        if key in r.table:
+            v = r.get(key)
+            if isinstance(v, bool) or not isinstance(v, int):
+                r.fail(key, "must be an integer")
+            sea[key] = v
+    if "kind" in r.table:
+        sea["kind"] = r.string("kind")
+    if "vessel" in r.table:
+        vessel = r.string("vessel")
+        from offshore_crane.motion.sea import vessel_names
+
+        if vessel not in vessel_names():
+            p = Path(vessel)
+            if not p.is_absolute() and base is not None:
+                p = base / p
+            if not p.is_file():
+                r.fail("vessel", f"neither a shipped vessel ({', '.join(vessel_names())}) "
+                       f"nor a file {p} (relative paths start at the scene file's folder)")
+            vessel = str(p)
+        sea["vessel"] = vessel
+    o = _section(where, data, "operation", OPERATION_KEYS)
+    operation = None
+    if "waypoints" in o.table:
+        w = o.get("waypoints")
+        if (not isinstance(w, list) or not w or any(
+                not isinstance(row, list) or len(row) != 4 or any(
+                    isinstance(x, bool) or not isinstance(x, (int, float))
+                    or not math.isfinite(x) for x in row) for row in w)):
+            o.fail("waypoints", "must be a list of [t, q7, q8, q9] rows of finite numbers "
+                   "[s, rad, rad, m]")
+        operation = tuple(tuple(float(x) for x in row) for row in w)
+    return dict(sea=sea, operation=operation)
+
+
+def _control(where: str, data: dict) -> dict:
+    """The ``[control]`` section of ``offshore-crane simulate``: checked values, as a dict
+    of :func:`controller`'s and :func:`offshore_crane.simulation.rigid.simulate`'s arguments."""
+    from offshore_crane.simulation.control import LAWS, Controller
+    from offshore_crane.errors import InputError
+    from offshore_crane.simulation.rigid import INTEGRATORS
+
+    r = _section(where, data, "control", CONTROL_KEYS)
+    out: dict = {}
+    if "law" in r.table:
+        out["law"] = r.string("law", choices=LAWS)
+    for key, unit in (("kp", "1/s² or N/m"), ("kd", "1/s or N·s/m"), ("noise_q", "m, rad"),
+                      ("noise_qd", "m/s, rad/s")):
+        if key in r.table:
+            v = r.get(key)
+            out[key] = r.vector(key, 9, unit=unit) if isinstance(v, list) else r.number(
+                key, unit=unit, minimum=0.0)
+    for key in ("lower", "upper", "initial_error"):
+        if key in r.table:
+            v = r.get(key)
+            if key != "initial_error" and isinstance(v, list) and len(v) == 9 and all(
+                    isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
+                out[key] = tuple(float(x) for x in v)   # may hold ±inf
+            else:
+                out[key] = r.vector(key, 9, unit="N·m, N" if key != "initial_error" else
+                                    "m, rad")
+    if "rate" in r.table:
+        out["rate"] = r.number("rate", unit="Hz", positive=True)
+    if "anti_sway" in r.table:
+        out["anti_sway"] = r.number("anti_sway", unit="damping ratio", minimum=0.0)
+    if "step" in r.table:
+        out["step"] = r.number("step", unit="s", positive=True)
+    if "integrator" in r.table:
+        out["integrator"] = r.string("integrator", choices=INTEGRATORS)
+    if "saturation" in r.table:
+        out["saturation"] = r.boolean("saturation", True)
+    if "seed" in r.table:
+        seed = r.get("seed")
+        if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+            r.fail("seed", "must be an integer ≥ 0")
+        out["seed"] = seed
+    if "model" in r.table:
+        model = r.get("model")
+        if not isinstance(model, dict):
+            r.fail("model", "must be a table of robot parameters (the controller's model)")
+        out["model"] = normalised(where, model, "[control] model", flatten=True)
+    try:                                # the law's own checks (gains, limits), named here
+        Controller(**{k: v for k, v in out.items() if k in CONTROLLER_KEYS})
+    except InputError as exc:
+        raise SceneError(f"{where}: [control] {exc}", path=where, name="control") from None
+    return out
+
+
+def _cable(where: str, data: dict) -> dict:
+    """The ``[cable]`` section: :func:`offshore_crane.dynamics.cable.inverse_dynamics`'s
+    ``initial``, ``initial_rate``, ``substeps`` and ``slack``, checked."""
+    from offshore_crane.dynamics.cable import SLACK
+
+    r = _section(where, data, "cable", CABLE_KEYS)
+    out: dict = {}
+    if "initial" in r.table:
+        out["initial"] = r.vector("initial", 2, unit="rad")
+    if "initial_rate" in r.table:
+        out["initial_rate"] = r.vector("initial_rate", 2, unit="rad/s")
+    if "substeps" in r.table:
+        n = r.get("substeps")
+        if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+            r.fail("substeps", "must be an integer ≥ 1 (RK4 steps per sample interval)")
+        out["substeps"] = n
+    if "slack" in r.table:
+        out["slack"] = r.string("slack", choices=SLACK)
+    return out
+
+
+def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) -> Scene:
+    """Build and check a :class:`Scene` from parsed TOML.
+
+    Args:
+        data: The TOML document as a dict.
+        where: Name of the source used in messages (the file path).
+        base: Folder that relative CSV paths start from.
+
+    Raises:
+        SceneError: naming ``where`` and the key.
+    """
+    for key, value in data.items():
+        if isinstance(value, dict) and key not in SECTIONS:
+            raise SceneError(f"{where}: unknown section [{key}]: known sections are "
+                             f"{', '.join(f'[{s}]' for s in SECTIONS)}", path=where, name=key)
+    top = _Reader(where, None, {k: v for k, v in data.items() if k not in SECTIONS},
+                  TOP_KEYS)
+    sub = _section(where, data, "subsystems", SUBSYSTEM_KEYS)
+    control = _control(where, data)
+    cable = _cable(where, data)
+    return Scene(                       # Scene checks how the parts fit (check_scene)
+        name=top.string("name", Path(where).stem),
+        description=top.string("description", ""),
+        path=where, platform=sub.boolean("platform", True),
+        leg_model=sub.string("leg_model", "full", LEG_MODELS),
+        deck_pose=sub.vector("deck_pose", 6, None, "m, rad"), **_robot(where, data, base),
+        gravity=top.vector("gravity", 3, GRAVITY, "m/s²"),
+        outputs=top.names("outputs", ACTUATORS),
+        methods=top.names("methods", METHODS) or ("kane",), control=control, cable=cable,
+        **_trajectory(where, data, base), **_sea(where, data, base))
+
+
+def load_scene(path) -> Scene:
+    """Read and check a scene file.
+
+    Args:
+        path: The TOML file (str or path-like).
+
+    Raises:
+        SceneError: unreadable file, invalid TOML, unknown section or key, bad value; the
+            message names the file and the key.
+    """
+    from offshore_crane.errors import InputError
+    from offshore_crane.io import read_toml
+
+    where = os.fspath(path)
+    try:
+        data = read_toml(where, "scene file")
+    except InputError as exc:
+        raise SceneError(str(exc), path=where) from None
+    return scene_from_dict(data, where, Path(where).parent)

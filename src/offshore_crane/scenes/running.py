@@ -1,0 +1,109 @@
+"""Running a scene: inverse dynamics by each method asked for (the swing with a hanging load)
+and their comparison.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from offshore_crane.conventions import ACTUATORS
+from offshore_crane.scenes.assembly import load_robot, load_trajectory
+from offshore_crane.scenes.scene import Scene
+
+
+@dataclass
+class SceneRun:
+    """A scene's results.
+
+    Attributes:
+        scene: The scene.
+        robot: Its robot.
+        trajectory: The trajectory as solved (deck pose applied).
+        results: ``{method: Result}`` in the order of ``scene.methods``.
+        seconds: ``{method: run time [s]}``.
+    """
+
+    scene: Scene
+    robot: object
+    trajectory: object
+    results: dict
+    seconds: dict
+
+    @property
+    def result(self):
+        """The first method's :class:`~offshore_crane.dynamics.Result`."""
+        return next(iter(self.results.values()))
+
+
+def solve_scene(scene: Scene, robot, traj, method: str, leg_model: str, **options):
+    from offshore_crane.dynamics import solve
+
+    if robot.hybrid.cable is not None:
+        return run_swing(scene, robot, traj, method, **options)
+    return solve(robot, traj.q, traj.qd, traj.qdd, method=method, gravity=scene.gravity,
+                 leg_model=leg_model, outputs=scene.wanted(), t=traj.t, **options)
+
+
+#: The hanging load's path for each scene method: Kane's, or the Pinocchio reference.
+CABLE_METHODS = {"kane": "kane", "rnea": "pinocchio"}
+
+
+def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, checks: bool = True,
+           thresholds=None, **ignored):
+    """A scene with a payload on a cable: :func:`offshore_crane.dynamics.cable.swing` (the
+    ``[cable]`` options; ``backend`` and ``threads`` do not apply), as a
+    :class:`~offshore_crane.dynamics.Result` holding the :class:`CableResult`."""
+    from offshore_crane.dynamics.cable import swing
+    from offshore_crane.dynamics import Result
+    from offshore_crane.robot.kinematics.workspace import Thresholds
+
+    res = swing(robot, traj, method=CABLE_METHODS[method], gravity=scene.gravity,
+                limits=limits, checks=checks, thresholds=thresholds or Thresholds(),
+                **scene.cable)
+    return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
+                  condition=res.condition, gimbal=None, attitude=None,
+                  backend="numba" if method == "kane" else "pinocchio", cable=res)
+
+
+def run(scene: Scene, robot=None, trajectory=None, **options) -> SceneRun:
+    """Solve the scene with each of its methods.
+
+    Args:
+        scene: The scene.
+        robot: Its robot (default :func:`load_robot`).
+        trajectory: Its trajectory (default :func:`load_trajectory`).
+        **options: ``limits``, ``checks``, ``thresholds`` of
+            :func:`offshore_crane.dynamics.solve`.
+
+    Raises:
+        The errors of :func:`offshore_crane.dynamics.solve` and of the loaders.
+    """
+    robot = robot or load_robot(scene)
+    traj = trajectory or load_trajectory(scene, robot)
+    results, seconds = {}, {}
+    for m in scene.methods:
+        t0 = time.perf_counter()
+        results[m] = solve_scene(scene, robot, traj, m, scene.leg_model, **options)
+        seconds[m] = time.perf_counter() - t0
+    return SceneRun(scene, robot, traj, results, seconds)
+
+
+def compare_methods(run_: SceneRun) -> list[tuple[str, float, float, int, int]]:
+    """Each method after the first against the first, over the wanted actuators.
+
+    Returns:
+        ``[(method, max |ΔX|, max |X_first|, relative, sample, column of X), ...]``.
+    """
+    cols = [k for k, n in enumerate(ACTUATORS) if n in run_.result.outputs]
+    ref = run_.result.X[:, cols]
+    scale = np.abs(ref).max()
+    out = []
+    for m, res in list(run_.results.items())[1:]:
+        diff = np.abs(res.X[:, cols] - ref)
+        i, j = np.unravel_index(np.argmax(diff), diff.shape)
+        rel = diff.max() / scale if scale > 0 else diff.max()
+        out.append((m, float(diff.max()), float(scale), float(rel), int(i), cols[j]))
+    return out
