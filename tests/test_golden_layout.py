@@ -24,7 +24,14 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: Arrays whose numerics changed on purpose since cc08b22: name -> relative bound (of
 #: the array's largest magnitude), with the reason.
-MOVED: dict[str, float] = {}
+#:
+#: The computed-torque and gravity-compensating laws solve the leg forces with the
+#: scaled system of inverse dynamics (``dynamics.compiled.leg_system``, rotation rows
+#: times 1/L) instead of the unscaled one: the simulations under those laws move by
+#: round-off, measured 7.1e-17 (sim_q), 1.8e-15 (sim_qd), 1.2e-15 (sim_X), 1.4e-16
+#: (sim_pd_q), 6.5e-14 (sim_pd_X); the issue's bound is 1e-12.
+MOVED: dict[str, float] = {name: 1e-12 for name in ("sim_q", "sim_qd", "sim_X", "sim_pd_q",
+                                                    "sim_pd_X")}
 
 
 def _hold(q_hold):
@@ -90,8 +97,9 @@ def test_result_unchanged_since_cc08b22(now, name):
     with np.load(GOLDEN) as g:
         before = g[name]
     assert now[name].shape == before.shape
+    with np.errstate(invalid="ignore"):
+        moved = float(np.nanmax(np.abs(now[name] - before)) / np.nanmax(np.abs(before)))
     if name in MOVED:
-        scale = np.max(np.abs(before))
-        assert np.max(np.abs(now[name] - before)) <= MOVED[name] * scale
-    else:
-        np.testing.assert_array_equal(now[name], before)   # bit for bit
+        assert moved <= MOVED[name], f"{name} moved by {moved:.3g} relative"
+    else:                                                  # bit for bit
+        np.testing.assert_array_equal(now[name], before, err_msg=f"moved by {moved:.3g}")

@@ -306,6 +306,21 @@ def _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error
 
 
 @njit(**JIT)
+def leg_system(B, J, inv_L, A, rhs):
+    """The leg forces' linear system from the equations of motion, ``Jᵀ Fl = B[0:6]``
+    (``J`` the leg-length Jacobian (6, 6), ``B`` the generalized forces (9,) [N, N·m]),
+    into ``A`` (6, 6) and ``rhs`` (6,) with the rotation rows 3..5 scaled by ``inv_L``
+    = 1/L (L the mean anchor distance from O2 [m]): moments and forces of one size, so
+    that the condition number measures the geometry, not the units. Inverse dynamics
+    (explicit Kane) and the computed-torque law solve this one system."""
+    for r in range(6):
+        f = inv_L if r >= 3 else 1.0
+        rhs[r] = B[r] * f
+        for l in range(6):
+            A[r, l] = J[l, r] * f
+
+
+@njit(**JIT)
 def actuation_minus_bias(B, J, X, n_act, rhs):
     """The right-hand side ``A X − h`` of the equations of motion ``M q̈ + h = A X``:
     ``rhs[r] = Σ_l J[l, r] Fl_l − B[r]`` (r < 6, ``Aᵀ`` of the legs) and
@@ -420,11 +435,7 @@ def _make(stamp):
                              diag, mc)
             for b in range(na):
                 X[k, b] = B[6 + b]
-            for r in range(6):
-                f = iL if r >= 3 else 1.0
-                rhs[r] = B[r] * f
-                for l in range(6):
-                    A[r, l] = J[l, r] * f
+            leg_system(B, J, iL, A, rhs)
             _post(k, q, na, A, rhs, diag, True, want_cond, want_limits, warn, error,
                   lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 

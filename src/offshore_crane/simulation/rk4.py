@@ -13,7 +13,7 @@ from offshore_crane.dynamics import compiled as c
 
 explicit_sample, actuator_coordinates = c.KE.explicit_sample, c.KE.actuator_coordinates
 solve6, cholesky_solve, unpack, check = c.solve6, c.cholesky_solve, c.unpack, c._check
-actuation_minus_bias = c.actuation_minus_bias
+actuation_minus_bias, leg_system = c.actuation_minus_bias, c.leg_system
 tangent_bounds = c.tangent_bounds
 STAMP = c.STAMP
 jit = njit(**c.JIT)
@@ -31,7 +31,10 @@ def _helpers(stamp):
     def law(Cc, g, kind, kp, kd, q, qd, qr, qdr, qddr, Xout, w):
         """The control law at one state, with the controller's model ``Cc`` (``w``: the
         workspace tuple). The model's inverse dynamics comes from its equations of motion:
-        ``B = M q̈_cmd + h``, ``(T1, T2, Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]``."""
+        ``B = M q̈_cmd + h``, ``(T1, T2, Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]`` solved as
+        inverse dynamics solves it (:func:`~offshore_crane.dynamics.compiled.leg_system`,
+        rotation rows scaled; a singular system gives NaN forces, and the run stops as
+        diverged)."""
         if len(stamp) == 0:
             return
         B, J, Mm, store, Vw, Ww, Vs, diag, mc, A, rhs, x, M13, zero, qdd_c, pos, rate, posr, \
@@ -56,10 +59,7 @@ def _helpers(stamp):
                                 diag, mc)
             for b in range(Cc.n_arm):
                 Xout[b] = B[6 + b]
-            for r in range(6):
-                rhs[r] = B[r]
-                for l in range(6):
-                    A[r, l] = J[l, r]
+            leg_system(B, J, 1.0 / Cc.L, A, rhs)
             solve6(A, rhs, x, M13, False)
             for l in range(6):
                 Xout[3 + l] = x[l]
