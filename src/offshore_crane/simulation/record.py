@@ -115,3 +115,13 @@ def steps(duration, step, rate, control_rate) -> tuple[int, int, int]:
                              f"multiple of the step {step} s", name="control_rate")
         hold = int(round(ratio))
     return n_steps, out_every, hold
+
+
+def actuator_power(robot, q: np.ndarray, qd: np.ndarray, X: np.ndarray) -> np.ndarray:
+    """The actuators' power ``Σ X_k · (rate of actuator k)`` ``(N,)`` [W] along ``q, qd``
+    ``(N, 9)`` [m, rad, /s] under forces ``X`` ``(N, 9)`` [N·m, N]: the arm joints' rates
+    and the legs' length rates (:func:`offshore_crane.robot.kinematics.actuator_motion`)."""
+    from offshore_crane.robot.kinematics import actuator_motion
+
+    v = actuator_motion(robot, q, qd)[1]
+    return (X[:, :3] * v[:, :3]).sum(axis=1) + (X[:, 3:] * v[:, 3:]).sum(1)

@@ -188,7 +188,7 @@ def _python_law(robot, duration, reference, q0, qd0, law, gravity, step, rate, l
     """RK4 with a Python controller (module docstring): the law and Kane's forward
     dynamics (:func:`offshore_crane.forward_dynamics`, its one-sample path) at every stage."""
     from offshore_crane.dynamics.forward import forward_dynamics
-    from offshore_crane.robot.kinematics import legs
+    from offshore_crane.simulation.record import actuator_power
     from offshore_crane.validation import as_samples
 
     n_steps, out_every, _ = steps(duration, step, rate, None)
@@ -225,8 +225,7 @@ def _python_law(robot, duration, reference, q0, qd0, law, gravity, step, rate, l
                            saturated=(rec["X_cmd"] < lo) | (rec["X_cmd"] > hi),
                            energy=np.full(n_out, np.nan), power=np.full(n_out, np.nan),
                            integrator="rk4", step=step, info={"controller": "python"})
-    rates = legs(robot, res.q, res.qd).rate
-    res.power = (res.X[:, :3] * res.qd[:, 6:9]).sum(axis=1) + (res.X[:, 3:] * rates).sum(1)
+    res.power = actuator_power(robot, res.q, res.qd, res.X)
     if limits:
         from offshore_crane.robot.kinematics import check_workspace
 

@@ -200,7 +200,7 @@ def _finish(robot, res, sway_acc, g, limits) -> None:
     from the recorded samples (one vectorised pass of the cable's Kane kernel)."""
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
-    from offshore_crane.robot.kinematics import legs
+    from offshore_crane.simulation.record import actuator_power
     from offshore_crane.robot.kinematics import workspace as ws
 
     n = len(res)
@@ -215,8 +215,7 @@ def _finish(robot, res, sway_acc, g, limits) -> None:
             qd11, qdd11, g, False, False, np.inf, np.inf, 0, n, np.empty((n, 9)),
             np.empty((3, 1)), ws.new_health(), F)
     res.tension = F[:, 3]
-    rates = legs(robot.without_hanging_payload(), res.q, res.qd).rate
-    res.power = (res.X[:, :3] * res.qd[:, 6:9]).sum(axis=1) + (res.X[:, 3:] * rates).sum(1)
+    res.power = actuator_power(robot, res.q, res.qd, res.X)
 
 
 def _slack_or_workspace(robot, res, limits):

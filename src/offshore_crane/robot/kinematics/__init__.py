@@ -15,7 +15,8 @@ import numpy as np
 
 from offshore_crane.robot.kinematics import formulas as F
 
-__all__ = ["LegState", "check_workspace", "leg_positions", "legs", "platform_pose"]
+__all__ = ["LegState", "actuator_motion", "check_workspace", "leg_positions", "legs",
+           "platform_pose"]
 
 
 @dataclass
@@ -163,3 +164,40 @@ def check_workspace(robot, q, t=None) -> None:
     health = ws.new_health()
     ws.record_limits(health, limits, q, length, height, theta)
     ws.check_limits(health, limits, q, None if t is None else np.asarray(t, dtype=float))
+
+
+def actuator_motion(robot, q, qd, legs: bool = True):
+    """Position and rate of each actuator's joint.
+
+    The leg lengths and rates are evaluated by the kinematics' one text
+    (:mod:`offshore_crane.robot.kinematics.formulas`: ``attitude``, ``platform_rates``,
+    ``leg_geometry``, ``point_velocity``) on NumPy arrays, vectorised over the samples:
+    ``l_i = |O2 + R s_i − P_i|``, ``l̇_i = u_i · (v + ω × R s_i)``; the same values as
+    :func:`offshore_crane.robot.kinematics.legs` without its partial velocities and frames.
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot`.
+        q, qd: ``(N, 9)`` [m, rad], [m/s, rad/s].
+        legs: False: leave the leg columns NaN (the legs not evaluated).
+
+    Returns:
+        ``(p, v)`` each ``(N, 9)``: ``p = [q7, q8, q9, l1..l6]`` [rad, m] and its rate
+        ``v = [q̇7, q̇8, q̇9, l̇1..l̇6]`` [rad/s, m/s].
+    """
+    N = len(q)
+    p, v = np.full((N, 9), np.nan), np.full((N, 9), np.nan)
+    p[:, :3], v[:, :3] = q[:, 6:9], qd[:, 6:9]
+    if legs:
+        m = robot.hybrid
+        qT, qdT = q.T, qd.T
+        R, w4, w5, _ = F.attitude(qT)
+        omega, _ = F.platform_rates(w4, w5, qdT, qdT)
+        origin, velocity = (qT[0], qT[1], qT[2]), (qdT[0], qdT[1], qdT[2])
+        for i in range(len(m.R_base_U)):
+            U = m.R_base_U[i]
+            r, _, length, _, u, *_ = F.leg_geometry(origin, R, m.p_platform_S[i],
+                                                    m.p_base_P[i], U[:, 0], U[:, 1],
+                                                    U[:, 2])
+            p[:, 3 + i] = length
+            v[:, 3 + i] = F.dot(u, F.point_velocity(velocity, omega, r))
+    return p, v

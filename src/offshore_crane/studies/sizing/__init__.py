@@ -36,9 +36,10 @@ seeds no fit is made: the verdict rests on the largest observed peak and says so
 
 from __future__ import annotations
 
+from offshore_crane.robot.kinematics import actuator_motion
 from offshore_crane.studies.sizing.envelopes import (CAPACITIES, QUANTITIES, CABLE, KINDS,
                                                      POSITION_UNITS, SPEED_UNITS, Envelope,
-                                                     row_columns, stroke_ranges, actuator_motion,
+                                                     row_columns, stroke_ranges,
                                                      envelope, conditions)
 from offshore_crane.studies.sizing.extremes import (MIN_SEEDS, EXPOSURE, gumbel_fit,
                                                     most_probable_maximum)
