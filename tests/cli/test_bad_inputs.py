@@ -542,23 +542,23 @@ CASES = [
     Case("cable-zero-length-argument", "cable.inverse_dynamics(length=0, mass=2)",
          oc.InputError, r"length = 0\.0 m: the cable needs a finite length > 0",
          lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(
-             oc.load_robot(), *_cable_states(), length=0.0, mass=2.0)),
+             oc.load_robot(), **_cable_states(), length=0.0, mass=2.0)),
     Case("cable-nan-sway", "a NaN initial sway", oc.InputError,
          r"initial must be two finite numbers",
-         lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(_crane(), *_cable_states(),
+         lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(_crane(), **_cable_states(),
                                                    initial=(np.nan, 0.0)),
          cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
                           "payload.cable_length=0.5", "--initial-sway", "nan", "0"]),
     Case("cable-singular-sway", "an initial sway on the singular set cos(phi2) = 0",
          oc.InputError, r"lies on the singular set cos\(phi2\) = 0",
-         lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(_crane(), *_cable_states(),
+         lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(_crane(), **_cable_states(),
                                                    initial=(0.0, np.pi / 2)),
          cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
                           "payload.cable_length=0.5", "--initial-sway", "0",
                           "1.5707963267948966"]),
     Case("cable-slack", "gravity pointing up: the cable would have to push",
          oc.SlackCableError, r"the cable goes slack at sample 0",
-         lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(_crane(), *_cable_states(),
+         lib=lambda tmp: oc.dynamics.cable.inverse_dynamics(_crane(), **_cable_states(),
                                                    gravity=(0, 0, 9.81)),
          cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
                           "payload.cable_length=0.5", "--gravity", "0", "0", "9.81"]),
@@ -577,9 +577,9 @@ def _crane():
 
 
 def _cable_states():
-    """``(t, q, qd, qdd)``: 0.1 s of Table 1 at 100 Hz."""
+    """``{q, qd, qdd, t}``: 0.1 s of Table 1 at 100 Hz, as keywords."""
     t = trajectories.time_grid(0.1, 100.0)
-    return (t, *trajectories.table1(t))
+    return dict(zip(("q", "qd", "qdd"), trajectories.table1(t)), t=t)
 
 
 def _params(kind):

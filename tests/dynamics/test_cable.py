@@ -40,7 +40,7 @@ def test_small_oscillation_has_the_pendulum_period(crane):
     harmonic φ0³/192 = 5e-12 rad and RK4's error at 1 ms (~1e-13): bound 5e-11 rad."""
     t, q, qd, qdd = at_rest(crane, 10.0, 1000.0)
     phi0 = 1e-3
-    res = cable.inverse_dynamics(crane, t, q, qd, qdd, initial=(phi0, 0.0))
+    res = cable.inverse_dynamics(crane, q, qd, qdd, initial=(phi0, 0.0), t=t)
     w = np.sqrt(G / LENGTH) * (1 - phi0 ** 2 / 16)
     assert np.abs(res.sway[:, 0] - phi0 * np.cos(w * t)).max() <= 5e-11
     assert np.abs(res.sway[:, 1]).max() == 0.0          # no φ2 motion is excited
@@ -50,7 +50,7 @@ def test_energy_is_conserved_at_rest(crane):
     """Robot at rest, a large swing (0.6, 0.3 rad): T + V of the payload is conserved to
     RK4's error (10 s at 1 ms: measured 8.2e-13 relative; bound 1e-10)."""
     t, q, qd, qdd = at_rest(crane, 10.0, 1000.0)
-    res = cable.inverse_dynamics(crane, t, q, qd, qdd, initial=(0.6, 0.3))
+    res = cable.inverse_dynamics(crane, q, qd, qdd, initial=(0.6, 0.3), t=t)
     (p1, p2), (r1, r2) = res.sway.T, res.sway_rate.T
     energy = (0.5 * MASS * LENGTH ** 2 * (r1 ** 2 * np.cos(p2) ** 2 + r2 ** 2)
               + MASS * G * LENGTH * (1 - np.cos(p1) * np.cos(p2)))
@@ -75,7 +75,7 @@ def test_constant_horizontal_acceleration_tilts_the_pendulum(crane):
         Qdd[:, 0] = a
         return Q, Qd, Qdd
 
-    res = cable.inverse_dynamics(crane, t, *motion(t), reference=motion)
+    res = cable.inverse_dynamics(crane, *motion(t), reference=motion, t=t)
     p, r, acc = res.sway[:, 1], res.sway_rate[:, 1], res.sway_accel[:, 1]
     k = int(np.argmax((r[:-1] > 0) & (r[1:] <= 0)))
     turning = p[k] + r[k] ** 2 / (2 * -acc[k])
@@ -92,14 +92,14 @@ def test_damping_decays_the_swing_at_its_rate():
     robot = oc.load_robot(overrides={"payload.mass": MASS, "payload.cable_length": LENGTH,
                                      "payload.sway_damping": c})
     t, q, qd, qdd = at_rest(robot, 5.0, 1000.0)
-    res = cable.inverse_dynamics(robot, t, q, qd, qdd, initial=(0.0, 1e-4))
+    res = cable.inverse_dynamics(robot, q, qd, qdd, initial=(0.0, 1e-4), t=t)
     wd = w * np.sqrt(1 - zeta ** 2)
     ref = 1e-4 * np.exp(-zeta * w * t) * (np.cos(wd * t) + zeta / np.sqrt(1 - zeta ** 2)
                                           * np.sin(wd * t))
     assert np.abs(res.sway[:, 1] - ref).max() <= 1e-12
-    p = cable.inverse_dynamics(robot, t[:500], q[:500], qd[:500], qdd[:500],
-                               initial=(0.3, 0.2), method="pinocchio")
-    k = cable.inverse_dynamics(robot, t[:500], q[:500], qd[:500], qdd[:500], initial=(0.3, 0.2))
+    p = cable.inverse_dynamics(robot, q[:500], qd[:500], qdd[:500],
+                               initial=(0.3, 0.2), method="pinocchio", t=t[:500])
+    k = cable.inverse_dynamics(robot, q[:500], qd[:500], qdd[:500], initial=(0.3, 0.2), t=t[:500])
     assert np.abs(k.sway - p.sway).max() <= 1e-12          # both read <dynamics damping>
     assert np.abs(k.X - p.X).max() <= 1e-12 * np.abs(p.X).max()
 
@@ -116,7 +116,7 @@ def test_damped_swing_settles_at_the_tilt_of_the_acceleration():
     q[:, 0] = -0.1125 + 0.5 * a * t ** 2
     qd[:, 0] = a * t
     qdd[:, 0] = a
-    res = cable.inverse_dynamics(robot, t, q, qd, qdd)
+    res = cable.inverse_dynamics(robot, q, qd, qdd, t=t)
     assert res.sway[-1, 1] == pytest.approx(np.arctan(a / G), rel=1e-5)
     assert abs(res.sway_rate[-1, 1]) <= 1e-5 * np.arctan(a / G) * np.sqrt(G / L)
     assert np.abs(res.sway[:, 0]).max() <= 1e-15
@@ -126,7 +126,7 @@ def test_at_rest_the_cable_pulls_mg_like_a_welded_payload(crane):
     """Hanging still under a robot at rest: tension m g, and X equal to the rigid robot's
     with the same mass welded at the cable's end (measured: identical to the last bit)."""
     t, q, qd, qdd = at_rest(crane, 0.2, 100.0)
-    res = cable.inverse_dynamics(crane, t, q, qd, qdd)
+    res = cable.inverse_dynamics(crane, q, qd, qdd, t=t)
     welded = oc.load_robot(overrides={"payload.mass": MASS, "payload.com": [0, 0, -LENGTH]})
     X = oc.inverse_dynamics(welded, q, qd, qdd)
     assert np.abs(res.X - X).max() <= 1e-12 * np.abs(X).max()
@@ -170,8 +170,8 @@ def test_kane_equals_pinocchio_along_table1(crane):
     t = time_grid(10 * np.pi, 100.0)
     q, qd, qdd = table1(t)
     args = dict(reference=table1, initial=(0.05, -0.03))
-    k = cable.inverse_dynamics(crane, t, q, qd, qdd, **args)
-    p = cable.inverse_dynamics(crane, t, q, qd, qdd, method="pinocchio", **args)
+    k = cable.inverse_dynamics(crane, q, qd, qdd, **args, t=t)
+    p = cable.inverse_dynamics(crane, q, qd, qdd, method="pinocchio", **args, t=t)
     assert np.abs(k.sway - p.sway).max() <= 1e-6
     assert np.abs(k.X - p.X).max() <= 1e-6 * np.abs(p.X).max()
     assert np.abs(k.tension - p.tension).max() <= 1e-6 * np.abs(p.tension).max()
@@ -191,8 +191,8 @@ def test_sampled_motion_is_interpolated_to_rk4s_accuracy(crane):
     and Table 1's sines are smooth at 100 Hz)."""
     t = time_grid(10.0, 100.0)
     q, qd, qdd = table1(t)
-    a = cable.inverse_dynamics(crane, t, q, qd, qdd, reference=table1, initial=(0.1, 0.0))
-    b = cable.inverse_dynamics(crane, t, q, qd, qdd, initial=(0.1, 0.0))
+    a = cable.inverse_dynamics(crane, q, qd, qdd, reference=table1, initial=(0.1, 0.0), t=t)
+    b = cable.inverse_dynamics(crane, q, qd, qdd, initial=(0.1, 0.0), t=t)
     assert 0 < np.abs(a.sway - b.sway).max() <= 1e-7
 
 
@@ -200,8 +200,8 @@ def test_substeps_converge_at_fourth_order(crane):
     """Halving RK4's step divides the sway error by ~16 (reference: 8 substeps)."""
     t = time_grid(5.0, 100.0)
     q, qd, qdd = table1(t)
-    run = [cable.inverse_dynamics(crane, t, q, qd, qdd, reference=table1, substeps=s,
-                                  initial=(0.2, 0.1)).sway for s in (1, 2, 8)]
+    run = [cable.inverse_dynamics(crane, q, qd, qdd, reference=table1, substeps=s,
+                                  initial=(0.2, 0.1), t=t).sway for s in (1, 2, 8)]
     e1, e2 = (np.abs(r - run[2]).max() for r in run[:2])
     assert 12.0 <= e1 / e2 <= 20.0
 
@@ -244,10 +244,10 @@ def test_slack_cable_is_an_error_or_marked(crane):
     drop = (t >= 0.1) & (t < 0.2)
     qdd[drop, 2] = -15.0
     with pytest.raises(SlackCableError, match=r"slack at sample 10 \(t = 0.1 s\)") as info:
-        cable.inverse_dynamics(crane, t, q, qd, qdd, limits=False)
+        cable.inverse_dynamics(crane, q, qd, qdd, limits=False, t=t)
     assert len(info.value.result) == 10 and info.value.tension < 0
     with pytest.warns(OffshoreCraneWarning, match="slack at 10 samples"):
-        res = cable.inverse_dynamics(crane, t, q, qd, qdd, limits=False, slack="warn")
+        res = cable.inverse_dynamics(crane, q, qd, qdd, limits=False, slack="warn", t=t)
     assert res.slack.sum() == 10 and res.slack[10] and not res.slack[9]
 
 
@@ -256,8 +256,8 @@ def test_singular_sway_stops_with_the_time_and_keeps_the_samples(crane):
     SingularConfigurationError (kind 'sway') naming the sample; the samples before it kept."""
     t, q, qd, qdd = at_rest(crane, 1.0, 100.0)
     with pytest.raises(SingularConfigurationError, match="singular set") as info:
-        cable.inverse_dynamics(crane, t, q, qd, qdd, initial=(0.0, 1.3),
-                               initial_rate=(0.0, 3.0), thresholds=Thresholds(10.0, 50.0))
+        cable.inverse_dynamics(crane, q, qd, qdd, initial=(0.0, 1.3),
+                               initial_rate=(0.0, 3.0), thresholds=Thresholds(10.0, 50.0), t=t)
     exc = info.value
     assert exc.kind == "sway" and exc.index > 0 and len(exc.result) == exc.index
     assert (1 / np.cos(exc.result.sway[:, 1]) ** 2).max() <= 50.0
@@ -277,18 +277,18 @@ def test_singular_sway_stops_with_the_time_and_keeps_the_samples(crane):
 def test_bad_arguments(crane, kwargs, error, match):
     t, q, qd, qdd = at_rest(crane, 0.1, 100.0)
     with pytest.raises(error, match=match):
-        cable.inverse_dynamics(crane, t, q, qd, qdd, **kwargs)
+        cable.inverse_dynamics(crane, q, qd, qdd, **kwargs, t=t)
 
 
 def test_bad_samples(crane):
     t, q, qd, qdd = at_rest(crane, 0.1, 100.0)
     q[3, 4] = np.nan
     with pytest.raises(InputError, match=r"q\[3, 4\] is nan"):
-        cable.inverse_dynamics(crane, t, q, qd, qdd)
+        cable.inverse_dynamics(crane, q, qd, qdd, t=t)
     t2 = t.copy()
     t2[5] += 0.003
     with pytest.raises(InputError, match=r"time axis is not uniform: step 4 .* resample the motion"):
-        cable.inverse_dynamics(crane, t2, *at_rest(crane, 0.1, 100.0)[1:])
+        cable.inverse_dynamics(crane, *at_rest(crane, 0.1, 100.0)[1:], t=t2)
 
 
 def test_rigid_solvers_refuse_a_hanging_payload(crane):
@@ -301,7 +301,8 @@ def test_rigid_solvers_refuse_a_hanging_payload(crane):
         with pytest.raises(ModelError, match="hangs on a cable"):
             call()
     with pytest.raises(ModelError, match="payload is welded"):
-        cable.inverse_dynamics(oc.load_robot(), *at_rest(crane, 0.1, 100.0))
+        t, q, qd, qdd = at_rest(crane, 0.1, 100.0)
+        cable.inverse_dynamics(oc.load_robot(), q, qd, qdd, t=t)
 
 
 @pytest.mark.parametrize("overrides, match", [
@@ -340,7 +341,7 @@ def test_cli_id_with_a_cable(tmp_path, capsys):
     data = np.loadtxt(out, delimiter=",", skiprows=1)
     robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 0.5})
     t = data[:, 0]
-    lib = cable.inverse_dynamics(robot, t, *table1(t), reference=table1, initial=(0.05, 0.0))
+    lib = cable.inverse_dynamics(robot, *table1(t), reference=table1, initial=(0.05, 0.0), t=t)
     assert np.array_equal(data[:, 10:12], lib.sway)
     assert np.array_equal(data[:, 12], lib.tension)
 

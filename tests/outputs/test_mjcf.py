@@ -271,8 +271,8 @@ def test_hanging_load_matches_our_swing_along_table1():
     assert model.joints[9:11] == mjcf.CABLE_JOINTS
     t = trajectories.time_grid(10.0, 100.0)
     q, qd, qdd = trajectories.table1(t)
-    run = cable.inverse_dynamics(hung, t, q, qd, qdd, reference=trajectories.table1,
-                                 initial=(0.1, -0.05))
+    run = cable.inverse_dynamics(hung, q, qd, qdd, reference=trajectories.table1,
+                                 initial=(0.1, -0.05), t=t)
     k = np.arange(0, len(t), 25)
     res = mjcf.forward(model, hung, q[k], qd[k], run.X[k], sway=run.sway[k],
                        sway_rate=run.sway_rate[k])

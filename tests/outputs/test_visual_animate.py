@@ -222,7 +222,7 @@ def test_the_hanging_load_swings_in_the_pictures(tmp_path):
     still = mo.Motion("still", t, *table1(t), source=table1)
     a = mo.hanging_load(robot, still, oc.GRAVITY)
     b = mo.hanging_load(robot, still, oc.GRAVITY, {"initial": (0.4, 0.0)})
-    ref = cable.inverse_dynamics(robot, t, *table1(t), reference=table1, initial=(0.4, 0.0))
+    ref = cable.inverse_dynamics(robot, *table1(t), reference=table1, initial=(0.4, 0.0), t=t)
     np.testing.assert_array_equal(b.sway, ref.sway)
     times = t[-1:]
     imgs = [next(iter(frames(robot, mo.at(m, times), width=160, height=120)[1]))

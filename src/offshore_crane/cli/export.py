@@ -158,8 +158,8 @@ def _check_hanging(model, robot, gravity, say) -> int:
 
     t = trajectories.time_grid(10.0, 100.0)
     q, qd, qdd = trajectories.table1(t)
-    run = cable.inverse_dynamics(robot, t, q, qd, qdd, reference=trajectories.table1,
-                                 gravity=gravity, initial=(0.1, -0.05))
+    run = cable.inverse_dynamics(robot, q, qd, qdd, reference=trajectories.table1,
+                                 gravity=gravity, initial=(0.1, -0.05), t=t)
     k = np.linspace(0, len(t) - 1, CHECK_SAMPLES).astype(int)
     res = forward(model, robot, q[k], qd[k], run.X[k], sway=run.sway[k],
                   sway_rate=run.sway_rate[k])

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, field, fields
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -45,6 +46,11 @@ from offshore_crane.errors import (InputError, ModelError, NumericalError, Singu
                      SlackCableError)
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.validation import as_gravity, as_pair, as_samples, uniform_step
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from offshore_crane.robot import Robot
 
 METHODS = ("kane", "pinocchio")
 SLACK = ("error", "warn")
@@ -219,18 +225,21 @@ def stage_grid(t, q, qd, qdd, reference, substeps: int):
 
 
 # --------------------------------------------------------------------------- public
-def inverse_dynamics(robot, t, q, qd, qdd, *, reference=None, gravity=GRAVITY,
+def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, *,
+                     t: ArrayLike, reference=None, gravity: ArrayLike = GRAVITY,
                      initial=(0.0, 0.0), initial_rate=(0.0, 0.0), substeps: int = 1,
                      slack: str = "error", method: str = "kane", limits: bool = True,
                      checks: bool = True, thresholds: ws.Thresholds = ws.Thresholds(),
-                     length=None, mass=None) -> CableResult:
+                     length: float | None = None, mass: float | None = None) -> CableResult:
     """Actuator forces of the prescribed motion with the payload swinging on its cable.
 
     Args:
         robot: From :func:`offshore_crane.load_robot` with ``payload.cable_length > 0``
             (or give ``length`` and ``mass``).
-        t: ``(N,)`` uniform times [s] (N ≥ 2): RK4 steps along them.
-        q, qd, qdd: ``(N, 9)`` the robot's motion [m, rad], rates, accelerations.
+        q, qd, qdd: ``(N, 9)`` the robot's motion [m, rad], rates, accelerations (in the
+            order of :func:`offshore_crane.inverse_dynamics`).
+        t: ``(N,)`` uniform times [s] (N ≥ 2), keyword: the swing is integrated over
+            time, RK4 steps along them.
         reference: Optional ``reference(t (n,)) -> (q, qd, qdd)`` evaluated at RK4's stage
             times (analytic motions); None: quintic Hermite interpolation of the samples.
         gravity: ``(3,)`` [m/s²], base frame.
@@ -454,8 +463,8 @@ def swing(robot, trajectory, **options) -> CableResult:
     """:func:`inverse_dynamics` of a :class:`~offshore_crane.motion.trajectories.Trajectory`,
     its analytic ``source`` (when it has one) evaluated at RK4's stage times."""
     reference = trajectory.reference if trajectory.source is not None else None
-    return inverse_dynamics(robot, trajectory.t, trajectory.q, trajectory.qd, trajectory.qdd,
-                            reference=reference, **options)
+    return inverse_dynamics(robot, trajectory.q, trajectory.qd, trajectory.qdd,
+                            reference=reference, **options, t=trajectory.t)
 
 
 def warm_up(robot=None) -> list[tuple[str, float]]:
@@ -472,5 +481,5 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
         robot = cable_robot(robot, length=1.0, mass=1.0)
     t = np.array([0.0, 1e-3])
     q = np.repeat(robot.home_pose()[None, :], 2, axis=0)
-    inverse_dynamics(robot, t, q, 0 * q, 0 * q, limits=False)
+    inverse_dynamics(robot, q, 0 * q, 0 * q, limits=False, t=t)
     return [("hanging-load kernels", time.perf_counter() - t0)]

@@ -236,7 +236,7 @@ def hanging_load(robot, motion: Motion, gravity, options: dict | None = None) ->
     Without a cable (``payload.cable_length = 0``) the motion is returned as it is. With
     one, a motion that carries its sway (a run's CSV with ``phi1_rad, phi2_rad``) is kept;
     otherwise the sway and the forces come from
-    ``offshore_crane.dynamics.cable.inverse_dynamics(robot, t, q, qd, qdd, gravity=...)`` (``.sway
+    ``offshore_crane.dynamics.cable.inverse_dynamics(robot, q, qd, qdd, gravity=..., t=t)`` (``.sway
     (N, 2)``, ``.X (N, 9)``), with the motion's analytic source at RK4's stages when it has
     one, and ``options`` (a scene's ``[cable]``: initial sway, substeps, slack policy).
 
@@ -250,8 +250,8 @@ def hanging_load(robot, motion: Motion, gravity, options: dict | None = None) ->
     from offshore_crane.dynamics import cable
 
     full = with_rates(motion)
-    run = cable.inverse_dynamics(robot, full.t, full.q, full.qd, full.qdd, gravity=gravity,
-                                 reference=motion.source, **(options or {}))
+    run = cable.inverse_dynamics(robot, full.q, full.qd, full.qdd, gravity=gravity,
+                                 reference=motion.source, **(options or {}), t=full.t)
     return replace(motion, sway=np.asarray(run.sway), X=np.asarray(run.X))
 
 

@@ -103,7 +103,7 @@ def _static_forces(robot, q: np.ndarray, gravity, sway=None) -> np.ndarray:
         from offshore_crane.dynamics import cable
 
         rest = np.repeat(q[None], 2, axis=0)
-        res = cable.inverse_dynamics(robot, np.array([0.0, 1e-3]), rest, 0 * rest, 0 * rest,
+        res = cable.inverse_dynamics(robot, rest, 0 * rest, 0 * rest, t=np.array([0.0, 1e-3]),
                                      gravity=gravity, initial=(0.0, 0.0) if sway is None
                                      else np.reshape(sway, 2), limits=False)
         return np.asarray(res.X)[0]
