@@ -31,6 +31,7 @@ from offshore_crane.errors import InputError, SingularConfigurationError
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.validation import as_gravity, as_samples
 from offshore_crane.dynamics.constants import robot_arrays
+from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded, thread_count
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -82,8 +83,6 @@ _DEFAULT_THRESHOLDS = ws.Thresholds()
 def _run(robot, q, qd, X, gravity, terms: Terms, *, checks: bool = True, limits: bool = True,
          thresholds: ws.Thresholds = _DEFAULT_THRESHOLDS, t=None,
          threads: int = 1) -> EquationsOfMotion:
-    from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded, thread_count
-
     c = compiled_kernels()
     q, single = as_samples("q", q, finite=False)
     N = q.shape[0]
@@ -158,8 +157,6 @@ def _lean(robot, q, qd, X, gravity):
     is unusual (then the general path runs, and reports)."""
     if not (_is_state(q) and _is_state(qd) and _is_state(X)):
         return None
-    from offshore_crane.dynamics.runtime import compiled_kernels
-
     arrays = robot_arrays(robot)
     if arrays.kane.n_arm != 3:
         return None
@@ -169,7 +166,8 @@ def _lean(robot, q, qd, X, gravity):
     health = ws.new_health()
     t = _DEFAULT_THRESHOLDS
     compiled_kernels().forward(arrays.flat, arrays.layout, arrays.prismatic, q[None], qd[None],
-                               X[None], g, *ACCELERATIONS, True, True, t.warn, t.error,
+                               X[None], g, True, False, False, False,  # ACCELERATIONS
+                               True, True, t.warn, t.error,
                                0, 1, qdd, _UNUSED99, _UNUSED9, _UNUSED99, kappa, health)
     return qdd[0] if ws.is_clean(health) else None
 
