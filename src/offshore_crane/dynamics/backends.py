@@ -67,11 +67,22 @@ def bind(math_functions: dict, wrap=lambda f: f) -> types.SimpleNamespace:
     return types.SimpleNamespace(**out)
 
 
+#: Modules inlined into the compiled loops besides the formulas (read, not imported:
+#: importing them would import Numba).
+INLINED = ("offshore_crane.dynamics.integrator",)
+
+
 def source_stamp() -> str:
-    """A hash of the formula modules' source: compiled code that inlines them keys on it."""
+    """A hash of the source of the formula modules and of :data:`INLINED`: compiled code
+    that inlines them keys its disk cache on it, so that an edit rebuilds it."""
+    import importlib.util
+    from pathlib import Path
+
     h = hashlib.sha256()
     for m in MODULES:
         h.update(inspect.getsource(m).encode())
+    for name in INLINED:
+        h.update(Path(importlib.util.find_spec(name).origin).read_bytes())
     return h.hexdigest()[:16]
 
 

@@ -24,7 +24,7 @@ from offshore_crane.dynamics import backends
 from offshore_crane.dynamics.constants import FIELDS
 from offshore_crane.dynamics.formulas import KaneConstants
 from offshore_crane.dynamics.linear import (actuation_minus_bias, cholesky_solve,  # noqa: F401
-                                            leg_system, solve6)
+                                            kinetic_energy, leg_system, solve6)
 from offshore_crane.dynamics.jit import JIT
 
 

@@ -128,3 +128,15 @@ def cholesky_solve(Mm, b, n, x, L):
             s_ -= L[k, i] * x[k]
         x[i] = s_ / L[i, i]
     return True
+
+
+@njit(**JIT)
+def kinetic_energy(Mm, qd, n):
+    """``½ q̇ᵀ M q̇`` [J] of the first ``n`` coordinates, reading the lower triangle of the
+    mass matrix ``Mm`` (what the explicit Kane pass fills) [kg, kg·m, kg·m²]."""
+    kin = 0.0
+    for r in range(n):
+        kin += 0.5 * Mm[r, r] * qd[r] * qd[r]
+        for s in range(r):
+            kin += Mm[r, s] * qd[r] * qd[s]
+    return kin

@@ -188,6 +188,7 @@ def _python_law(robot, duration, reference, q0, qd0, law, gravity, step, rate, l
     """RK4 with a Python controller (module docstring): the law and Kane's forward
     dynamics (:func:`offshore_crane.forward_dynamics`, its one-sample path) at every stage."""
     from offshore_crane.dynamics.forward import forward_dynamics
+    from offshore_crane.dynamics.integrator import rk4_step
     from offshore_crane.simulation.record import actuator_power
     from offshore_crane.validation import as_samples
 
@@ -217,10 +218,7 @@ def _python_law(robot, duration, reference, q0, qd0, law, gravity, step, rate, l
             rec["X_cmd"][k], rec["X"][k] = X_cmd, X
         if s == n_steps:
             break
-        k2 = f(2 * s + 1, y + 0.5 * step * k1)[0]
-        k3 = f(2 * s + 1, y + 0.5 * step * k2)[0]
-        k4 = f(2 * s + 2, y + step * k3)[0]
-        y = y + step / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        y = rk4_step(lambda i, x: f(i, x)[0], 2 * s, y, k1, step)
     res = SimulationResult(t=tt[::2][::out_every][:n_out], **rec,
                            saturated=(rec["X_cmd"] < lo) | (rec["X_cmd"] > hi),
                            energy=np.full(n_out, np.nan), power=np.full(n_out, np.nan),

@@ -10,10 +10,12 @@ import numpy as np
 from numba import njit
 
 from offshore_crane.dynamics import compiled as c
+from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 
 explicit_sample, actuator_coordinates = c.KE.explicit_sample, c.KE.actuator_coordinates
 solve6, cholesky_solve, unpack, check = c.solve6, c.cholesky_solve, c.unpack, c._check
 actuation_minus_bias, leg_system = c.actuation_minus_bias, c.leg_system
+kinetic_energy = c.kinetic_energy
 tangent_bounds = c.tangent_bounds
 STAMP = c.STAMP
 jit = njit(**c.JIT)
@@ -161,10 +163,7 @@ def _runner(stamp):
             if step % out_every == 0 or stop != OK:
                 o = step // out_every if stop == OK else (step + out_every - 1) // out_every
                 if o < Q.shape[0]:
-                    T = 0.0
-                    for r in range(n):
-                        for c_ in range(n):
-                            T += 0.5 * qd[r] * (Mm[r, c_] if c_ <= r else Mm[c_, r]) * qd[c_]
+                    T = kinetic_energy(Mm, qd, n)
                     pw = 0.0
                     for b in range(na):
                         pw += Xa[b] * qd[6 + b]
@@ -192,39 +191,35 @@ def _runner(stamp):
             if step == n_steps:
                 break
             # RK4 stages
-            for j in range(9):
-                k1q[j] = qd[j]
-                qs[j] = q[j] + 0.5 * h * qd[j]
-                qds[j] = qd[j] + 0.5 * h * k1v[j]
+            k1q[:] = qd
+            rk4_stage(q, k1q, 0.5 * h, qs)
+            rk4_stage(qd, k1v, 0.5 * h, qds)
             if hold == 0:
                 law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], Xc,
                     wl)
                 for j in range(9):
                     Xa[j] = min(max(Xc[j], lo[j]), hi[j])
             accel(C, gt, n, qs, qds, Xa, k2v, ws)
-            for j in range(9):
-                k2q[j] = qds[j]
-                qs[j] = q[j] + 0.5 * h * qds[j]
-                qds[j] = qd[j] + 0.5 * h * k2v[j]
+            k2q[:] = qds
+            rk4_stage(q, k2q, 0.5 * h, qs)
+            rk4_stage(qd, k2v, 0.5 * h, qds)
             if hold == 0:
                 law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], Xc,
                     wl)
                 for j in range(9):
                     Xa[j] = min(max(Xc[j], lo[j]), hi[j])
             accel(C, gt, n, qs, qds, Xa, k3v, ws)
-            for j in range(9):
-                k3q[j] = qds[j]
-                qs[j] = q[j] + h * qds[j]
-                qds[j] = qd[j] + h * k3v[j]
+            k3q[:] = qds
+            rk4_stage(q, k3q, h, qs)
+            rk4_stage(qd, k3v, h, qds)
             if hold == 0:
                 law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 2], qdr[i0 + 2], qddr[i0 + 2], Xc,
                     wl)
                 for j in range(9):
                     Xa[j] = min(max(Xc[j], lo[j]), hi[j])
             accel(C, gt, n, qs, qds, Xa, k4v, ws)
-            for j in range(9):
-                q[j] += h / 6.0 * (k1q[j] + 2.0 * k2q[j] + 2.0 * k3q[j] + qds[j])
-                qd[j] += h / 6.0 * (k1v[j] + 2.0 * k2v[j] + 2.0 * k3v[j] + k4v[j])
+            rk4_combine(q, h, k1q, k2q, k3q, qds)              # k4 of q is the stage's q̇
+            rk4_combine(qd, h, k1v, k2v, k3v, k4v)
 
     return run
 

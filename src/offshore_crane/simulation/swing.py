@@ -73,6 +73,7 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
     from offshore_crane.dynamics.runtime import compiled_kernels
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
+    from offshore_crane.dynamics.integrator import rk4_step
     from offshore_crane.simulation.record import SimulationResult, reference_grid, steps
 
     controller = controller or Controller()
@@ -164,10 +165,7 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
                 break
         if s == n_steps:
             break
-        k2 = f(2 * s + 1, y + 0.5 * step * k1, held)[0]
-        k3 = f(2 * s + 1, y + 0.5 * step * k2, held)[0]
-        k4 = f(2 * s + 2, y + step * k3, held)[0]
-        y = y + step / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        y = rk4_step(lambda i, x: f(i, x, held)[0], 2 * s, y, k1, step)
     t_out = tt[::2][::out_every][:n_out]
     res = SimulationResult(t=t_out, **rec, saturated=sat, energy=E, power=np.full(n_out, 0.0),
                            integrator="rk4", step=step, sway=sway, sway_rate=sway_rate,

@@ -26,10 +26,12 @@ from numba import njit
 
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.formulas import STORE_WIDTH
+from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 
 tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_force
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
 explicit_sample, cholesky_solve, solve6 = c.KE.explicit_sample, c.cholesky_solve, c.solve6
+kinetic_energy = c.kinetic_energy
 actuation_minus_bias = c.actuation_minus_bias
 #: One sample at a time from Python (the simulation's law): not inlined (compiles in
 #: seconds rather than the inlined driver's ~20 s, at no cost that matters here).
@@ -143,17 +145,13 @@ def _make(stamp):
                 break
             tip(C, Qh, Qdh, Qddh, 2 * s + 1, q, qd, qdd, Tm)
             tip(C, Qh, Qdh, Qddh, 2 * s + 2, q, qd, qdd, T1)
-            for j in range(4):
-                ys[j] = y[j] + 0.5 * h * k1[j]
+            rk4_stage(y, k1, 0.5 * h, ys)
             rhs(C, gt, damp, Tm, ys, k2)
-            for j in range(4):
-                ys[j] = y[j] + 0.5 * h * k2[j]
+            rk4_stage(y, k2, 0.5 * h, ys)
             rhs(C, gt, damp, Tm, ys, k3)
-            for j in range(4):
-                ys[j] = y[j] + h * k3[j]
+            rk4_stage(y, k3, h, ys)
             rhs(C, gt, damp, T1, ys, k4)
-            for j in range(4):
-                y[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+            rk4_combine(y, h, k1, k2, k3, k4)
             for j in range(18):
                 T0[j] = T1[j]
 
@@ -227,12 +225,7 @@ def _make(stamp):
         rhs[n - 2] = -damp[0] * qd[n - 2] - B[n - 2]
         rhs[n - 1] = -damp[1] * qd[n - 1] - B[n - 1]
         ok = cholesky_solve(Mm, rhs, n, a, L)
-        kin = 0.0
-        for r in range(n):
-            kin += 0.5 * Mm[r, r] * qd[r] * qd[r]
-            for s_ in range(r):
-                kin += Mm[r, s_] * qd[r] * qd[s_]
-        energy[0] = kin
+        energy[0] = kinetic_energy(Mm, qd, n)
         energy[1] = -(g[0] * mc[0, 0] + g[1] * mc[0, 1] + g[2] * mc[0, 2])
         return ok
 
