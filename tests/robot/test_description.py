@@ -381,7 +381,7 @@ def test_published_inertia_as_transcribed_is_refused(tmp_path):
 
 
 @pytest.mark.parametrize("content, match", [
-    (b"mass = \xff\n", r"line 1: not UTF-8 text \(byte 0xff\)"),
+    (b"mass = \xff\n", r"line 1, column 8: byte 0xff is not UTF-8: save the robot description"),
     (b"[platform\nmass = 1\n", r"not valid TOML"),
 ])
 def test_unreadable_files(tmp_path, content, match):

@@ -9,8 +9,9 @@ from dataclasses import replace
 import numpy as np
 
 from offshore_crane.errors import SceneError
+from offshore_crane.io import toml_value
 from offshore_crane.scenes.keys import (CONTROLLER_KEYS, SCENE_FIELDS, SEA_DURATION, SEA_RATE,
-                                        plain, scene_field)
+                                        scene_field)
 from offshore_crane.scenes.scene import Scene, sea_arguments
 
 
@@ -98,9 +99,9 @@ def with_robot_overrides(scene: Scene, overrides: dict, source: str = "--set") -
     clash = conflicts(scene.robot, overrides)
     if clash:
         c = clash[0]
-        raise SceneError(f"{where}: {source} {c.field} = {plain(c.cli)} contradicts the "
+        raise SceneError(f"{where}: {source} {c.field} = {toml_value(c.cli)} contradicts the "
                          f"scene's {_field_owner(scene, c.field)} = "
-                         f"{plain(c.scene)}: change the scene or drop the {source}",
+                         f"{toml_value(c.scene)}: change the scene or drop the {source}",
                          path=scene.path, name=c.field)
     robot = {**scene.robot, **overrides}
     return replace(scene, robot=robot, arm=None, payload=None,

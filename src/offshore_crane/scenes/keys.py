@@ -53,17 +53,6 @@ def is_finite_vector(v, n: int) -> bool:
     return isinstance(v, (tuple, list)) and len(v) == n and all(_finite(x) for x in v)
 
 
-def plain(value) -> str:
-    """``value`` as TOML, floats in their shortest form (2, not 2.0)."""
-    if isinstance(value, float) and math.isfinite(value):
-        return f"{value:g}" if float(f"{value:g}") == value else repr(value)
-    if isinstance(value, (list, tuple)):
-        return "[" + ", ".join(plain(v) for v in value) + "]"
-    if isinstance(value, dict):
-        return "{ " + ", ".join(f"{k} = {plain(v)}" for k, v in value.items()) + " }"
-    return toml_value(value)
-
-
 def same_value(a, b) -> bool:
     from offshore_crane.robot.overrides import conflicts
 

@@ -15,7 +15,7 @@ from offshore_crane.io import toml_value
 from offshore_crane.scenes.keys import (CABLE_KEYS, CONTROLLER_KEYS, CONTROL_KEYS, INERTIA_KEYS,
                                         OPERATION_KEYS, PAYLOAD_KEYS, SEA_KEYS, SECTIONS,
                                         SUBSYSTEM_KEYS, TOP_KEYS, TRAJECTORY_KEYS, normalised,
-                                        plain, same_value, scene_field)
+                                        same_value, scene_field)
 from offshore_crane.scenes.scene import Scene
 
 
@@ -153,8 +153,8 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
     payload.update(normalised(where, {"actuators": actuators}, "[actuators]", flatten=True))
     for name, value in normalised(where, payload, None).items():
         if name in overrides and not same_value(overrides[name], value):
-            raise SceneError(f"{where}: {scene_field(name)} = {plain(value)} contradicts "
-                             f"[robot] {name} = {plain(overrides[name])}: give it once",
+            raise SceneError(f"{where}: {scene_field(name)} = {toml_value(value)} contradicts "
+                             f"[robot] {name} = {toml_value(overrides[name])}: give it once",
                              path=where, name=name)
         overrides[name] = value
     return dict(robot=overrides, robot_description=description)

@@ -12,7 +12,7 @@ from offshore_crane.dynamics import LEG_MODELS, METHODS
 from offshore_crane.errors import SceneError
 from offshore_crane.io import toml_value
 from offshore_crane.scenes.keys import (INERTIA_KEYS, SEA_KEYS, SEA_REQUIRED, is_finite_vector,
-                                        normalised, plain, same_value)
+                                        normalised, same_value)
 
 
 @dataclass(frozen=True)
@@ -167,8 +167,8 @@ def _check_robot(scene: "Scene") -> None:
     if own:
         for name, value in normalised(where, own, None).items():
             if name in robot and not same_value(robot[name], value):
-                raise SceneError(f"{where}: {name} = {plain(value)} contradicts robot "
-                                 f"{name} = {plain(robot[name])}: give it once",
+                raise SceneError(f"{where}: {name} = {toml_value(value)} contradicts robot "
+                                 f"{name} = {toml_value(robot[name])}: give it once",
                                  path=scene.path, name=name)
             robot[name] = value
         spec = _resolve(scene, robot)

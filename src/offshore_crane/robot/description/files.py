@@ -29,30 +29,19 @@ def default_description() -> Path:
 
 
 def read_toml(path) -> dict:
-    """Parse a description file.
+    """Parse a description file (:func:`offshore_crane.io.read_toml`).
 
     Raises:
-        DescriptionError: unreadable file, not UTF-8, not TOML (naming the file).
+        DescriptionError: unreadable file, not UTF-8, not TOML (naming the file, and the
+            line and column of a bad byte).
     """
-    import tomllib
+    from offshore_crane.errors import InputError
+    from offshore_crane.io import read_toml as read
 
-    where = os.fspath(path)
     try:
-        data = Path(where).read_bytes()
-    except OSError as exc:
-        raise DescriptionError(f"{where}: cannot read the robot description: "
-                               f"{exc.strerror or exc}", path=where) from None
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        line = data[:exc.start].count(b"\n") + 1
-        raise DescriptionError(f"{where}: line {line}: not UTF-8 text (byte "
-                               f"0x{data[exc.start]:02x}); save the file as UTF-8",
-                               path=where) from None
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise DescriptionError(f"{where}: not valid TOML: {exc}", path=where) from None
+        return read(path, "robot description")
+    except InputError as exc:
+        raise DescriptionError(str(exc), path=os.fspath(path)) from None
 
 
 def label(path: str) -> str:

@@ -12,6 +12,7 @@ import os
 from dataclasses import dataclass, replace
 
 from offshore_crane.errors import GridError
+from offshore_crane.io import toml_value
 
 
 #: Grid keys that set the scene's ``[sea]`` (full scale): Hs [m], Tp [s], heading [deg],
@@ -82,10 +83,6 @@ def load_grid(path) -> dict:
     return _flatten(data, where)
 
 
-def _plain(v) -> str:
-    return json.dumps(v) if not isinstance(v, float) else f"{v:g}"
-
-
 def check_grid(scene, grid: dict, where: str = "grid") -> Grid:
     """Check a grid against a scene, value by value, before anything runs.
 
@@ -113,8 +110,8 @@ def check_grid(scene, grid: dict, where: str = "grid") -> Grid:
     robot_keys, sea, values = [], [], {}
     for key, raw in grid.items():
         if not isinstance(raw, (list, tuple)):
-            raise GridError(f"{where}: {key} = {_plain(raw)}: must be a list of values, "
-                            f"e.g. {key} = [{_plain(raw)}]", path=where, key=key)
+            raise GridError(f"{where}: {key} = {toml_value(raw)}: must be a list of values, "
+                            f"e.g. {key} = [{toml_value(raw)}]", path=where, key=key)
         if not raw:
             raise GridError(f"{where}: {key} = []: the list is empty: give at least one "
                             "value (a grid's cases are the product of its lists)",
@@ -143,20 +140,20 @@ def check_grid(scene, grid: dict, where: str = "grid") -> Grid:
             bad = isinstance(v, bool) or not isinstance(v, (int, float))
             if key == "seed":
                 if bad or not isinstance(v, int) or v < 0:
-                    raise GridError(f"{where}: seed[{i}] = {_plain(v)}: must be an integer "
+                    raise GridError(f"{where}: seed[{i}] = {toml_value(v)}: must be an integer "
                                     "≥ 0", path=where, key=key, index=i)
                 checked.append(int(v))
                 continue
             if bad or not math.isfinite(v):
-                raise GridError(f"{where}: {key}[{i}] = {_plain(v)}: must be a finite "
+                raise GridError(f"{where}: {key}[{i}] = {toml_value(v)}: must be a finite "
                                 "number", path=where, key=key, index=i)
             checked.append(float(v))
         if len(set(checked)) != len(checked):
-            raise GridError(f"{where}: {key} = {_plain(list(raw))}: names a value twice",
+            raise GridError(f"{where}: {key} = {toml_value(list(raw))}: names a value twice",
                             path=where, key=key)
         for i, v in enumerate(checked):         # the scene's own checks, value by value
             try:
-                case_scene(scene, {name: v}, origin=f"{where}: {key}[{i}] = {_plain(v)}")
+                case_scene(scene, {name: v}, origin=f"{where}: {key}[{i}] = {toml_value(v)}")
             except (SceneError, DescriptionError) as exc:
                 raise GridError(str(exc), path=where, key=key, index=i) from None
         values[name] = tuple(checked)
