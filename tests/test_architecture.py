@@ -180,3 +180,14 @@ def test_no_name_shadows_a_sub_module():
             if value is not None and not inspect.ismodule(value):
                 bad.append(f"{module}.{name} is {type(value).__name__}, not the sub-module")
     assert not bad, "\n".join(bad)
+
+
+def test_matplotlib_is_set_up_in_one_place_and_never_in_the_cli():
+    """Figures belong to ``outputs``: one function sets matplotlib up
+    (``outputs.report.pyplot``, Agg backend) and no CLI module draws."""
+    setups = [str(p.relative_to(PACKAGE)) for p, _, _ in _modules()
+              if "matplotlib.use(" in p.read_text(encoding="utf-8")]
+    assert setups == ["outputs/report.py"], setups
+    drawing = [str(p.relative_to(PACKAGE)) for p in (PACKAGE / "cli").glob("*.py")
+               if "matplotlib" in p.read_text(encoding="utf-8")]
+    assert not drawing, drawing

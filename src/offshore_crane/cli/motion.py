@@ -10,12 +10,6 @@ from __future__ import annotations
 
 from offshore_crane.conventions import COORDINATES, COORDINATE_UNITS
 
-#: Plotted spectra: heave, roll, pitch (columns of q).
-SPECTRUM_COLUMNS = (2, 3, 4)
-#: Welch segment [model-scale s]: long enough to resolve the wave peak (Tp/√λ ~ 2 s at
-#: 1:20) with ~0.05 Hz bins, short enough to average several segments over a minute.
-WELCH_SEGMENT_S = 20.48
-
 
 def add_parser(sub) -> None:
     from offshore_crane.conventions import SPECTRA
@@ -134,60 +128,8 @@ def run(args) -> int:
             trajectories.write_csv(outputs["--out"], t, traj.q, traj.qd, traj.qdd)
         say(f"wrote {args.out}")
     if "--plot" in outputs:
-        plot(outputs["--plot"], scene, traj)
+        from offshore_crane.outputs.plots import sea_motion_figure
+
+        sea_motion_figure(outputs["--plot"], scene, traj)
         say(f"wrote {args.plot}")
     return 0
-
-
-def plot(target, scene, traj) -> None:
-    """Left: q1..q6 over time; right: for heave, roll and pitch, the Welch estimate of the
-    record's spectrum over the target ``S |RAO|²`` (model scale).
-
-    Args:
-        target: Path or :class:`~offshore_crane.io.Target` of the figure.
-        scene: The ``source = "sea"`` scene. traj: Its trajectory.
-    """
-    import numpy as np
-
-    from offshore_crane.errors import require
-    from offshore_crane.outputs.report import save_figure
-    from offshore_crane.scenes import sea_arguments
-    from offshore_crane.motion.sea import response_spectrum, welch
-
-    matplotlib = require("matplotlib", "matplotlib", "--plot")
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    motion = traj.source
-    args = {k: v for k, v in sea_arguments(scene).items()
-            if k not in ("operation", "seed", "highpass", "scale")}
-    scale = motion.scale
-    fig = plt.figure(figsize=(12, 8), constrained_layout=True)
-    grid = fig.add_gridspec(6, 2)
-    t, q = traj.t, traj.q
-    for k in range(6):
-        ax = fig.add_subplot(grid[k, 0])
-        ax.plot(t, q[:, k], lw=0.8)
-        ax.set_ylabel(f"{COORDINATES[k]} [{COORDINATE_UNITS[k]}]")
-        ax.grid(True, alpha=0.3)
-        if k < 5:
-            ax.tick_params(labelbottom=False)
-    ax.set_xlabel("time [s] (model scale)")
-    segment = int(min(len(t), round(WELCH_SEGMENT_S * motion.rate)))
-    segment -= segment % 2
-    omega, S = welch(q[:, list(SPECTRUM_COLUMNS)], motion.rate, segment)
-    expected = response_spectrum(omega[1:], scale=scale, **args)
-    peak = 2.0 * np.pi / (args["tp"] / np.sqrt(scale))     # model-scale peak [rad/s]
-    names = ("heave q3 [m²·s/rad]", "roll q4 [rad²·s/rad]", "pitch q5 [rad²·s/rad]")
-    for i, (col, name) in enumerate(zip(SPECTRUM_COLUMNS, names)):
-        ax = fig.add_subplot(grid[2 * i:2 * i + 2, 1])
-        ax.plot(omega[1:], S[1:, i], lw=1.0, label="Welch estimate of the record")
-        ax.plot(omega[1:], expected[:, col], lw=1.5, ls="--", color="k",
-                label="target S |RAO|² (model scale)")
-        ax.set_ylabel(name)
-        ax.set_xlim(0.0, 4.0 * peak)
-        ax.grid(True, alpha=0.3)
-        ax.legend(loc="upper right", fontsize=8)
-    ax.set_xlabel("frequency ω [rad/s] (model scale)")
-    fig.suptitle(f"offshore-crane: {traj.name}")
-    save_figure(fig, target)

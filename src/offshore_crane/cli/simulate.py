@@ -143,8 +143,10 @@ def run(args) -> int:
                       np.column_stack([res.t, res.q, res.q_ref, res.X, res.sway, res.tension]))
         say(f"wrote {args.out}" + (f" ({len(res)} samples, up to the stop)" if stopped else ""))
     if "--plot" in outputs:
-        plot(outputs["--plot"], res, title=f"offshore-crane simulate: {traj.name}, "
-             f"{controller.law}")
+        from offshore_crane.outputs.plots import simulation_figure
+
+        simulation_figure(outputs["--plot"], res, title=f"offshore-crane simulate: {traj.name}, "
+                          f"{controller.law}")
         say(f"wrote {args.plot}")
     if stopped is not None:
         raise stopped
@@ -176,35 +178,3 @@ def summary(res) -> str:
                      f"{late:.4g} rad over the last second; cable tension "
                      f"{np.nanmin(res.tension):.4g}..{np.nanmax(res.tension):.4g} N")
     return "\n".join(lines)
-
-
-def plot(target, res, title: str = "") -> None:
-    """Tracking errors (translations, rotations) and applied forces against time."""
-    from offshore_crane.errors import require
-    from offshore_crane.outputs.report import finish_figure
-
-    matplotlib = require("matplotlib", "matplotlib", "--plot")
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    n = 4 if res.sway is None else 5
-    fig, axes = plt.subplots(n, 1, figsize=(8, 2.5 * n), sharex=True, constrained_layout=True)
-    for j in (0, 1, 2, 8):
-        axes[0].plot(res.t, res.error[:, j] * 1e3, label=COORDINATES[j])
-    axes[0].set_ylabel("error [mm]")
-    for j in range(3, 8):
-        axes[1].plot(res.t, res.error[:, j] * 1e3, label=COORDINATES[j])
-    axes[1].set_ylabel("error [mrad]")
-    for k in range(3, 9):
-        axes[2].plot(res.t, res.X[:, k], label=ACTUATORS[k])
-    axes[2].set_ylabel("leg force [N]")
-    for k in range(3):
-        axes[3].plot(res.t, res.X[:, k], label=ACTUATORS[k])
-    axes[3].set_ylabel("arm [N·m, N]")
-    if res.sway is not None:
-        import numpy as np
-
-        axes[4].plot(res.t, np.degrees(res.sway[:, 0]), label="phi1")
-        axes[4].plot(res.t, np.degrees(res.sway[:, 1]), label="phi2")
-        axes[4].set_ylabel("sway [deg]")
-    finish_figure(fig, axes, target, title)

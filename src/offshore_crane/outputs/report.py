@@ -81,13 +81,25 @@ def cable_summary(cable) -> str:
     return "\n".join(lines)
 
 
+def pyplot(purpose: str = "--plot"):
+    """``matplotlib.pyplot`` on the non-interactive Agg backend (files only, no display),
+    imported on first use; the one matplotlib set-up of the package.
+
+    Raises:
+        BackendMissingError: matplotlib is not installed (naming ``purpose``).
+    """
+    matplotlib = require("matplotlib", "matplotlib", purpose)
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
 def plot(path, t: np.ndarray, X: np.ndarray, title: str = "", cable=None) -> None:
     """Figure like the paper's Fig. 3: leg forces, arm torques and slider force vs time;
     with a :class:`~offshore_crane.dynamics.cable.CableResult`, a panel of the sway angles and one
     of the tension."""
-    matplotlib = require("matplotlib", "matplotlib", "--plot")
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     n = 3 if cable is None else 5
     fig, axes = plt.subplots(n, 1, figsize=(8, 3 * n), sharex=True, constrained_layout=True)

@@ -16,17 +16,8 @@ import math
 import numpy as np
 
 from offshore_crane.conventions import ACTUATORS
+from offshore_crane.outputs.report import pyplot
 from offshore_crane.studies.sizing import CAPACITIES
-
-
-def _pyplot():
-    from offshore_crane.errors import require
-
-    matplotlib = require("matplotlib", "matplotlib", "--plot")
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def utilisation_chart(target, utilisation, title: str = "") -> None:
@@ -35,7 +26,7 @@ def utilisation_chart(target, utilisation, title: str = "") -> None:
     has no bar."""
     from offshore_crane.outputs.report import save_figure
 
-    plt = _pyplot()
+    plt = pyplot()
     util = np.asarray(utilisation, dtype=float)
     rows = [k for k in range(9) if not np.isnan(util[k]).all()]
     fig, ax = plt.subplots(figsize=(9, 4.2), constrained_layout=True)
@@ -67,7 +58,7 @@ def operability_diagram(target, table, title: str = "", operability=None) -> Non
     """
     from offshore_crane.outputs.report import save_figure
 
-    plt = _pyplot()
+    plt = pyplot()
     from matplotlib.colors import TwoSlopeNorm
 
     headings = sorted(table["heading"].unique())
