@@ -36,7 +36,8 @@ from offshore_crane.simulation.control import LAW_CODES, Controller
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError, SimulationError
 from offshore_crane.validation import as_gravity
-from offshore_crane.simulation.record import SimulationResult, reference_grid, steps
+from offshore_crane.simulation.record import (LawParameters, Packed, Recording, SimulationResult,
+                                              StageGrid, reference_grid, steps)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -147,22 +148,17 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
     nq = rng.normal(size=(n_ctrl, 9)) * sq
     nqd = rng.normal(size=(n_ctrl, 9)) * sqd
     n_out = n_steps // out_every + 1
-    arrays = {k: np.zeros((n_out, 9)) for k in ("q", "qd", "qdd", "q_ref", "qd_ref", "X_cmd",
-                                                "X")}
-    sat = np.zeros((n_out, 9), dtype=bool)
-    E = np.zeros(n_out)
-    P = np.zeros(n_out)
+    rec = Recording.empty(n_out)
     health = ws.new_health()
     status = np.zeros(3, dtype=np.int64)
-    run(plant.flat, plant.layout, plant.prismatic, model.flat, model.layout, model.prismatic,
-        g, step, n_steps, out_every, qr, qdr, qddr, LAW_CODES[controller.law], kp, kd, hold,
-        nq, nqd, lo, hi, limits, q0, qd0, arrays["q"], arrays["qd"], arrays["qdd"],
-        arrays["q_ref"], arrays["qd_ref"], arrays["X_cmd"], arrays["X"], sat, E, P, health,
-        status)
+    run(Packed(plant.flat, plant.layout, plant.prismatic),
+        Packed(model.flat, model.layout, model.prismatic), g, step, n_steps, out_every,
+        StageGrid(qr, qdr, qddr),
+        LawParameters(LAW_CODES[controller.law], kp, kd, hold, nq, nqd, lo, hi), limits, q0,
+        qd0, rec, health, status)
     n_done = int(status[2])
     t_out = tt[::2][::out_every][:n_out]
-    res = SimulationResult(t=t_out, **arrays, saturated=sat, energy=E, power=P,
-                           integrator="rk4", step=step)
+    res = SimulationResult(t=t_out, **rec._asdict(), integrator="rk4", step=step)
     if status[0] != OK:
         k = int(status[1])
         when = t0 + k * step

@@ -96,13 +96,19 @@ def _runner(stamp):
     """The RK4 loop, closed over ``stamp`` only (see :func:`_helpers`)."""
 
     @jit
-    def run(fp, lp, pp, fc, lc, pc, g, h, n_steps, out_every, qr, qdr, qddr, kind, kp, kd,
-            hold, nq, nqd, lo, hi, want_limits, q0, qd0, Q, QD, QDD, QR, QDR, XC, XA, SAT,
-            E, P, health, status):
-        """RK4 from (q0, qd0); outputs every ``out_every`` steps; ``status`` receives
-        (code, step) of a stop."""
+    def run(plant, model, g, h, n_steps, out_every, reference, gains, want_limits, q0, qd0,
+            record, health, status):
+        """RK4 from (q0, qd0) of the robot ``plant`` under the law ``gains`` computed on
+        ``model`` (:class:`~offshore_crane.simulation.record.Packed`, ``LawParameters``),
+        tracking ``reference`` (``StageGrid``); writes every ``out_every``-th step to
+        ``record`` (``Recording``); ``status`` receives (code, step) of a stop."""
         if len(stamp) == 0:
             return
+        fp, lp, pp = plant
+        fc, lc, pc = model
+        qr, qdr, qddr = reference
+        kind, kp, kd, hold, nq, nqd, lo, hi = gains
+        Q, QD, QDD, QR, QDR, XC, XA, SAT, E, P = record
         C, lim_arm, lim_stroke, lim_ujoint = unpack(fp, lp, pp)
         Cc = unpack(fc, lc, pc)[0]
         tb = tangent_bounds(lim_ujoint)
