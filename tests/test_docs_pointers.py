@@ -90,3 +90,13 @@ def test_dotted_names_resolve():
     bad = [f"{where}: {name}" for name, where in sorted(_dotted_names().items())
            if not _resolves(name)]
     assert not bad, "names that do not resolve:\n" + "\n".join(bad)
+
+
+def test_the_readme_library_example_runs():
+    """The README's Python block (the library's first page) runs as written."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    block = text.split("## Library", 1)[1].split("```python", 1)[1].split("```", 1)[0]
+    namespace: dict = {}
+    exec(compile(block, "README.md (Library)", "exec"), namespace)
+    assert namespace["X"].shape == namespace["q"].shape == (3142, 9)
+    assert namespace["swing"].sway.shape == (3142, 2)
