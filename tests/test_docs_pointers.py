@@ -100,3 +100,24 @@ def test_the_readme_library_example_runs():
     exec(compile(block, "README.md (Library)", "exec"), namespace)
     assert namespace["X"].shape == namespace["q"].shape == (3142, 9)
     assert namespace["swing"].sway.shape == (3142, 2)
+
+
+RELATIVE = re.compile(r":(?:mod|func|class|data|meth):`~?(\.+[A-Za-z_][\w.]*)`")
+
+
+def test_relative_docstring_references_resolve():
+    """``:mod:`.formulas``` in a docstring names a module beside it (or inside it, for a
+    package's ``__init__``); ``..x`` one package up."""
+    bad = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+        module = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        package = module if parts[-1] == "__init__" else module.rsplit(".", 1)[0]
+        for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            for ref in RELATIVE.findall(line):
+                dots = len(ref) - len(ref.lstrip("."))
+                base = package.rsplit(".", dots - 1)[0] if dots > 1 else package
+                candidates = [f"{base}.{ref.lstrip('.')}", f"{module}.{ref.lstrip('.')}"]
+                if not any(_resolves(c) for c in candidates):
+                    bad.append(f"{path.relative_to(ROOT)}:{n}: {ref}")
+    assert not bad, "relative references that do not resolve:\n" + "\n".join(bad)

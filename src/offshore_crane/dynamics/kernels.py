@@ -30,7 +30,7 @@ class Options:
     """What a kernel computes and checks.
 
     Attributes:
-        leg_model: FULL, THIN_ROD or MASSLESS (:mod:`..kinematics.formulas`).
+        leg_model: FULL, THIN_ROD or MASSLESS (:mod:`offshore_crane.robot.kinematics.formulas`).
         legs: Compute the leg forces (False: only T1, T2, Fs; legs and platform skipped).
         static: The platform is at rest (its velocity/acceleration terms skipped).
         conditioning: Measure the three condition numbers (``kappa`` arrays, the policy's

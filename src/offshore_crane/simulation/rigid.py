@@ -56,7 +56,7 @@ OK, WORKSPACE, SINGULAR, DIVERGED = 0, 1, 2, 3
 
 # --------------------------------------------------------------------------- compiled
 def _loop():
-    """The compiled RK4 loop, its control law and accelerations (:mod:`._rk4`, which
+    """The compiled RK4 loop, its control law and accelerations (:mod:`.rk4`, which
     imports Numba: loaded on first use)."""
     from offshore_crane.simulation import rk4 as _rk4
 

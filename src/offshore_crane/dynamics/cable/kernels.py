@@ -1,8 +1,8 @@
 """Compiled drivers of the hanging load (:mod:`offshore_crane.dynamics.cable`; imports Numba).
 
-The formulas are those of :mod:`.formulas` (``tip_motion``, ``pendulum``, ``cable_force``,
-``kane_sample`` on the arm chain continued by the two sway joints), compiled inlined
-(:data:`.compiled.K`). Two drivers:
+The formulas are those of :mod:`offshore_crane.dynamics.formulas` (``tip_motion``,
+``pendulum``, ``cable_force``, ``kane_sample`` on the arm chain continued by the two sway
+joints), compiled inlined (:data:`offshore_crane.dynamics.compiled.K`). Two drivers:
 
 - :func:`integrate`: classical RK4 of the sway state ``y = (φ1, φ2, φ̇1, φ̇2)`` under the
   robot's prescribed motion, given on the grid of RK4's stage times (every half step):
@@ -16,7 +16,7 @@ The formulas are those of :mod:`.formulas` (``tip_motion``, ``pendulum``, ``cabl
   (the forward simulation with the swing, :mod:`offshore_crane.simulation.swing`).
 
 They close over the formulas' hash only (the disk cache keys on it, see
-:mod:`.compiled`).
+:mod:`offshore_crane.dynamics.compiled`).
 """
 
 from __future__ import annotations

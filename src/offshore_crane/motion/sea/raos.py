@@ -16,7 +16,6 @@ from offshore_crane.errors import SeaStateError
 from offshore_crane.motion.sea.arguments import DOFS, HEADING_TOL_DEG, SPACING_RTOL
 
 
-#: Spectrum kinds accepted by :func:`spectrum`.
 #: Header of a RAO table CSV file.
 RAO_COLUMNS = ("omega_rad_s", "heading_deg", "dof", "amplitude", "phase_rad")
 #: Packaged vessels: name -> RAO file in ``offshore_crane/motion/data/vessels``.
