@@ -138,3 +138,26 @@ def uniform_step(t: np.ndarray, what: str = "the motion") -> float:
             f"{UNIFORM_STEP_RTOL:g} relative: resample {what} on a uniform grid.",
             name="t", index=k)
     return float(h)
+
+
+def as_real(name: str, x, error: type = InputError, unit: str = "") -> np.ndarray:
+    """``x`` as a float64 array, refusing what a cast would silently change: complex values
+    (NumPy drops the imaginary part with a mere warning), masked arrays and non-numbers.
+
+    Args:
+        name: The argument's name in messages. error: The exception class raised (a
+            subclass of :class:`~offshore_crane.errors.InputError`). unit: e.g. ``"s"``.
+
+    Raises:
+        error: complex, masked or non-numeric ``x``.
+    """
+    units = f" [{unit}]" if unit else ""
+    if isinstance(x, np.ma.MaskedArray):
+        raise error(f"{name} is a masked array: fill or remove the masked values first",
+                    name=name)
+    if np.iscomplexobj(x) or isinstance(x, complex):
+        raise error(f"{name} has complex values: give real numbers{units}", name=name)
+    try:
+        return np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise error(f"{name} must be numbers{units}, got {x!r}", name=name) from None

@@ -259,3 +259,24 @@ def test_actuator_motion_equals_kinematics_legs(robot):
     np.testing.assert_array_equal(v[:, 3:], legs.rate)
     np.testing.assert_array_equal(p[:, :3], q[:, 6:])
     np.testing.assert_array_equal(v[:, :3], qd[:, 6:])
+
+
+def test_zero_capacity_is_no_headroom_not_no_limit():
+    """A capacity of 0 is a limit (issue 21): a zero demand uses all of it (100 %, printed
+    as such, not as the '—' of a missing capacity) and any demand exceeds it."""
+    from offshore_crane.studies.sizing.envelopes import utilisation
+
+    u = utilisation(np.array([0.0, 2.0, 0.0, np.nan]), np.array([0.0, 0.0, np.inf, 0.0]))
+    assert u[0] == 1.0 and u[1] == np.inf and np.isnan(u[2]) and np.isnan(u[3])
+    robot = oc.load_robot(overrides={"actuators.T2.push_max": 0.0})
+    t = trajectories.time_grid(2.0, 50.0)
+    q, qd, qdd = trajectories.table1(t)
+    q[:, 7], qd[:, 7], qdd[:, 7] = 0.0, 0.0, 0.0          # T2's joint held still
+    X = oc.inverse_dynamics(robot, q, qd, qdd)
+    X[:, 1] = np.minimum(X[:, 1], 0.0)                   # and pulling only: no push
+    env = sizing.envelope(robot, t, q, qd, X)
+    k = oc.ACTUATORS.index("T2")
+    assert env.utilisation[k, sizing.CAPACITIES.index("push")] == 1.0
+    table = sizing.format_verdict(sizing.verdict([env]), robot.hybrid.actuators).splitlines()
+    assert table[2 + k].split()[:2] == ["T2", "100.0"]      # not "—" (no capacity)
+    assert table[-1] == "worst: T2 push at 100.0 % (within capacity)"

@@ -98,7 +98,7 @@ def run(args) -> int:
     if flags:
         controller = replace(controller, _arrays={}, **flags)
     c = scene.control
-    step = args.step or c.get("step", 1e-3)
+    step = args.step if args.step is not None else c.get("step", 1e-3)
     span = float(traj.t[-1] - traj.t[0])
     duration = args.duration if args.duration is not None else span
     if duration > span + 1e-9:

@@ -33,6 +33,7 @@ import numpy as np
 
 from offshore_crane.conventions import ARM_JOINTS
 from offshore_crane.errors import SeaStateError
+from offshore_crane.validation import as_real
 
 __all__ = ["Operation", "operation"]
 
@@ -48,11 +49,7 @@ def as_times(t) -> tuple[np.ndarray, bool]:
         SeaStateError: t is not numeric, has more than one axis or holds a non-finite
             value (naming the sample).
     """
-    try:
-        arr = np.asarray(t, dtype=float)
-    except (TypeError, ValueError):
-        raise SeaStateError(f"t must be a number or a 1-D array of times [s], got {t!r}",
-                            name="t") from None
+    arr = as_real("t", t, SeaStateError, "s")
     if arr.ndim > 1:
         raise SeaStateError(f"t must be a scalar or a 1-D array of times [s], got shape "
                             f"{arr.shape}", name="t")

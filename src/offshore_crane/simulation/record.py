@@ -128,6 +128,28 @@ def actuator_power(robot, q: np.ndarray, qd: np.ndarray, X: np.ndarray) -> np.nd
     return (X[:, :3] * v[:, :3]).sum(axis=1) + (X[:, 3:] * v[:, 3:]).sum(1)
 
 
+def initial_state(q0, qd0, reference_q: np.ndarray, reference_qd: np.ndarray):
+    """The run's initial state ``(q0, qd0)`` ``(9,)`` each [m, rad, /s]: the reference's
+    first sample where not given.
+
+    Raises:
+        InputError: a given state that is not 9 finite real numbers.
+    """
+    from offshore_crane.validation import as_samples
+
+    out = []
+    for name, given, default in (("q0", q0, reference_q), ("qd0", qd0, reference_qd)):
+        if given is None:
+            out.append(default.copy())
+            continue
+        x, single = as_samples(name, given)
+        if not single:
+            raise InputError(f"{name} must be one state (9,), got shape {np.shape(given)}",
+                             name=name)
+        out.append(x[0].copy())
+    return out[0], out[1]
+
+
 # --------------------------------------------------------------- the compiled loop's inputs
 class Packed(NamedTuple):
     """A robot's constants as the compiled kernels read them

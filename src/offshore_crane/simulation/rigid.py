@@ -37,7 +37,7 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError, SimulationError
 from offshore_crane.validation import as_gravity
 from offshore_crane.simulation.record import (LawParameters, Packed, Recording, SimulationResult,
-                                              StageGrid, reference_grid, steps)
+                                              StageGrid, initial_state, reference_grid, steps)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -127,10 +127,7 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
     n_steps, out_every, hold = steps(duration, step, rate, controller.rate)
     g = as_gravity(gravity)
     tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
-    q0 = qr[0].copy() if q0 is None else np.asarray(q0, dtype=float).reshape(9).copy()
-    qd0 = qdr[0].copy() if qd0 is None else np.asarray(qd0, dtype=float).reshape(9).copy()
-    if not (np.isfinite(q0).all() and np.isfinite(qd0).all()):
-        raise InputError("the initial state q0, qd0 must be finite", name="q0")
+    q0, qd0 = initial_state(q0, qd0, qr[0], qdr[0])
     if integrator == "dop853":
         return _dop853(robot, tt[::2], reference, q0, qd0, controller, g, limits, rtol, atol,
                        out_every)
@@ -191,8 +188,7 @@ def _python_law(robot, duration, reference, q0, qd0, law, gravity, step, rate, l
     n_steps, out_every, _ = steps(duration, step, rate, None)
     g = as_gravity(gravity)
     tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
-    y = np.concatenate([qr[0] if q0 is None else np.asarray(q0, float).reshape(9),
-                        qdr[0] if qd0 is None else np.asarray(qd0, float).reshape(9)])
+    y = np.concatenate(initial_state(q0, qd0, qr[0], qdr[0]))
     lo, hi = Controller().bounds(robot)
 
     def f(i, y):

@@ -74,7 +74,8 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
     from offshore_crane.dynamics.integrator import rk4_step
-    from offshore_crane.simulation.record import SimulationResult, reference_grid, steps
+    from offshore_crane.simulation.record import (SimulationResult, initial_state,
+                                                  reference_grid, steps)
 
     controller = controller or Controller()
     robot = cable_robot(robot)
@@ -89,12 +90,9 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
     n_steps, out_every, hold = steps(duration, step, rate, controller.rate)
     g = as_gravity(gravity)
     tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
-    q0 = qr[0].copy() if q0 is None else np.asarray(q0, dtype=float).reshape(9).copy()
-    qd0 = qdr[0].copy() if qd0 is None else np.asarray(qd0, dtype=float).reshape(9).copy()
+    q0, qd0 = initial_state(q0, qd0, qr[0], qdr[0])
     sway0, rate0 = as_pair(initial, "initial", "rad"), as_pair(initial_rate, "initial_rate",
                                                             "rad/s")
-    if not (np.isfinite(q0).all() and np.isfinite(qd0).all()):
-        raise InputError("the initial state q0, qd0 must be finite", name="q0")
     compiled_kernels()
     plant, ctrl = cable_arrays(robot), cable_arrays(model)
     damp_p, damp_c = robot.hybrid.sway_damping, model.hybrid.sway_damping

@@ -11,6 +11,7 @@ import numpy as np
 
 from offshore_crane.errors import SeaStateError
 from offshore_crane.motion.sea.arguments import DEFAULT_DIRECTIONS, integer, real, sea_arguments
+from offshore_crane.validation import as_real
 
 
 # JONSWAP peak widths (DNV-RP-C205 3.5.5.4).
@@ -106,11 +107,7 @@ def spectrum(omega, hs, tp, kind: str = "jonswap", gamma=None) -> np.ndarray:
         SeaStateError: bad ``hs``, ``tp``, ``kind``, ``gamma`` or ``omega``.
     """
     hs, tp, _, kind, gamma = sea_arguments(hs, tp, 0.0, kind, gamma)
-    try:
-        w = np.asarray(omega, dtype=float)
-    except (TypeError, ValueError):
-        raise SeaStateError(f"omega must be numbers [rad/s], got {omega!r}",
-                            name="omega") from None
+    w = as_real("omega", omega, SeaStateError, "rad/s")
     bad = ~np.isfinite(w) | (w < 0.0)
     if bad.any():
         k = int(np.argmax(bad.ravel()))

@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from offshore_crane.errors import TrajectoryError
+from offshore_crane.validation import as_real
 
 
 #: Period of the slowest Table 1 components (q4, q5, q6, q9 at 0.2 rad/s) [s]. Over it
@@ -98,11 +99,7 @@ def table1(t):
         TrajectoryError: ``t`` is not numeric, has more than one axis, or holds a NaN or
             infinity (``index`` is the first such sample, None for a scalar).
     """
-    try:
-        t = np.asarray(t, dtype=float)
-    except (TypeError, ValueError):
-        raise TrajectoryError(
-            f"t must be a number or a 1-D array of times [s], got {t!r}.", name="t") from None
+    t = as_real("t", t, TrajectoryError, "s")
     if t.ndim > 1:
         raise TrajectoryError(
             f"t must be a scalar or a 1-D array of times [s], got shape {t.shape}: "

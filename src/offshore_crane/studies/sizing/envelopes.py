@@ -138,9 +138,13 @@ def worst_utilisation(util: np.ndarray):
 
 
 def utilisation(value, capacity):
-    """``value / capacity``; NaN where the capacity is infinite (not given)."""
+    """``value / capacity``: NaN where the capacity is infinite (not given); a zero
+    capacity is a real limit, not a missing one: 1 (no headroom) for a zero demand, inf
+    for any demand."""
+    value = np.asarray(value, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
-        out = np.asarray(value, dtype=float) / capacity
+        out = value / capacity
+    out = np.where((capacity == 0) & (value == 0), 1.0, out)
     return np.where(np.isinf(capacity), np.nan, out)
 
 
