@@ -80,6 +80,8 @@ def _bits(df):
     ('"payload.mass" = [1.0, -2.0]\n', r"payload.mass\[1\] = -2: .*negative"),
     ('payload_mass = [1.0]\n"payload.mass" = [2.0]\n', "name the same robot field"),
     ("heading = ['x']\n", r"heading\[0\] = \"x\": must be a finite number"),
+    ("heading = [90.0, 450.0]\n", r"names a value twice \(headings modulo 360°\)"),
+    ("heading = [-90.0, 270.0]\n", r"names a value twice \(headings modulo 360°\)"),
 ])
 def test_grid_errors(tmp_path, text, match):
     scene = scenes.load_scene(_scene(tmp_path))
@@ -90,6 +92,16 @@ def test_grid_errors(tmp_path, text, match):
 def test_grid_sea_key_needs_a_sea_scene(tmp_path):
     with pytest.raises(GridError, match="a sea key, but the scene .* is not a sea"):
         sweep.check_grid(scenes.Scene(duration=1.0), {"hs": [1.0]})
+
+
+def test_grid_headings_are_directions(tmp_path):
+    """A heading of 450° or -270° is the heading 90°: the same case (id included) as 90°,
+    so that operability by heading never counts one direction twice (issue 21)."""
+    scene = scenes.load_scene(_scene(tmp_path))
+    ids = [sweep.case_id(sweep.check_grid(scene, {"heading": [h]}).cases()[0])
+           for h in (90.0, 450.0, -270.0, 810.0)]
+    assert len(set(ids)) == 1
+    assert sweep.check_grid(scene, {"heading": [-10.0]}).cases() == [{"heading": 350.0}]
 
 
 def test_grid_product_order_and_names(tmp_path):

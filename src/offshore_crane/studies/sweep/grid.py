@@ -96,7 +96,7 @@ def check_grid(scene, grid: dict, where: str = "grid") -> Grid:
 
     Raises:
         GridError: not a table of lists, an unknown key (neither a sea key nor a robot
-            field), an empty list, a repeated value, a value that is not a number (an
+            field), an empty list, a repeated value (headings compared modulo 360°), a value that is not a number (an
             integer ≥ 0 for ``seed``), a sea key on a scene that is not a sea, a key given
             twice (an alias and its dotted name), or a value the scene's own checks refuse
             (``hs <= 0``, a negative mass, ...), naming the key and the index.
@@ -147,10 +147,12 @@ def check_grid(scene, grid: dict, where: str = "grid") -> Grid:
             if bad or not math.isfinite(v):
                 raise GridError(f"{where}: {key}[{i}] = {toml_value(v)}: must be a finite "
                                 "number", path=where, key=key, index=i)
-            checked.append(float(v))
+            # a heading is a direction: 450° and -270° are the heading 90° (one case)
+            checked.append(float(v) % 360.0 if key == "heading" else float(v))
         if len(set(checked)) != len(checked):
-            raise GridError(f"{where}: {key} = {toml_value(list(raw))}: names a value twice",
-                            path=where, key=key)
+            same = " (headings modulo 360°)" if key == "heading" else ""
+            raise GridError(f"{where}: {key} = {toml_value(list(raw))}: names a value "
+                            f"twice{same}", path=where, key=key)
         for i, v in enumerate(checked):         # the scene's own checks, value by value
             try:
                 case_scene(scene, {name: v}, origin=f"{where}: {key}[{i}] = {toml_value(v)}")
