@@ -476,6 +476,16 @@ CASES = [
          r"cannot write .*: is a directory",
          lib=lambda tmp: trajectories.write_csv(tmp, [0.0, 1.0], np.zeros((2, 9)))),
     # ---- issue 10: text that is not UTF-8
+    Case("scene-key-quoted-and-dotted", "one robot field given as a quoted key and as "
+         "dotted keys in one scene table (the last silently won)", oc.SceneError,
+         r"\[robot\] legs\.lower\.mass is given twice, as \"legs\.lower\.mass\" \(a quoted "
+         r"key\) and as legs\.lower\.mass \(dotted keys\): give it once",
+         lib=lambda tmp: oc.scenes.load_scene(_bytes(tmp, "twice.toml", b'[robot]\n'
+                                                     b'"legs.lower.mass" = 3.1\n'
+                                                     b'legs.lower.mass = 3.2\n')),
+         cli=lambda tmp: ["id", "--scene", str(_bytes(tmp, "twice.toml", b'[robot]\n'
+                                                      b'legs.lower.mass = 3.2\n'
+                                                      b'"legs.lower.mass" = 3.1\n'))]),
     Case("scene-not-utf8", "a scene file with a non-UTF-8 byte", oc.SceneError,
          r"x\.toml, line 1, column 9: byte 0xff is not UTF-8",
          lib=lambda tmp: oc.scenes.load_scene(_bytes(tmp, "x.toml", b'name = "\xff"\n')),

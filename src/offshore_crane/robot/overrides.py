@@ -255,24 +255,42 @@ def parse_set(items, source: str = "--set") -> dict:
 def flatten_table(table: dict, source: str, prefix: str = "") -> dict:
     """A nested TOML table of overrides (``legs = { lower = { mass = 3 } }``, what TOML
     makes of ``legs.lower.mass = 3``) -> ``{"legs.lower.mass": 3}``; leaf values that are
-    tables themselves (an inertia) stay whole."""
-    out = {}
+    tables themselves (an inertia) stay whole.
+
+    Raises:
+        DescriptionError: one field spelled twice, as one quoted key
+            (``"legs.lower.mass" = 3.1``) and as dotted keys (``legs.lower.mass = 3.2``):
+            TOML keeps both, and one would silently win.
+    """
+    out: dict = {}
+    spelled: dict = {}
+
+    def put(name: str, value, spelling: str) -> None:
+        if name in out:
+            first, second = sorted((spelled[name], spelling))
+            _fail(source, name, f"{name} is given twice, as {first} and as {second}: "
+                  "give it once")
+        out[name], spelled[name] = value, spelling
+
     for key, value in table.items():
         name = f"{prefix}{key}"
+        spelling = f'"{key}" (a quoted key)' if "." in key else f"{name} (dotted keys)"
         if isinstance(value, dict) and not prefix and key in ALIASES:
-            out[name] = value
+            put(name, value, spelling)
             continue
         try:
             _, node, comp = schema_lookup(canonical(name, source))
         except DescriptionError:
             if isinstance(value, dict):                    # keep walking: maybe a.b.c
-                out.update(flatten_table(value, source, name + "."))
+                for sub, v in flatten_table(value, source, name + ".").items():
+                    put(sub, v, f"{sub} (dotted keys)")
                 continue
             raise
         if isinstance(value, dict) and not isinstance(node, Leaf):
-            out.update(flatten_table(value, source, name + "."))
+            for sub, v in flatten_table(value, source, name + ".").items():
+                put(sub, v, f"{sub} (dotted keys)")
         else:
-            out[name] = value
+            put(name, value, spelling)
     return out
 
 
