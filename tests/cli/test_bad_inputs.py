@@ -594,6 +594,20 @@ CASES = [
          oc.InputError, r"step = 0(\.0)? s: must be positive and finite",
          lib=lambda tmp: oc.simulate(oc.load_robot(), 0.1, trajectories.table1, step=0.0),
          cli=lambda tmp: ["simulate", "--duration", "0.1", "--step", "0"]),
+    Case("sea-spectrum-below-band", "a peak period of 1e300 s: every wave below the RAO "
+         "band (once an all-zero record, exit 0)", oc.SeaStateError,
+         r"tp = 1e\+300 s .* 0 % of its energy inside the vessel's RAO band "
+         r"0\.1047\.\.3\.142 rad/s .*give tp between 2 and 60 s",
+         lib=lambda tmp: oc.motion.sea.sea_state(2.0, 1e300, 30.0, 10.0, 10.0),
+         cli=lambda tmp: ["motion", "--hs", "2", "--tp", "1e300", "--heading", "30",
+                          "--scale", "20", "--duration", "10"]),
+    Case("sea-spectrum-above-band", "a peak period of 1.2 s (1.5 s at 1:20): under 1 % of "
+         "the sea inside the supply vessel's band", oc.SeaStateError,
+         r"tp = 1\.2 s \(peak 5\.236 rad/s\) has 0\.\d+ % of its energy",
+         lib=lambda tmp: oc.motion.sea.sea_state(2.0, 1.2, 30.0, 200.0, 10.0),
+         cli=lambda tmp: ["motion", "--hs", "2", "--tp", "1.5", "--heading", "30",
+                          "--scale", "20", "--duration", "10"],
+         cli_match=r"tp = 1\.5 s \(peak 4\.189 rad/s\) has 0\.76 % of its energy"),
     Case("cable-rigid-solver", "the rigid inverse dynamics of a robot with a cable",
          oc.ModelError, r"this robot's payload hangs on a cable",
          lib=lambda tmp: oc.inverse_dynamics(_crane(), *_states())),

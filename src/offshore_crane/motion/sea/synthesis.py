@@ -23,6 +23,11 @@ from offshore_crane.motion.sea.spectra import default_gamma, spectrum, spreading
 # then evaluates at the exact grid times, a difference below the direct path's own
 # round-off of omega * t.
 _GRID_TOL_ULPS = 64.0
+# A sea state whose spectrum puts less than this share of its variance m0 = Hs²/16 inside
+# the RAO table's band is refused: its record's standard deviation would be under a tenth
+# of the one the sea state implies (typical seas put over 95 % inside: Tp 4..40 s on the
+# supply vessel's 0.1..3.1 rad/s).
+BAND_SHARE_MIN = 0.01
 # Direct summation works on blocks of at most this many (time, component) pairs
 # (4 M doubles: 32 MB per temporary array).
 _DIRECT_BLOCK = 1 << 22
@@ -308,6 +313,15 @@ def sea_state(hs, tp, heading_deg, duration, rate, *, vessel="supply", seed=0,
                                                                  offsets.size))
     omega = harmonics * d_omega
     S = spectrum(omega, hs, tp, kind, gamma)
+    inside = float(S.sum() * d_omega) / (hs * hs / 16.0)   # the band's share of m0
+    if not inside >= BAND_SHARE_MIN:
+        raise SeaStateError(
+            f"the {kind} spectrum of tp = {tp:g} s (peak {2.0 * math.pi / tp:.4g} rad/s) has "
+            f"{100.0 * inside:.2g} % of its energy inside the vessel's RAO band "
+            f"{table.omega[0]:.4g}..{table.omega[-1]:.4g} rad/s (the table says nothing "
+            "outside it; the record would be nearly still): give tp between "
+            f"{2.0 * math.pi / table.omega[-1]:.3g} and {2.0 * math.pi / table.omega[0]:.3g} s",
+            name="tp")
     keep = S > 0.0
     if highpass is not None:
         keep &= omega >= highpass
