@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import offshore_crane as oc
 from offshore_crane import io
 from offshore_crane.cli import main
 from offshore_crane.errors import InputError, OutputError
@@ -172,3 +173,50 @@ def test_signal_mid_write_leaves_nothing(tmp_path, sig, status, word):
     assert code == status
     assert err.count("\n") == 1 and word in err and "Traceback" not in err
     assert list(tmp_path.iterdir()) == []          # no target, no temporary file
+
+
+# --------------------------------------------------------------------------- pipes
+def _fifo_with_writer(tmp_path, data: bytes):
+    """A FIFO that a thread fills with ``data`` once (like ``<(cat file)``)."""
+    import threading
+
+    path = tmp_path / "pipe.toml"
+    os.mkfifo(path)
+
+    def write():
+        with open(path, "wb") as fh:
+            fh.write(data)
+
+    threading.Thread(target=write, daemon=True).start()
+    return path
+
+
+def test_a_description_pipe_is_read_once(tmp_path):
+    """``--robot <(cat lab.toml)``: the scene's check, the robot and the welded robot of
+    a hanging load all come from the one read (the pipe read twice gave a false
+    'home.height: missing'; issue 21)."""
+    from offshore_crane.robot.description import default_description
+
+    data = default_description().read_bytes()
+    path = _fifo_with_writer(tmp_path, data)
+    robot = oc.load_robot(path, {"payload.mass": 2.0, "payload.cable_length": 0.5})
+    again = oc.load_robot(path, {"payload.mass": 2.0, "payload.cable_length": 0.5})
+    assert again is robot and robot.description_content == data
+    welded = robot.without_hanging_payload()
+    assert welded.hybrid.cable is None and welded.home_height == robot.home_height
+
+
+def test_a_pipe_without_writer_is_an_error_not_a_hang(tmp_path, monkeypatch, capsys):
+    """A FIFO nobody writes to: one line and exit 2 after io.PIPE_TIMEOUT, library and
+    CLI (it blocked forever)."""
+    monkeypatch.setattr(io, "PIPE_TIMEOUT", 0.3)
+    path = tmp_path / "silent.toml"
+    os.mkfifo(path)
+    t0 = time.perf_counter()
+    with pytest.raises(oc.DescriptionError, match=r"silent\.toml: a pipe that gave no "
+                       r"complete robot description within 0\.3 s"):
+        oc.load_robot(path)
+    assert time.perf_counter() - t0 < 3.0
+    assert main(["id", "--duration", "1", "--robot", str(path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "is its writer running?" in err[0]

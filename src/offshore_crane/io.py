@@ -277,20 +277,62 @@ def write_csv(target, header: str, data: np.ndarray, fmt: str = "%.17g",
             np.savetxt(fh, data[start:start + block], delimiter=",", fmt=fmt)
 
 
-def read_text(path, what: str = "file") -> str:
-    """The UTF-8 text of ``path``.
+#: How long reading a named pipe (a FIFO, ``<(command)``) waits for its writer to
+#: connect and finish [s]: a pipe nobody writes to is an error, not a hang.
+PIPE_TIMEOUT = 5.0
+
+
+def read_bytes(path, what: str = "file", timeout: float | None = None) -> bytes:
+    """The content of ``path``, read once (a pipe cannot be read twice: read it here and
+    pass the bytes on).
+
+    Raises:
+        InputError: the file cannot be read, is a directory, or is a pipe that gives no
+            end of data within ``timeout`` seconds (default :data:`PIPE_TIMEOUT`).
+    """
+    where = os.fspath(path)
+    timeout = PIPE_TIMEOUT if timeout is None else timeout
+    try:
+        mode = os.stat(where).st_mode
+        if stat.S_ISDIR(mode):
+            raise IsADirectoryError
+        if not stat.S_ISFIFO(mode):
+            return Path(where).read_bytes()
+    except IsADirectoryError:
+        raise InputError(f"{where}: is a directory, not a {what}", name=where) from None
+    except OSError as exc:
+        raise InputError(f"{where}: cannot read the {what}: {exc.strerror}", name=where) from None
+    import threading
+
+    out: list = []
+
+    def read() -> None:
+        try:
+            with open(where, "rb") as fh:       # blocks until a writer connects
+                out.append(fh.read())
+        except OSError as exc:
+            out.append(exc)
+
+    reader = threading.Thread(target=read, daemon=True, name=f"read {where}")
+    reader.start()
+    reader.join(timeout)
+    if not out:
+        raise InputError(f"{where}: a pipe that gave no complete {what} within {timeout:g} s "
+                         "(is its writer running?): give a regular file", name=where)
+    if isinstance(out[0], OSError):
+        raise InputError(f"{where}: cannot read the {what}: {out[0].strerror}", name=where)
+    return out[0]
+
+
+def read_text(path, what: str = "file", data: bytes | None = None) -> str:
+    """The UTF-8 text of ``path`` (or of its content ``data`` already read).
 
     Raises:
         InputError: the file cannot be read, or holds a byte that is not UTF-8 (naming the
             line and column).
     """
     where = os.fspath(path)
-    try:
-        raw = Path(where).read_bytes()
-    except IsADirectoryError:
-        raise InputError(f"{where}: is a directory, not a {what}", name=where) from None
-    except OSError as exc:
-        raise InputError(f"{where}: cannot read the {what}: {exc.strerror}", name=where) from None
+    raw = read_bytes(where, what) if data is None else data
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -300,8 +342,9 @@ def read_text(path, what: str = "file") -> str:
                          f"is not UTF-8: save the {what} as UTF-8 text", name=where) from None
 
 
-def read_toml(path, what: str = "file") -> dict:
-    """The TOML document of ``path`` (:func:`read_text`, then parsed).
+def read_toml(path, what: str = "file", data: bytes | None = None) -> dict:
+    """The TOML document of ``path`` (or of its content ``data`` already read):
+    :func:`read_text`, then parsed.
 
     Raises:
         InputError: the file cannot be read, is not UTF-8, or is not valid TOML (naming
@@ -311,7 +354,7 @@ def read_toml(path, what: str = "file") -> dict:
 
     where = os.fspath(path)
     try:
-        return tomllib.loads(read_text(where, what))
+        return tomllib.loads(read_text(where, what, data))
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"{where}: not valid TOML: {exc}", name=where) from None
 

@@ -56,7 +56,7 @@ def robot_scene(args, scene):
 
     if args.robot is not None:
         given = os.path.abspath(args.robot)
-        if not os.path.isfile(given):
+        if not os.path.exists(given) or os.path.isdir(given):     # a file or a pipe
             raise InputError(f"--robot {args.robot}: no such file (a robot description, "
                              "TOML)", name="--robot")
         own = scene.robot_description

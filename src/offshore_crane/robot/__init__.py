@@ -57,6 +57,8 @@ class Robot:
         self.spec = spec
         self.overrides = dict(spec.overrides) if spec is not None else {}
         self.description_path = spec.path if spec is not None else None
+        #: The description file's bytes as read once (set by :func:`load_robot`).
+        self.description_content: bytes | None = None
         self.urdf = urdf
         self.urdf_path = urdf_path
         self.description: URDF = parse_urdf(urdf)
@@ -119,9 +121,11 @@ class Robot:
         need no force: the rigid solvers refuse a hanging payload)."""
         if self.hybrid.cable is None:
             return self
-        return load_robot(self.description_path, {**self.overrides, "payload.mass": 0.0,
-                                                  "payload.cable_length": 0.0,
-                                                  "payload.sway_damping": 0.0})
+        from offshore_crane.robot.overrides import normalise
+
+        welded = normalise({**self.overrides, "payload.mass": 0.0,
+                            "payload.cable_length": 0.0, "payload.sway_damping": 0.0})
+        return _load(self.description_path, self.description_content, welded)
 
     @cached_property
     def pinocchio_model(self):
@@ -168,7 +172,7 @@ def load_robot(description: str | os.PathLike | None = None, overrides: dict | N
         ModelError: the expanded URDF is invalid (should not happen for a valid
             description).
     """
-    from offshore_crane.robot.description import default_description, frozen, resolve
+    from offshore_crane.robot.description import default_description, read_description
     from offshore_crane.robot.overrides import normalise
 
     merged = dict(overrides or {})
@@ -187,10 +191,15 @@ def load_robot(description: str | os.PathLike | None = None, overrides: dict | N
 
         raise InputError(f"description must be a file path, got {description!r}",
                          name="description")
-    try:
-        content = Path(path).read_bytes()
-    except OSError:
-        content = b""                       # read_toml names the problem below
+    content = read_description(path)               # once: a pipe cannot be read twice
+    return _load(path, content, canonical)
+
+
+def _load(path: str, content: bytes, canonical: dict) -> Robot:
+    """The robot of description ``content`` (the bytes of ``path``) with the checked
+    ``canonical`` overrides: memoised, resolved, expanded."""
+    from offshore_crane.robot.description import frozen, resolve
+
     key = (os.path.abspath(path), hashlib.sha256(content).hexdigest(), frozen(canonical))
     robot = _ROBOTS.get(key)
     if robot is not None:
@@ -198,7 +207,8 @@ def load_robot(description: str | os.PathLike | None = None, overrides: dict | N
     with _ROBOTS_LOCK:
         robot = _ROBOTS.get(key)
         if robot is None:
-            spec = resolve(path, canonical)
+            spec = resolve(path, canonical, content=content)
             urdf, cached = expand(spec.xacro_data())
             robot = _ROBOTS[key] = Robot(urdf, cached, spec)
+            robot.description_content = content
     return robot

@@ -28,8 +28,41 @@ def default_description() -> Path:
     return description_dir() / DEFAULT_DESCRIPTION
 
 
-def read_toml(path) -> dict:
-    """Parse a description file (:func:`offshore_crane.io.read_toml`).
+def read_description(path) -> bytes:
+    """The bytes of a description file. A pipe (``<(cat lab.toml)``, a FIFO) can be read
+    only once: its content is kept for the process, so that a scene's check and the robot
+    it loads read the same description.
+
+    Raises:
+        DescriptionError: unreadable file, a directory, a pipe without a writer.
+    """
+    import stat
+
+    from offshore_crane.errors import InputError
+    from offshore_crane.io import read_bytes
+
+    where = os.fspath(path)
+    if where in _PIPES:
+        return _PIPES[where]
+    try:
+        data = read_bytes(where, "robot description")
+    except InputError as exc:
+        raise DescriptionError(str(exc), path=where) from None
+    try:
+        if stat.S_ISFIFO(os.stat(where).st_mode):
+            _PIPES[where] = data
+    except OSError:                        # a process substitution gone after its read
+        _PIPES[where] = data
+    return data
+
+
+#: The content of the pipes read as descriptions, by path (read once per process).
+_PIPES: dict = {}
+
+
+def read_toml(path, data: bytes | None = None) -> dict:
+    """Parse a description file (:func:`offshore_crane.io.read_toml`), or its content
+    ``data`` already read.
 
     Raises:
         DescriptionError: unreadable file, not UTF-8, not TOML (naming the file, and the
@@ -39,7 +72,7 @@ def read_toml(path) -> dict:
     from offshore_crane.io import read_toml as read
 
     try:
-        return read(path, "robot description")
+        return read(path, "robot description", data)
     except InputError as exc:
         raise DescriptionError(str(exc), path=os.fspath(path)) from None
 

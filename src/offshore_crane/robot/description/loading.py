@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import hashlib
 import os
-from pathlib import Path
 
-from offshore_crane.robot.description.files import default_description, label, read_toml
+from offshore_crane.robot.description.files import (default_description, label, read_description,
+                                                    read_toml)
 from offshore_crane.robot.description.resolver import Resolver
 from offshore_crane.robot.description.results import Description
 from offshore_crane.robot.description.schema import SCHEMA
@@ -14,7 +14,8 @@ from offshore_crane.robot.description.values import Values
 
 
 # ===================================================================== resolution
-def resolve(path=None, overrides: dict | None = None) -> Description:
+def resolve(path=None, overrides: dict | None = None, content: bytes | None = None
+            ) -> Description:
     """Read a description file, apply overrides, evaluate and check it.
 
     Args:
@@ -22,20 +23,23 @@ def resolve(path=None, overrides: dict | None = None) -> Description:
         overrides: ``{dotted name: value}`` (canonical names, see
             :func:`offshore_crane.robot.overrides.canonical`); a value may be a number, an
             expression (str), a bool, a list or a table for a composite field.
+        content: The file's bytes when already read (a pipe is read once).
 
     Raises:
         DescriptionError: the first problem, naming the file (or ``override``) and the
             field.
     """
     path = os.fspath(path) if path is not None else os.fspath(default_description())
+    if content is None:
+        content = read_description(path)
     try:
-        key = (os.path.abspath(path), hashlib.sha256(Path(path).read_bytes()).digest(),
+        key = (os.path.abspath(path), hashlib.sha256(content).digest(),
                frozen(overrides or {}))
-    except (OSError, TypeError):
-        key = None                              # read_toml names the problem
+    except TypeError:
+        key = None                              # unhashable overrides: resolve names them
     if key is not None and key in _RESOLVED:
         return _RESOLVED[key]
-    spec = resolve_data(read_toml(path), path, overrides)
+    spec = resolve_data(read_toml(path, content), path, overrides)
     if key is not None:
         _RESOLVED.setdefault(key, spec)
     return spec
