@@ -273,6 +273,10 @@ def test_out_of_another_scene_is_refused(tmp_path, capsys):
 @pytest.mark.parametrize("argv, match", [
     (["--scheduler", "tcp://127.0.0.1:9"], "cannot reach the Dask scheduler"),
     (["--scheduler", "127.0.0.1:9"], "give 'local'"),
+    (["--scheduler", "http://127.0.0.1:8786"], "the scheme must be tcp"),
+    (["--scheduler", "tcp://127.0.0.1:99999"], "the port must be 1..65535"),
+    (["--scheduler", "tcp://127.0.0.1"], "the port must be 1..65535"),
+    (["--scheduler", "tcp://:8786"], "no host"),
     (["--workers", "0"], "--workers 0: must be ≥ 1"),
 ])
 def test_cli_errors_write_nothing(tmp_path, capsys, argv, match):
@@ -283,6 +287,30 @@ def test_cli_errors_write_nothing(tmp_path, capsys, argv, match):
     err = capsys.readouterr().err
     assert status == 2 and match in err and err.count("\n") == 1
     assert not out.exists()
+
+
+def test_a_listener_that_is_not_dask_ends_in_the_timeout(tmp_path, capsys):
+    """--scheduler at a web server (it listens, accepts, and waits for a request): one
+    line and exit 2 within CONNECT_TIMEOUT, nothing written (it hung for minutes)."""
+    import http.server
+    import threading
+    import time
+
+    server = http.server.HTTPServer(("127.0.0.1", 0), http.server.BaseHTTPRequestHandler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        out = tmp_path / "res"
+        t0 = time.perf_counter()
+        status = main(["sweep", "--scene", str(_scene(tmp_path)), "--grid",
+                       str(_grid(tmp_path, "hs = [1.0]\n")), "--out", str(out),
+                       "--scheduler", f"tcp://127.0.0.1:{server.server_address[1]}"])
+        took = time.perf_counter() - t0
+    finally:
+        server.shutdown()
+    err = capsys.readouterr().err
+    assert status == 2 and err.count("\n") == 1, err
+    assert "sent no Dask handshake within 3 s" in err
+    assert took < sweep.CONNECT_TIMEOUT + 2.0 and not out.exists()
 
 
 def test_cli_bad_grid_one_line(tmp_path, capsys):
