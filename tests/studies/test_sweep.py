@@ -94,6 +94,31 @@ def test_grid_sea_key_needs_a_sea_scene(tmp_path):
         sweep.check_grid(scenes.Scene(duration=1.0), {"hs": [1.0]})
 
 
+def test_grid_case_count_is_capped_before_anything_is_built(tmp_path, capsys):
+    """10⁷ cases: one line at once, from the lists' lengths (memory grew by GBs while
+    nothing was printed); --max-cases raises the limit."""
+    import time
+
+    scene = scenes.load_scene(_scene(tmp_path))
+    big = {"hs": [1.0 + i for i in range(100)], "tp": [4.0 + i / 100 for i in range(1000)],
+           "seed": list(range(100))}
+    t0 = time.perf_counter()
+    with pytest.raises(GridError, match=r"the grid makes 10,000,000 cases \(100 × 1000 × 100\)"
+                       r", more than the limit 1,000,000: split it"):
+        sweep.check_grid(scene, big)
+    assert time.perf_counter() - t0 < 0.5
+    with pytest.raises(GridError, match="makes 4 cases .* more than the limit 3"):
+        sweep.check_grid(scene, {"hs": [1.0, 2.0], "seed": [0, 1]}, max_cases=3)
+    assert len(sweep.check_grid(scene, {"hs": [1.0, 2.0], "seed": [0, 1]},
+                                max_cases=4).cases()) == 4
+    grid = _grid(tmp_path, "hs = [1.0, 2.0]\nseed = [0, 1, 2]\n")
+    out = tmp_path / "res"
+    assert main(["sweep", "--scene", str(_scene(tmp_path)), "--grid", str(grid), "--out",
+                 str(out), "--max-cases", "5"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "makes 6 cases (2 × 3)" in err and not out.exists()
+
+
 def test_grid_headings_are_directions(tmp_path):
     """A heading of 450° or -270° is the heading 90°: the same case (id included) as 90°,
     so that operability by heading never counts one direction twice (issue 21)."""

@@ -29,6 +29,8 @@ def add_parser(sub) -> None:
     p.add_argument("--grid", metavar="GRID.toml", required=True,
                    help="lists of values: hs, tp, heading, scale, seed and robot fields by "
                    "their dotted names (see scenes/sweep_grid.toml)")
+    p.add_argument("--max-cases", type=int, metavar="N",
+                   help="the most cases the grid may make (default 1000000)")
     p.add_argument("--workers", type=int, metavar="N",
                    help="parallel worker processes (default 1: serially; with --scheduler "
                    "local the cluster's size, default 2)")
@@ -88,7 +90,8 @@ def run(args) -> int:
         raise InputError(f"--exposure {args.exposure:g}: must be a positive number of hours",
                          name="--exposure")
     scene = robot_scene(args, scenes.load_scene(args.scene))
-    grid = sweep.check_grid(scene, sweep.load_grid(args.grid), args.grid)
+    grid = sweep.check_grid(scene, sweep.load_grid(args.grid), args.grid,
+                            sweep.MAX_CASES if args.max_cases is None else args.max_cases)
     scatter = sweep.load_scatter(args.scatter) if args.scatter else None
     planned = plan_outputs({"--csv": args.csv}, [args.scene, args.grid, args.scatter])
     plot_dir = _plot_dir(args.plot)

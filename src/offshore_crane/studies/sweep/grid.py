@@ -83,19 +83,27 @@ def load_grid(path) -> dict:
     return _flatten(data, where)
 
 
-def check_grid(scene, grid: dict, where: str = "grid") -> Grid:
+#: Most cases a grid may make unless raised (``max_cases``, CLI ``--max-cases``): a million
+#: rows is ~1 GB of results and days of computation; more is a typing slip more often than
+#: a plan.
+MAX_CASES = 10**6
+
+
+def check_grid(scene, grid: dict, where: str = "grid", max_cases: int = MAX_CASES) -> Grid:
     """Check a grid against a scene, value by value, before anything runs.
 
     Args:
         scene: The :class:`~offshore_crane.scenes.Scene` swept.
         grid: ``{key: list of values}`` (:func:`load_grid`, or a dict).
         where: The grid's name in messages (its file).
+        max_cases: The most cases the grid may make (counted from its lists' lengths
+            before anything is built).
 
     Returns:
         :class:`Grid`.
 
     Raises:
-        GridError: not a table of lists, an unknown key (neither a sea key nor a robot
+        GridError: more cases than ``max_cases``, not a table of lists, an unknown key (neither a sea key nor a robot
             field), an empty list, a repeated value (headings compared modulo 360°), a value that is not a number (an
             integer ≥ 0 for ``seed``), a sea key on a scene that is not a sea, a key given
             twice (an alias and its dotted name), or a value the scene's own checks refuse
@@ -107,6 +115,13 @@ def check_grid(scene, grid: dict, where: str = "grid") -> Grid:
     if not isinstance(grid, dict) or not grid:
         raise GridError(f"{where}: the grid is empty: give lists of values, e.g. "
                         "hs = [1.0, 2.0]", path=where)
+    lengths = [len(v) for v in grid.values() if isinstance(v, (list, tuple))]
+    count = math.prod(lengths)
+    if count > max_cases:
+        raise GridError(f"{where}: the grid makes {count:,} cases ("
+                        f"{' × '.join(map(str, lengths))}), more than the limit {max_cases:,}: "
+                        "split it, or raise the limit (max_cases, CLI --max-cases)",
+                        path=where)
     robot_keys, sea, values = [], [], {}
     for key, raw in grid.items():
         if not isinstance(raw, (list, tuple)):

@@ -12,13 +12,14 @@ from offshore_crane.studies.sweep.backends import (check_scheduler, connect, run
                                                    run_on_dask, run_on_joblib, warm_up_scene,
                                                    warm_up_workers)
 from offshore_crane.studies.sweep.cases import row_schema
-from offshore_crane.studies.sweep.grid import Grid, case_id, check_grid, install_hint, load_grid
+from offshore_crane.studies.sweep.grid import (MAX_CASES, Grid, case_id, check_grid, install_hint,
+                                               load_grid)
 from offshore_crane.studies.sweep.store import ResultsStore, results_table
 
 
 def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=None, *,
         progress: bool = False, stats: dict | None = None, backend: str = "auto",
-        where: str = "grid"):
+        where: str = "grid", max_cases: int = MAX_CASES):
     """Run a sweep: every case of ``grid`` on ``scene``, one row per case.
 
     Args:
@@ -39,6 +40,7 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
         backend: Kernels of every case (``"auto"``: compiled when Numba is installed),
             resolved once here so that every worker runs the same code.
         where: The grid's name in messages when it is a dict.
+        max_cases: The most cases the grid may make (:data:`MAX_CASES` by default).
 
     Returns:
         ``pandas.DataFrame``: one row per case of the grid in grid order (column ``case``,
@@ -59,7 +61,7 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
         where = os.fspath(grid)
         grid = load_grid(grid)
     if not isinstance(grid, Grid):
-        grid = check_grid(scene, grid, where)
+        grid = check_grid(scene, grid, where, max_cases)
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                 or workers < 1):
         raise InputError(f"workers = {workers!r}: must be an integer ≥ 1", name="workers")
