@@ -220,3 +220,56 @@ def test_a_pipe_without_writer_is_an_error_not_a_hang(tmp_path, monkeypatch, cap
     assert main(["id", "--duration", "1", "--robot", str(path)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "is its writer running?" in err[0]
+
+
+def _digest(path) -> str:
+    import hashlib
+
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+@pytest.mark.parametrize("case", ["motion-vessel", "id-scene-vessel", "sweep-csv-trajectory",
+                                  "sweep-csv-description", "sweep-csv-vessel"])
+def test_no_output_may_touch_an_indirect_input(tmp_path, capsys, case):
+    """The files a scene names (its RAO table, trajectory CSV, robot description) are
+    inputs of the run as much as the scene: an output on one of them is refused before
+    anything runs, the file unchanged by checksum (they were overwritten, exit 0)."""
+    from importlib.resources import files
+
+    vessel = tmp_path / "rao.csv"
+    vessel.write_bytes((files("offshore_crane.motion") / "data/vessels/supply.csv").read_bytes())
+    description = tmp_path / "lab.toml"
+    from offshore_crane.robot.description import default_description
+
+    description.write_bytes(default_description().read_bytes())
+    csv = tmp_path / "traj.csv"
+    t = np.linspace(0.0, 1.0, 51)
+    from offshore_crane.motion import trajectories
+
+    trajectories.write_csv(csv, t, trajectories.table1(t)[0])
+    sea = tmp_path / "sea.toml"
+    sea.write_text(f'[robot]\ndescription = "{description}"\n[trajectory]\nsource = "sea"\n'
+                   f'duration = 5.0\n[sea]\nhs = 2.0\ntp = 8.0\nheading = 30.0\nscale = 20.0\n'
+                   f'vessel = "{vessel}"\n', encoding="utf-8")
+    plain = tmp_path / "plain.toml"
+    plain.write_text(f'[robot]\ndescription = "{description}"\n[trajectory]\nsource = '
+                     f'"{csv}"\n', encoding="utf-8")
+    grid = tmp_path / "grid.toml"
+    grid.write_text("payload.mass = [0.0, 1.0]\n", encoding="utf-8")
+    argv, target = {
+        "motion-vessel": (["motion", "--hs", "2", "--tp", "8", "--heading", "30", "--scale",
+                           "20", "--duration", "5", "--vessel", str(vessel), "--out",
+                           str(vessel)], vessel),
+        "id-scene-vessel": (["id", "--scene", str(sea), "--out", str(vessel)], vessel),
+        "sweep-csv-trajectory": (["sweep", "--scene", str(plain), "--grid", str(grid),
+                                  "--csv", str(csv)], csv),
+        "sweep-csv-description": (["sweep", "--scene", str(plain), "--grid", str(grid),
+                                   "--csv", str(description)], description),
+        "sweep-csv-vessel": (["sweep", "--scene", str(sea), "--grid", str(grid), "--csv",
+                              str(vessel)], vessel),
+    }[case]
+    before = _digest(target)
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "is also an input" in err, err
+    assert _digest(target) == before

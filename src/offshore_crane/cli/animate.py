@@ -53,8 +53,7 @@ def scene_of(args):
 
 def inputs_of(args, scene) -> list:
     """Files the command reads (an output may not overwrite one)."""
-    return [args.scene, args.run_csv, scene.robot_description,
-            scene.trajectory if scene.trajectory not in ("table1", "sea") else None]
+    return [args.scene, args.run_csv, *scene.inputs()]
 
 
 def load_motion(args, scene):

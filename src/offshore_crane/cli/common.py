@@ -18,8 +18,7 @@ def plan(args, scene):
     """
     from offshore_crane.io import FIGURE_FORMATS, plan_outputs
 
-    inputs = [args.scene, scene.trajectory if scene.trajectory != "table1" else None,
-              scene.robot_description]
+    inputs = [args.scene, *scene.inputs()]
     outputs = plan_outputs({"--out": args.out, "--plot": args.plot}, inputs,
                            {"--plot": FIGURE_FORMATS})
     if any(o.kind == "stdout" for o in outputs.values()):

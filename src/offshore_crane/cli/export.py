@@ -62,7 +62,7 @@ def run(args) -> int:
     pose = None if args.pose is None else np.array(comma_numbers(args.pose, 9, "--pose"))
     sway = None if args.sway is None else np.array(comma_numbers(args.sway, 2, "--sway"))
     scene = robot_scene(args, scenes.load_scene(args.scene) if args.scene else scenes.Scene())
-    outputs = plan_outputs({"--mjcf": args.mjcf}, [args.scene, scene.robot_description],
+    outputs = plan_outputs({"--mjcf": args.mjcf}, [args.scene, *scene.inputs()],
                            {"--mjcf": ("xml",)})
     say = (lambda *a: print(*a, file=sys.stderr)) if outputs["--mjcf"].kind == "stdout" \
         else print

@@ -101,7 +101,7 @@ def run(args) -> int:
 
     scene = _scene(args)
     outputs = plan_outputs({"--out": args.out, "--plot": args.plot},
-                           [args.scene, scene.robot_description], {"--plot": FIGURE_FORMATS})
+                           [args.scene, *scene.inputs()], {"--plot": FIGURE_FORMATS})
     to_stdout = any(o.kind == "stdout" for o in outputs.values())
 
     def say(*a):

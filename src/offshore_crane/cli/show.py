@@ -48,7 +48,7 @@ def run(args) -> int:
     width, height = parse_size(args.size)
     camera = parse_camera(args.camera)
     scene = robot_scene(args, scenes.load_scene(args.scene) if args.scene else scenes.Scene())
-    outputs = plan_outputs({"--out": args.out}, [args.scene, scene.robot_description],
+    outputs = plan_outputs({"--out": args.out}, [args.scene, *scene.inputs()],
                            {"--out": STILL_FORMATS})
     q = None if args.pose is None else comma_numbers(args.pose, 9, "--pose")
     robot = scenes.load_robot(scene)

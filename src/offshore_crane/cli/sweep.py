@@ -93,7 +93,8 @@ def run(args) -> int:
     grid = sweep.check_grid(scene, sweep.load_grid(args.grid), args.grid,
                             sweep.MAX_CASES if args.max_cases is None else args.max_cases)
     scatter = sweep.load_scatter(args.scatter) if args.scatter else None
-    planned = plan_outputs({"--csv": args.csv}, [args.scene, args.grid, args.scatter])
+    planned = plan_outputs({"--csv": args.csv}, [args.scene, args.grid, args.scatter,
+                                                 *scene.inputs()])
     plot_dir = _plot_dir(args.plot)
     if args.out is not None:
         sweep.ResultsStore.open(args.out, scene)            # refuse before running

@@ -5,6 +5,7 @@ sea state and the values that depend on each other.
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 
 from offshore_crane.conventions import ARM_ACTUATORS, ACTUATORS, GRAVITY, LEG_ACTUATORS
@@ -112,6 +113,25 @@ class Scene:
     def where(self) -> str:
         """Where the scene comes from, for messages."""
         return self.origin or self.path or f"scene '{self.name}'"
+
+    def data_files(self) -> list[str]:
+        """The files running this scene reads besides the scene file itself: the robot
+        description (the shipped default when none is named), a trajectory CSV, a
+        vessel's RAO table given as a file."""
+        from offshore_crane.robot.description import default_description
+
+        files = [self.robot_description or str(default_description())]
+        if self.trajectory not in ("table1", "sea"):
+            files.append(self.trajectory)
+        vessel = self.sea.get("vessel")
+        if vessel is not None and os.path.isfile(str(vessel)):
+            files.append(str(vessel))
+        return files
+
+    def inputs(self) -> list[str]:
+        """Every file running this scene reads (the scene file and :meth:`data_files`):
+        no output may be one of them."""
+        return ([self.path] if self.path else []) + self.data_files()
 
     def actuators(self) -> tuple:
         """Actuators that exist in this scene, in the order of X."""

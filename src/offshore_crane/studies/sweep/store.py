@@ -22,19 +22,12 @@ MANIFEST_FORMAT = "offshore-crane sweep results"
 def scene_hash(scene) -> str:
     """SHA-256 of what a scene computes: its fields (but where it was read from) and the
     content of every file it reads (robot description, trajectory CSV, vessel RAOs)."""
-    from offshore_crane.robot.description import default_description
-
     h = hashlib.sha256()
     data = {f.name: getattr(scene, f.name) for f in fields(scene)
             if f.name not in ("path", "origin", "robot_description", "name",
                               "description")}
     h.update(json.dumps(data, sort_keys=True, default=repr).encode())
-    files = [scene.robot_description or default_description()]
-    if scene.trajectory not in ("table1", "sea"):
-        files.append(scene.trajectory)
-    if "vessel" in scene.sea and os.path.isfile(str(scene.sea["vessel"])):
-        files.append(scene.sea["vessel"])
-    for f in files:
+    for f in scene.data_files():
         h.update(b"\0" + Path(f).read_bytes())
     return h.hexdigest()
 
