@@ -450,3 +450,60 @@ def test_kane_sweep_imports_neither_pinocchio_nor_matplotlib(tmp_path):
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           env={**os.environ, "PYTHONPATH": str(SRC)})
     assert proc.returncode == 0, proc.stderr
+
+
+# --------------------------------------------------------------------------- the lock
+def test_a_results_directory_in_use_is_refused_at_once(tmp_path):
+    """While a sweep holds its results directory, another is refused at once naming the
+    holder; once released, the directory is free again (issue 21)."""
+    import filelock
+
+    from offshore_crane.errors import ResultsDirectoryError
+    from offshore_crane.studies.sweep.store import LOCK, LOCK_INFO
+
+    scene = scenes.load_scene(_scene(tmp_path))
+    out = tmp_path / "res"
+    out.mkdir()
+    holder = filelock.FileLock(str(out / LOCK), timeout=0)
+    holder.acquire()
+    (out / LOCK_INFO).write_text('{"pid": 4242, "since": "2026-11-25 12:03:00"}')
+    try:
+        with pytest.raises(ResultsDirectoryError, match=r"res: in use by process 4242 since "
+                           r"2026-11-25 12:03:00: wait for that sweep to end"):
+            sweep.run(scene, {"payload.mass": [0.0]}, out=out)
+        assert sorted(os.listdir(out)) == [LOCK, LOCK_INFO]        # nothing written
+    finally:
+        holder.release()
+        (out / LOCK_INFO).unlink()
+    df = sweep.run(scene, {"payload.mass": [0.0]}, out=out)
+    assert len(df) == 1 and not (out / LOCK_INFO).exists()
+
+
+@pytest.mark.slow
+def test_two_sweeps_of_different_scenes_on_one_directory(tmp_path):
+    """Started together on one new directory: one is refused (exit 2, one line), the
+    other's manifest and rows are intact and its own (they both exited 0 and mixed)."""
+    import json
+
+    out = tmp_path / "res"
+    runs = []
+    for k, mass in enumerate(("0.5", "1.5")):
+        scene = _scene(tmp_path, name=f"scene{k}.toml")
+        scene.write_text(scene.read_text() + f'\n# scene {k}\n')
+        grid = _grid(tmp_path, f"payload.mass = [{mass}, {mass}1, {mass}2]\n",
+                     name=f"grid{k}.toml")
+        runs.append(subprocess.Popen(
+            [sys.executable, "-m", "offshore_crane", "sweep", "--scene", str(scene), "--grid",
+             str(grid), "--out", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+            text=True))
+    results = [(p.wait(timeout=300), p.stderr.read()) for p in runs]
+    codes = sorted(code for code, _ in results)
+    assert codes == [0, 2], results
+    loser = next(err for code, err in results if code == 2)
+    assert loser.count("\n") == 1 and ("in use by process" in loser
+                                       or "holds the results of another scene" in loser)
+    manifest = json.loads((out / "_manifest.json").read_text())
+    winner = next(k for k, (code, _) in enumerate(results) if code == 0)
+    assert len(manifest["grids"]) == 1
+    assert len(sweep.read_results(out)) == 3
+    assert manifest["grids"][0]["payload.mass"][0] == (0.5, 1.5)[winner]

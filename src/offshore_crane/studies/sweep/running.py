@@ -83,6 +83,10 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             "failed": 0, "case_seconds": [], "compute_seconds": []}
     try:
         if store is not None:
+            store.lock(scene)
+            finished = store.done()                 # as found under the lock
+            pending = [p for p in pending if case_id(p[1]) not in finished]
+            info["skipped"] = len(set(ids) & finished)
             store.create(grid)
         if pending:
             warm_up_scene(scene)
@@ -116,6 +120,8 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
                 bar.close()
         info["seconds"] = time.perf_counter() - t0
     finally:
+        if store is not None:
+            store.release()
         if client is not None:
             client.close()
         if cluster is not None:

@@ -32,6 +32,11 @@ def scene_hash(scene) -> str:
     return h.hexdigest()
 
 
+#: The lock file that makes a results directory one run's at a time (``filelock``: an OS
+#: lock, released when its process ends, however it ends) and who holds it.
+LOCK, LOCK_INFO = "_lock", "_lock.json"
+
+
 class ResultsStore:
     """A sweep's results directory (see the module docstring).
 
@@ -72,7 +77,7 @@ class ResultsStore:
             return cls(given, scene.name, digest, None)
         manifest_path = os.path.join(given, MANIFEST)
         if not os.path.exists(manifest_path):
-            if os.listdir(given):
+            if set(os.listdir(given)) - {LOCK, LOCK_INFO}:
                 refuse("exists and holds files but no sweep manifest (_manifest.json): "
                        "it is not a results directory; choose a new or empty directory")
             return cls(given, scene.name, digest, None)
@@ -91,16 +96,66 @@ class ResultsStore:
                    "results of different scenes are never mixed; choose another directory")
         return cls(given, scene.name, digest, manifest)
 
-    def create(self, grid: Grid) -> None:
-        """Make the directory and write (or extend) the manifest with ``grid``."""
-        from offshore_crane.io import write_text
+    def lock(self, scene) -> None:
+        """Take the directory for this run (creating it), until :meth:`release`: a second
+        run on it is refused at once, naming the process that holds it; a lock left by a
+        killed run is free (the OS released it). Then check the directory again: a run
+        of another scene may have claimed it since :meth:`open`.
 
+        Raises:
+            ResultsDirectoryError: the directory is in use, cannot be created, or now
+                holds another scene's results.
+        """
+        import datetime
+
+        filelock = install_hint("filelock", "A sweep's results directory lock")
+        self._make_directory()
+        self._lock = filelock.FileLock(os.path.join(self.path, LOCK), timeout=0)
+        try:
+            self._lock.acquire()
+        except filelock.Timeout:
+            try:
+                holder = json.loads(Path(self.path, LOCK_INFO).read_text(encoding="utf-8"))
+                who = f"process {holder['pid']} since {holder['since']}"
+            except (OSError, ValueError, KeyError, TypeError):
+                who = "another process"
+            reason = f"in use by {who}"
+            raise ResultsDirectoryError(f"--out {self.path}: {reason}: wait for that sweep "
+                                        "to end or choose another directory",
+                                        path=self.path, reason=reason) from None
+        since = datetime.datetime.now().strftime("%Y-%m-%d %H:%M:%S")
+        Path(self.path, LOCK_INFO).write_text(json.dumps({"pid": os.getpid(),
+                                                          "since": since}), encoding="utf-8")
+        try:
+            current = ResultsStore.open(self.path, scene)
+        except ResultsDirectoryError:
+            self.release()
+            raise
+        self.manifest = current.manifest
+
+    def _make_directory(self) -> None:
         try:
             os.makedirs(self.path, exist_ok=True)
         except OSError as exc:
             raise ResultsDirectoryError(f"--out {self.path}: cannot create the directory: "
                                         f"{exc.strerror}", path=self.path,
                                         reason=str(exc.strerror)) from None
+
+    def release(self) -> None:
+        """Give the directory back (see :meth:`lock`)."""
+        lock = getattr(self, "_lock", None)
+        if lock is not None and lock.is_locked:
+            try:
+                os.unlink(os.path.join(self.path, LOCK_INFO))
+            except OSError:
+                pass
+            lock.release()
+
+    def create(self, grid: Grid) -> None:
+        """Make the directory and write (or extend) the manifest with ``grid``."""
+        from offshore_crane.io import write_text
+
+        self._make_directory()
         manifest = self.manifest or {"format": MANIFEST_FORMAT, "version": 1,
                                      "scene": {"name": self.scene_name,
                                                "hash": self.digest},
@@ -113,7 +168,10 @@ class ResultsStore:
                     pass
         if grid.as_dict() not in manifest["grids"]:
             manifest["grids"].append(grid.as_dict())
-            write_text(os.path.join(self.path, MANIFEST), json.dumps(manifest, indent=1))
+            target = os.path.join(self.path, MANIFEST)
+            write_text(target, json.dumps(manifest, indent=1))
+            with open(target, "rb") as fh:          # on disk before any case runs
+                os.fsync(fh.fileno())
         self.manifest = manifest
 
     def part(self, cid: str) -> str:
