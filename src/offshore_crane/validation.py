@@ -161,3 +161,64 @@ def as_real(name: str, x, error: type = InputError, unit: str = "") -> np.ndarra
         return np.asarray(x, dtype=float)
     except (TypeError, ValueError):
         raise error(f"{name} must be numbers{units}, got {x!r}", name=name) from None
+
+
+#: Share of the memory available when a record is planned that one record may take;
+#: the environment variable ``OFFSHORE_CRANE_MEMORY_LIMIT`` (bytes) sets the limit instead.
+MEMORY_SHARE = 0.5
+
+
+def _human(n: float) -> str:
+    for unit in ("B", "kB", "MB", "GB", "TB"):
+        if n < 1000 or unit == "TB":
+            return f"{n:.3g} {unit}"
+        n /= 1000.0
+    return f"{n:.3g} TB"
+
+
+def memory_limit() -> tuple[float, str]:
+    """``(bytes, how it was set)``: ``OFFSHORE_CRANE_MEMORY_LIMIT`` when set, else
+    :data:`MEMORY_SHARE` of the memory available now (``MemAvailable``, Linux; the
+    physical memory elsewhere)."""
+    import os
+
+    given = os.environ.get("OFFSHORE_CRANE_MEMORY_LIMIT")
+    if given:
+        try:
+            return float(given), "OFFSHORE_CRANE_MEMORY_LIMIT"
+        except ValueError:
+            raise InputError(f"OFFSHORE_CRANE_MEMORY_LIMIT = {given!r}: give a number of "
+                             "bytes", name="OFFSHORE_CRANE_MEMORY_LIMIT") from None
+    available = None
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    available = float(line.split()[1]) * 1024.0
+                    break
+    except OSError:
+        pass
+    if available is None:
+        try:
+            available = float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
+        except (OSError, ValueError, AttributeError):
+            return float("inf"), "unknown memory"
+    return MEMORY_SHARE * available, f"{MEMORY_SHARE:.0%} of the {_human(available)} available"
+
+
+def check_memory(n_bytes: float, what: str, fix: str, name: str | None = None) -> None:
+    """Refuse, before allocating, a record of ``n_bytes`` beyond :func:`memory_limit`.
+
+    Args:
+        n_bytes: What the record will take [bytes] (samples × columns × 8).
+        what: The record, for the message (``"60000 s at 100 Hz: 6000001 samples"``).
+        fix: What to change (naming the flag or argument that made it big).
+        name: The argument, for the exception.
+
+    Raises:
+        InputError: one line naming the size, the limit and ``fix``.
+    """
+    limit, how = memory_limit()
+    if n_bytes > limit:
+        raise InputError(f"{what} needs {_human(n_bytes)} of memory, more than the limit "
+                         f"{_human(limit)} ({how}): {fix}", name=name)

@@ -11,6 +11,7 @@ from typing import NamedTuple
 import numpy as np
 
 from offshore_crane.errors import InputError
+from offshore_crane.validation import check_memory
 
 
 @dataclass
@@ -94,6 +95,10 @@ def steps(duration, step, rate, control_rate) -> tuple[int, int, int]:
         if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
             raise InputError(f"{name} = {value!r} s: must be positive and finite", name=name)
     n_steps = int(round(duration / step))
+    check_memory(8.0 * 27 * (2 * n_steps + 1) + 8.0 * 70 * (n_steps + 1),
+                 f"a simulation of {duration:g} s at a step of {step:g} s ({n_steps} steps)",
+                 "shorten the duration or lengthen the step (--step), or lower the output "
+                 "rate", "step")
     if n_steps < 1:
         raise InputError(f"duration {duration} s is shorter than one step {step} s",
                          name="duration")

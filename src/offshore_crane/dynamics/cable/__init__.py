@@ -45,7 +45,7 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import (InputError, ModelError, NumericalError, SingularConfigurationError,
                      SlackCableError)
 from offshore_crane.robot.kinematics import workspace as ws
-from offshore_crane.validation import as_gravity, as_pair, as_samples, uniform_step
+from offshore_crane.validation import as_gravity, as_pair, as_samples, check_memory, uniform_step
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -200,6 +200,10 @@ def stage_grid(t, q, qd, qdd, reference, substeps: int):
     with ``2 substeps (N − 1) + 1`` rows (see the module docstring); the samples' own rows
     are the given ``q, qd, qdd``, only the points between them are evaluated."""
     N = len(t)
+    rows = 2 * substeps * (N - 1) + 1
+    check_memory(8.0 * 28 * rows, f"the swing's stage grid of {N} samples × {substeps} "
+                 f"substeps ({rows} rows)", "lower substeps (--substeps) or the sample count",
+                 "substeps")
     h = (t[-1] - t[0]) / (N - 1) / substeps
     tt = t[0] + np.arange(2 * substeps * (N - 1) + 1) * (0.5 * h)
     tt[::2 * substeps] = t

@@ -16,6 +16,7 @@ from offshore_crane.motion.sea.arguments import (DEFAULT_DIRECTIONS, GRID_EPS, S
                                                  integer, real, sea_arguments, vector3)
 from offshore_crane.motion.sea.raos import RAOTable, VESSELS, vessel_raos
 from offshore_crane.motion.sea.spectra import default_gamma, spectrum, spreading_directions
+from offshore_crane.validation import check_memory
 
 
 # Times within this many units in the last place of the largest |t| of a uniform grid
@@ -299,6 +300,9 @@ def sea_state(hs, tp, heading_deg, duration, rate, *, vessel="supply", seed=0,
     if kind == "jonswap" and gamma is None:
         gamma = default_gamma(hs, tp)
     n = math.floor(duration * rate + GRID_EPS) + 1
+    check_memory(3 * 6 * 8.0 * n + 16.0 * _smooth_length(n),
+                 f"a ship's motion of {duration:g} s at {rate:g} Hz ({n} samples)",
+                 "shorten the duration or lower the rate", "duration")
     L = _smooth_length(n)
     d_omega = 2.0 * math.pi * rate / L
     j_lo = max(1, math.ceil(table.omega[0] / d_omega))

@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from offshore_crane.errors import TrajectoryError
-from offshore_crane.validation import as_real
+from offshore_crane.validation import as_real, check_memory
 
 
 #: Period of the slowest Table 1 components (q4, q5, q6, q9 at 0.2 rad/s) [s]. Over it
@@ -73,6 +73,8 @@ def time_grid(duration: float = TABLE1_PERIOD, rate: float = DEFAULT_RATE) -> np
             name="rate",
         )
     n = math.floor(steps) + 1
+    check_memory(28.0 * 8.0 * n, f"{duration:g} s at {rate:g} Hz ({n} samples of t, q, qd, qdd)",
+                 "shorten the duration or lower the rate", "duration")
     return np.arange(n) / rate
 
 
