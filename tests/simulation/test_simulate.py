@@ -257,3 +257,25 @@ def test_a_python_controller_equals_the_compiled_law(robot):
         simulate(robot, 0.01, table1, controller=3)
     with pytest.raises(InputError, match=r"X returned by the controller has shape \(3,\)"):
         simulate(robot, 0.01, table1, controller=lambda *a: np.zeros(3))
+
+
+def test_a_duration_that_is_not_whole_steps_says_where_the_run_ends(capsys):
+    """1.0005 s at a 1 ms step: 1000 steps and a warning naming the end time (the run
+    stopped early, silently; issue 21), library and CLI; whole multiples do not warn."""
+    import warnings
+
+    from offshore_crane.cli import main
+    from offshore_crane.robot.kinematics.workspace import OffshoreCraneWarning
+    from offshore_crane.simulation.record import steps
+
+    with pytest.warns(OffshoreCraneWarning, match=r"duration 1\.0005 s is not a whole number "
+                      r"of steps of 0\.001 s \(1000\.5\): the run ends at 1 s, after 1000 "
+                      r"steps"):
+        assert steps(1.0005, 1e-3, None, None)[0] == 1000
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert steps(31.41, 1e-3, None, None)[0] == 31410      # a multiple, to round-off
+        assert steps(0.3, 0.1, None, None)[0] == 3
+    assert main(["simulate", "--duration", "0.0105", "--step", "0.001"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert any("the run ends at 0.01 s, after 10 steps" in line for line in err), err

@@ -86,6 +86,10 @@ def steps(duration, step, rate, control_rate) -> tuple[int, int, int]:
     [s], steps per output sample (output ``rate`` [Hz], None: every step) and per control
     period (``control_rate`` [Hz], None: 0, the law at every stage).
 
+    A duration that is not a whole number of steps (to 1e-9 relative) runs the whole
+    steps it holds and warns (:class:`~offshore_crane.robot.kinematics.workspace.
+    OffshoreCraneWarning`) with the time the run ends at: it never ends early silently.
+
     Raises:
         InputError: a non-positive or non-finite duration or step, a duration shorter
             than a step, a rate whose period is not a whole number of steps, a control
@@ -94,7 +98,21 @@ def steps(duration, step, rate, control_rate) -> tuple[int, int, int]:
     for name, value in (("duration", duration), ("step", step)):
         if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
             raise InputError(f"{name} = {value!r} s: must be positive and finite", name=name)
-    n_steps = int(round(duration / step))
+    ratio = duration / step
+    whole = round(ratio)
+    if abs(ratio - whole) <= 1e-9 * max(1.0, ratio):
+        n_steps = int(whole)
+    else:
+        import warnings
+
+        from offshore_crane.robot.kinematics.workspace import OffshoreCraneWarning
+
+        n_steps = int(ratio)
+        warnings.warn(OffshoreCraneWarning(
+            f"duration {duration:g} s is not a whole number of steps of {step:g} s "
+            f"({ratio:.6g}): the run ends at {n_steps * step:.9g} s, after {n_steps} steps; "
+            "give a duration that is a multiple of the step to end exactly there"),
+            stacklevel=3)
     check_memory(8.0 * 27 * (2 * n_steps + 1) + 8.0 * 70 * (n_steps + 1),
                  f"a simulation of {duration:g} s at a step of {step:g} s ({n_steps} steps)",
                  "shorten the duration or lengthen the step (--step), or lower the output "
