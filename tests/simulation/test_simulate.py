@@ -279,3 +279,27 @@ def test_a_duration_that_is_not_whole_steps_says_where_the_run_ends(capsys):
     assert main(["simulate", "--duration", "0.0105", "--step", "0.001"]) == 0
     err = capsys.readouterr().err.splitlines()
     assert any("the run ends at 0.01 s, after 10 steps" in line for line in err), err
+
+
+def test_a_diverging_run_is_named_and_keeps_only_finite_rows():
+    """Gains far too stiff for the step: the run blows up. It is reported as divergence
+    with the last finite state's |q̇| and time (it was an 'attitude singularity' at
+    q5 = -9.6e15 rad), and the kept samples are all finite (X was NaN in the last row)."""
+    import warnings
+
+    from offshore_crane.errors import SimulationError
+
+    robot = oc.load_robot()
+    for kp in (1e6, 1e8):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with pytest.raises(SimulationError, match=r"the state diverged \(\|q̇\| = .* at "
+                               r"t = .* s, the last finite sample\): shorten the step") as info:
+                oc.simulate(robot, 1.0, table1, step=1e-2, limits=False,
+                            controller=oc.Controller(law="pd", kp=kp, kd=0.0,
+                                                     saturation=False))
+        res = info.value.result
+        assert len(res) >= 1
+        for x in (res.q, res.qd, res.qdd, res.X):
+            assert np.isfinite(x).all()
+        assert "singular" not in str(info.value)

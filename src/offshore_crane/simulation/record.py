@@ -151,6 +151,27 @@ def actuator_power(robot, q: np.ndarray, qd: np.ndarray, X: np.ndarray) -> np.nd
     return (X[:, :3] * v[:, :3]).sum(axis=1) + (X[:, 3:] * v[:, 3:]).sum(1)
 
 
+#: A coordinate beyond this [m or rad] is a diverging state, whatever stopped the run: no
+#: platform moves a million metres or turns a million radians (an integration blowing up
+#: reaches the attitude "singularity" with q5 ~ 1e15 rad on its way to overflow).
+DIVERGED_STATE = 1e6
+
+
+def finite_rows(res: "SimulationResult") -> int:
+    """How many leading samples of ``res`` are finite in q, q̇, q̈ and X (a stopped run
+    keeps those, never a row of NaN or inf)."""
+    ok = np.ones(len(res), dtype=bool)
+    for x in (res.q, res.qd, res.qdd, res.X):
+        ok &= np.isfinite(x).all(axis=1)
+    return len(res) if ok.all() else int(np.argmin(ok))
+
+
+def diverging(res: "SimulationResult") -> bool:
+    """True when the state of ``res`` stopped being a robot's: a non-finite value or a
+    coordinate beyond :data:`DIVERGED_STATE`."""
+    return finite_rows(res) < len(res) or bool((np.abs(res.q) > DIVERGED_STATE).any())
+
+
 def initial_state(q0, qd0, reference_q: np.ndarray, reference_qd: np.ndarray):
     """The run's initial state ``(q0, qd0)`` ``(9,)`` each [m, rad, /s]: the reference's
     first sample where not given.

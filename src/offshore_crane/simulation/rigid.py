@@ -37,7 +37,8 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError, SimulationError
 from offshore_crane.validation import as_gravity
 from offshore_crane.simulation.record import (LawParameters, Packed, Recording, SimulationResult,
-                                              StageGrid, initial_state, reference_grid, steps)
+                                              StageGrid, diverging, finite_rows, initial_state,
+                                              reference_grid, steps)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -166,13 +167,17 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
                 cause = "left the workspace"
             except Exception as exc:          # the WorkspaceError's text names the limit
                 cause = str(exc).split(" at sample")[0] + " (outside its limits)"
+        diverged = status[0] == DIVERGED or diverging(res)
+        res = res.truncated(finite_rows(res))
+        if diverged:
+            last = (f"|q̇| = {np.linalg.norm(res.qd[-1]):.3g} at t = {res.t[-1]:.6g} s, the "
+                    "last finite sample" if len(res) else "no finite sample")
+            cause = (f"the state diverged ({last}): shorten the step or soften the gains")
         elif status[0] == SINGULAR:
             cause = ("the mass matrix became singular (attitude singularity, "
                      f"q5 = {res.q[-1, 4]:.4g} rad)")
-        else:
-            cause = "the state diverged (a non-finite value)"
         res.stop = f"stopped at t = {when:.6g} s: {cause}"
-        raise SimulationError(f"simulation {res.stop}; the {n_done} samples computed before "
+        raise SimulationError(f"simulation {res.stop}; the {len(res)} samples computed before "
                               "are kept", time=when, cause=cause, result=res)
     return res
 
