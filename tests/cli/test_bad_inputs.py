@@ -572,6 +572,12 @@ CASES = [
                                                    gravity=(0, 0, 9.81)),
          cli=lambda tmp: ["id", "--duration", "1", "--set", "payload.mass=2", "--set",
                           "payload.cable_length=0.5", "--gravity", "0", "0", "9.81"]),
+    Case("cable-simulation-stops-at-start", "a hanging-load simulation that stops at its "
+         "first sample (once an IndexError in the CLI)", oc.SimulationError,
+         r"stopped at t = 0 s: the cable went slack .*; no sample was computed before it",
+         cli=lambda tmp: ["simulate", "--scene", str(_SCENES / "hanging_load.toml"),
+                          "--duration", "0.05", "--gravity", "0", "0", "9.81",
+                          "--out", str(tmp / "run.csv")]),
     # ---- values a cast would silently change (issue 21, item 6)
     Case("complex-sea-times", "complex times for a ship's motion", oc.SeaStateError,
          r"t has complex values: give real numbers \[s\]",

@@ -99,6 +99,17 @@ def test_a_slack_cable_stops_the_run_and_keeps_the_samples(crane):
     with pytest.raises(SimulationError, match="the cable went slack") as info:
         oc.simulate(crane, 0.1, hold_home(crane), step=1e-3, gravity=(0, 0, 9.81))
     assert info.value.result is not None and info.value.time == pytest.approx(0.0)
+    assert len(info.value.result) == 0
+    assert "no sample was computed before it" in str(info.value)
+
+
+def test_the_first_cause_wins(crane):
+    """An initial sway next to cos φ2 = 0 (1/cos φ2 = 3.8e6): the cable is already slack at
+    t = 0 (the load falls along the cable), which is named, not the divergence the next
+    step meets (once an unpacking ValueError)."""
+    with pytest.raises(SimulationError, match=r"at t = 0 s: the cable went slack") as info:
+        oc.simulate(crane, 0.1, table1, step=1e-3, initial=(0.0, 1.570796))
+    assert len(info.value.result) == 0
 
 
 @pytest.mark.parametrize("kwargs, match", [

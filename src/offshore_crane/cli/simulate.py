@@ -126,6 +126,8 @@ def run(args) -> int:
                        limits=not args.no_limits, t0=float(traj.t[0]), **swing)
     except SimulationError as exc:
         res, stopped = exc.result, exc
+        if res is None or len(res) == 0:         # nothing to report, write or plot
+            raise
     say(f"offshore-crane simulate: {controller.law} control"
         + (f" at {controller.rate:g} Hz (sample-and-hold)" if controller.rate else
            " (continuous)") + f", {res.integrator} step {step:g} s, reference {traj.name}, "

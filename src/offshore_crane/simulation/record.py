@@ -172,6 +172,27 @@ def diverging(res: "SimulationResult") -> bool:
     return finite_rows(res) < len(res) or bool((np.abs(res.q) > DIVERGED_STATE).any())
 
 
+def divergence(res: "SimulationResult") -> str:
+    """The cause of a diverged run, for its :class:`~offshore_crane.errors.SimulationError`:
+    the last finite sample's |q̇| [m/s, rad/s mixed, Euclidean] and time [s], and what to do.
+    ``res`` holds the finite rows only (:func:`finite_rows`)."""
+    last = (f"|q̇| = {np.linalg.norm(res.qd[-1]):.3g} at t = {res.t[-1]:.6g} s, the last "
+            "finite sample" if len(res) else "no finite sample")
+    return f"the state diverged ({last}): shorten the step or soften the gains"
+
+
+def stopped(res: "SimulationResult", when: float, cause: str) -> "SimulationError":
+    """The :class:`~offshore_crane.errors.SimulationError` of a run that stopped at ``when``
+    [s] for ``cause``, carrying ``res`` (the samples kept); ``res.stop`` is set."""
+    from offshore_crane.errors import SimulationError
+
+    res.stop = f"stopped at t = {when:.6g} s: {cause}"
+    kept = (f"the {len(res)} samples computed before are kept" if len(res) else
+            "no sample was computed before it")
+    return SimulationError(f"simulation {res.stop}; {kept}", time=when, cause=cause,
+                           result=res)
+
+
 def initial_state(q0, qd0, reference_q: np.ndarray, reference_qd: np.ndarray):
     """The run's initial state ``(q0, qd0)`` ``(9,)`` each [m, rad, /s]: the reference's
     first sample where not given.

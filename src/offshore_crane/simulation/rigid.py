@@ -37,8 +37,8 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError, SimulationError
 from offshore_crane.validation import as_gravity
 from offshore_crane.simulation.record import (LawParameters, Packed, Recording, SimulationResult,
-                                              StageGrid, diverging, finite_rows, initial_state,
-                                              reference_grid, steps)
+                                              StageGrid, divergence, diverging, finite_rows,
+                                              initial_state, reference_grid, steps, stopped)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -170,15 +170,11 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
         diverged = status[0] == DIVERGED or diverging(res)
         res = res.truncated(finite_rows(res))
         if diverged:
-            last = (f"|q̇| = {np.linalg.norm(res.qd[-1]):.3g} at t = {res.t[-1]:.6g} s, the "
-                    "last finite sample" if len(res) else "no finite sample")
-            cause = (f"the state diverged ({last}): shorten the step or soften the gains")
+            cause = divergence(res)
         elif status[0] == SINGULAR:
             cause = ("the mass matrix became singular (attitude singularity, "
                      f"q5 = {res.q[-1, 4]:.4g} rad)")
-        res.stop = f"stopped at t = {when:.6g} s: {cause}"
-        raise SimulationError(f"simulation {res.stop}; the {len(res)} samples computed before "
-                              "are kept", time=when, cause=cause, result=res)
+        raise stopped(res, when, cause)
     return res
 
 

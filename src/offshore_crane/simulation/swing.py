@@ -37,8 +37,10 @@ import numpy as np
 
 from offshore_crane.simulation.control import Controller
 from offshore_crane.conventions import GRAVITY
-from offshore_crane.errors import InputError, SimulationError
+from offshore_crane.errors import InputError
 from offshore_crane.validation import as_gravity
+from offshore_crane.simulation.record import (DIVERGED_STATE, divergence, diverging,
+                                              finite_rows, stopped)
 
 #: Centring frequency of the anti-sway reference shift, as a fraction of ω0 = √(g/L).
 CENTRING = 0.1
@@ -158,8 +160,9 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
             sat[k] = (X_cmd < lo) | (X_cmd > hi)
             E[k] = en.sum()
             done = k + 1
-            stop = _stop(ok, y, k1)
-            if stop is not None:
+            cause = _stop(ok, y, k1)
+            if cause is not None:
+                stop = (k, cause)
                 break
         if s == n_steps:
             break
@@ -170,21 +173,30 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
                            tension=np.full(n_out, np.nan))
     res = res.truncated(done)
     _finish(robot, res, sway_acc[:done], g, limits)
-    if stop is None:
-        stop = _slack_or_workspace(robot, res, limits)
+    early = _slack_or_workspace(robot, res.truncated(finite_rows(res)), limits)  # first wins
+    if early is not None and (stop is None or early[0] < stop[0]):
+        stop = early
     if stop is not None:
         k, cause = stop
-        res = res.truncated(k)
         when = t0 + (k if k < len(t_out) else len(t_out) - 1) * step * out_every
-        res.stop = f"stopped at t = {when:.6g} s: {cause}"
-        raise SimulationError(f"simulation {res.stop}; the {len(res)} samples computed "
-                              "before are kept", time=when, cause=cause, result=res)
+        res = res.truncated(min(k, finite_rows(res)))
+        if cause is DIVERGED or diverging(res):
+            res = res.truncated(finite_rows(res))
+            cause = divergence(res)
+        raise stopped(res, when, cause)
     return res
 
 
+DIVERGED = "diverged"   # _stop's mark for a non-finite state, worded by record.divergence
+
+
 def _stop(ok, y, k1):
+    """Why the run stops at this sample, or None: :data:`DIVERGED`, or a singular mass
+    matrix. A coordinate beyond ``record.DIVERGED_STATE`` counts as diverged too."""
     if not (np.isfinite(y).all() and np.isfinite(k1).all()):
-        return "the state diverged (a non-finite value)"
+        return DIVERGED
+    if (np.abs(y[:11]) > DIVERGED_STATE).any():
+        return DIVERGED
     if not ok:
         return ("the mass matrix became singular (the attitude coordinates at q5 = ±π/2, "
                 "or the sway at cos φ2 = 0)")
