@@ -578,6 +578,25 @@ CASES = [
          cli=lambda tmp: ["simulate", "--scene", str(_SCENES / "hanging_load.toml"),
                           "--duration", "0.05", "--gravity", "0", "0", "9.81",
                           "--out", str(tmp / "run.csv")]),
+    Case("set-nested-too-deeply", "an expression of 1000 minus signs (once a "
+         "RecursionError)", oc.ModelError,
+         r"payload\.mass\)?: '-{57}\.\.\.' \(1001 characters\) is nested too deeply to "
+         r"evaluate: simplify it",
+         lib=lambda tmp: oc.load_robot(overrides={"payload.mass": "-" * 1000 + "1"}),
+         cli=lambda tmp: ["id", "--duration", "0.1", "--set",
+                          "payload_mass=" + "-" * 1000 + "1"]),
+    Case("simulate-rate-zero", "simulate --rate 0 (once a ZeroDivisionError)", oc.InputError,
+         r"rate = 0(\.0)? Hz: must be positive and finite",
+         lib=lambda tmp: oc.simulate(_robot(), 0.01, trajectories.table1, rate=0.0),
+         cli=lambda tmp: ["simulate", "--duration", "0.01", "--rate", "0"]),
+    Case("rao-header-only", "an RAO file with its header and no rows (once an IndexError)",
+         oc.SeaStateError, r"rao\.csv, line 1: the header has no data rows under it",
+         lib=lambda tmp: oc.motion.sea.load_raos(_bytes(
+             tmp, "rao.csv", b"omega_rad_s,heading_deg,dof,amplitude,phase_rad\n")),
+         cli=lambda tmp: ["motion", "--duration", "1", "--hs", "2", "--tp", "8", "--heading",
+                          "90", "--scale", "20", "--vessel", str(_bytes(
+                              tmp, "rao.csv",
+                              b"omega_rad_s,heading_deg,dof,amplitude,phase_rad\n"))]),
     # ---- values a cast would silently change (issue 21, item 6)
     Case("complex-sea-times", "complex times for a ship's motion", oc.SeaStateError,
          r"t has complex values: give real numbers \[s\]",

@@ -196,6 +196,7 @@ def _rows(omegas=(0.5, 1.0), heading=180, skip=None, amp=1.0, phase=0.0):
     (GOOD + "\n".join(_rows(omegas=(0.5,))),
      r"line 7, column omega_rad_s: only one frequency"),
     ("", r"line 1: the file is empty"),
+    (GOOD, r"line 1: the header has no data rows under it"),     # once an IndexError
 ])
 def test_bad_rao_files(tmp_path, body, match):
     path = tmp_path / "bad.csv"

@@ -88,10 +88,21 @@ def _unprepare(name: str) -> str:
 
 def _parse(text: str):
     try:
-        return ast.parse(_prepare(text.strip()), mode="eval").body
+        tree = ast.parse(_prepare(text.strip()), mode="eval").body
+        ast.unparse(tree)      # walks every node: a tree too deep for evaluate fails here
+        return tree
     except SyntaxError:
-        raise ExpressionError(f"'{text}' is not a number nor an arithmetic expression "
-                              "(values are SI numbers without unit strings)") from None
+        raise ExpressionError(f"'{shorten(text)}' is not a number nor an arithmetic "
+                              "expression (values are SI numbers without unit strings)"
+                              ) from None
+    except (RecursionError, MemoryError):
+        raise ExpressionError(f"'{shorten(text)}' ({len(text)} characters) is nested too "
+                              "deeply to evaluate: simplify it") from None
+
+
+def shorten(text: str, width: int = 60) -> str:
+    """``text`` cut to ``width`` characters for a one-line message."""
+    return text if len(text) <= width else f"{text[:width - 3]}..."
 
 
 def evaluate(text: str, lookup) -> float:
@@ -135,7 +146,7 @@ def evaluate(text: str, lookup) -> float:
 
     try:
         value = ev(tree)
-    except (ZeroDivisionError, ValueError, OverflowError, TypeError) as exc:
+    except (ZeroDivisionError, ValueError, OverflowError, TypeError, RecursionError) as exc:
         raise ExpressionError(f"'{text}' cannot be evaluated: {exc}") from None
     if not math.isfinite(value):
         raise ExpressionError(f"'{text}' evaluates to {value}")

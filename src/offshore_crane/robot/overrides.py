@@ -38,7 +38,7 @@ from offshore_crane.errors import DescriptionError, InputError
 from offshore_crane.io import toml_value
 from offshore_crane.robot.description import (MAGNITUDE_LIMIT, Leaf, as_boolean, leaf_components, field_names,
                           schema_lookup)
-from offshore_crane.robot.expressions import ExpressionError, names as expression_names
+from offshore_crane.robot.expressions import ExpressionError, names as expression_names, shorten
 
 #: Flat parameter names of earlier versions (the xacro arguments) -> dotted names.
 ALIASES = {
@@ -163,15 +163,14 @@ def _value(name: str, value, source: str, shown: str):
             return _value(name, number, source, shown)
         try:
             refs = expression_names(value)
-        except ExpressionError:
-            _fail(source, name, f"robot parameter {shown}={value!r} is not a number nor an "
-                  "arithmetic expression over other fields")
+        except ExpressionError as exc:
+            _fail(source, name, f"robot parameter {shown}: {exc}")
         for ref in refs:
             try:
                 schema_lookup(ref)
             except KeyError:
-                _fail(source, name, f"robot parameter {shown}={value!r} is not a number, and "
-                      f"as an expression it names '{ref}', which is no field")
+                _fail(source, name, f"robot parameter {shown}={shorten(value)!r} is not a "
+                      f"number, and as an expression it names '{ref}', which is no field")
         return value
     if isinstance(value, (list, tuple)):
         return [_value_item(name, v, source, shown) for v in value]

@@ -95,9 +95,14 @@ def steps(duration, step, rate, control_rate) -> tuple[int, int, int]:
             than a step, a rate whose period is not a whole number of steps, a control
             rate above the integration rate.
     """
-    for name, value in (("duration", duration), ("step", step)):
-        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
-            raise InputError(f"{name} = {value!r} s: must be positive and finite", name=name)
+    for name, value, unit in (("duration", duration, "s"), ("step", step, "s"),
+                              ("rate", rate, "Hz"), ("control_rate", control_rate, "Hz")):
+        if value is None and name in ("rate", "control_rate"):
+            continue
+        if not (isinstance(value, (int, float)) and not isinstance(value, bool)
+                and np.isfinite(value) and value > 0):
+            raise InputError(f"{name} = {value!r} {unit}: must be positive and finite",
+                             name=name)
     ratio = duration / step
     whole = round(ratio)
     if abs(ratio - whole) <= 1e-9 * max(1.0, ratio):

@@ -144,6 +144,9 @@ def _parse_raos(data: bytes, source: str) -> RAOTable:
     if tuple(c.strip() for c in header) != RAO_COLUMNS:
         raise _file_error(source, line0, None, f"header {','.join(header)!r} must be "
                           f"{','.join(RAO_COLUMNS)}")
+    if len(rows) == 1:
+        raise _file_error(source, line0, None, "the header has no data rows under it: "
+                          "write one row per omega, heading and dof")
     numeric = (0, 1, 3, 4)
     values = np.empty((len(rows) - 1, 4))
     dof = np.empty(len(rows) - 1, dtype=int)
