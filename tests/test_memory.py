@@ -11,6 +11,7 @@ import offshore_crane as oc
 from offshore_crane.cli import main
 from offshore_crane.errors import InputError
 from offshore_crane.motion import sea, trajectories
+from offshore_crane.outputs.visual.motion import Motion, frame_times
 from offshore_crane.validation import MEMORY_SHARE, check_memory, memory_limit
 
 LIMIT = 2e6           # bytes: far below every case here, far above the ordinary runs
@@ -51,6 +52,9 @@ def test_a_bad_limit_is_named(monkeypatch):
         t=trajectories.time_grid(5.0, 100.0), substeps=200),
      r"the swing's stage grid of 501 samples × 200 substeps \(200001 rows\) needs .* lower "
      r"substeps \(--substeps\)"),
+    (lambda: frame_times(Motion("table1", np.linspace(0.0, 10.0, 11), np.zeros((11, 9))),
+                         30.0, 1e-3),
+     r"300001 frames of 10 s at --fps 30 and --speed 0\.001 needs .* raise --speed"),
 ])
 def test_every_record_is_checked_before_it_is_built(small, call, match):
     with pytest.raises(InputError, match=match):
@@ -64,9 +68,11 @@ def test_every_record_is_checked_before_it_is_built(small, call, match):
       "3000"], "shorten the duration"),
     (["id", "--duration", "5", "--set", "payload.mass=2", "--set", "payload.cable_length=0.5",
       "--substeps", "300"], "(--substeps)"),
+    (["animate", "--speed", "1e-9"], "raise --speed"),                   # once 6.9 TiB
 ])
 def test_the_cli_says_which_flag_in_one_line(small, capsys, tmp_path, argv, flag):
-    assert main([*argv, "--out", str(tmp_path / "x.csv")]) == 2
+    out = tmp_path / ("x.gif" if argv[0] == "animate" else "x.csv")
+    assert main([*argv, "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "of memory, more than the limit" in err and flag in err
-    assert not (tmp_path / "x.csv").exists()
+    assert not out.exists()

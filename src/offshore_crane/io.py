@@ -132,6 +132,9 @@ def plan_outputs(outputs: dict, inputs=(), formats: dict | None = None) -> dict:
         final = os.path.realpath(given)           # through symlinks, to the file written
         directory = os.path.dirname(final) or "."
         if not os.path.isdir(directory):
+            if os.path.islink(given):
+                _fail(name, given, f"is a symbolic link to {os.readlink(given)}, whose "
+                      f"directory {directory} does not exist: create it or remove the link")
             _fail(name, given, f"directory {os.path.dirname(given) or '.'} does not exist: "
                   "create it first")
         try:
@@ -144,8 +147,9 @@ def plan_outputs(outputs: dict, inputs=(), formats: dict | None = None) -> dict:
         if formats and name in formats:
             suffix = Path(given).suffix.lstrip(".").lower()
             if suffix not in formats[name]:
-                _fail(name, given, f"the file type '.{suffix}' is not one of "
-                      f"{', '.join('.' + f for f in formats[name])}")
+                kinds = ", ".join("." + f for f in formats[name])
+                _fail(name, given, f"the file type '.{suffix}' is not one of {kinds}"
+                      if suffix else f"the name has no file type: end it in {kinds}")
         planned[name] = Target(name, given, "file", final)
     for path in inputs:
         if path is None:

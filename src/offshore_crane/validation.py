@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from offshore_crane.errors import InputError, TrajectoryError
@@ -222,3 +224,17 @@ def check_memory(n_bytes: float, what: str, fix: str, name: str | None = None) -
     if n_bytes > limit:
         raise InputError(f"{what} needs {_human(n_bytes)} of memory, more than the limit "
                          f"{_human(limit)} ({how}): {fix}", name=name)
+
+
+def not_a_number(value) -> str | None:
+    """What keeps a value read from a file (TOML, JSON) from being a finite number, for a
+    message (``"is a boolean, not a number"``), or None when it is one."""
+    if isinstance(value, bool):
+        return "is a boolean, not a number"
+    if isinstance(value, str):
+        return "is text, not a number"
+    if not isinstance(value, (int, float)):
+        return f"is a {type(value).__name__}, not a number"
+    if not math.isfinite(value):
+        return "is not finite"
+    return None

@@ -3,8 +3,9 @@ result.
 
 Every case runs through the library (``pytest.raises(<OffshoreCraneError subclass>,
 match=...)``) and/or the command line (``main(argv)``: exit status 2, stderr exactly one
-line ``offshore-crane: error: ...``, no traceback, and no file left where ``--out`` and
-``--plot`` pointed). :data:`CASES` is a plain list so that
+line ``offshore-crane: error: ...``, no traceback, no file left where ``--out`` and
+``--plot`` pointed, and every input — the case's files and the shipped scenes — unchanged
+by checksum). :data:`CASES` is a plain list so that
 ``scripts/bad_input_catalogue.py`` can print every case with the message it produces.
 Cases marked ``gap`` document a known shortcoming (strict xfail: the test turns red when
 it is fixed, so the marker is removed with the fix).
@@ -597,6 +598,33 @@ CASES = [
                           "90", "--scale", "20", "--vessel", str(_bytes(
                               tmp, "rao.csv",
                               b"omega_rad_s,heading_deg,dof,amplitude,phase_rad\n"))]),
+    Case("gif-fps-too-low", "animate --fps 0.001 to a GIF (once an OverflowError: a GIF "
+         "frame lasts at most 655.35 s)", oc.InputError,
+         r"--fps 0\.001: a GIF frame lasts at most 655\.35 s .* needs --fps >= 0\.001526",
+         cli=lambda tmp: ["animate", "--fps", "0.001", "--out", str(tmp / "out" / "a.gif")]),
+    Case("animate-speed-memory", "animate --speed 1e-9 (once 6.9 TiB allocated before the "
+         "pixel guard)", oc.InputError,
+         r"942300000001 frames of 31\.4\d* s .* of memory, more than the limit .*raise --speed",
+         cli=lambda tmp: ["animate", "--speed", "1e-9", "--out", str(tmp / "out" / "a.gif")]),
+    Case("animate-out-no-type", "animate --out a (was worded 'the file type '.'')",
+         oc.InputError, r"--out: cannot write .*/a: the name has no file type: end it in "
+         r"\.gif, \.mp4",
+         cli=lambda tmp: ["animate", "--out", str(tmp / "out" / "a")]),
+    Case("export-dangling-link", "export to a symbolic link whose target's directory does "
+         "not exist (was 'directory . does not exist')", oc.InputError,
+         r"dangling\.xml: is a symbolic link to /nonexistent-\w+/x\.xml, whose directory "
+         r"/nonexistent-\w+ does not exist: create it or remove the link",
+         cli=lambda tmp: ["export", "--mjcf", str(_link(tmp / "dangling.xml",
+                                                         "/nonexistent-dir/x.xml"))]),
+    Case("grid-boolean", "a boolean grid value (was worded 'must be a finite number')",
+         oc.GridError, r"grid\.toml: hs\[0\] = true: is a boolean, not a number",
+         lib=lambda tmp: oc.studies.sweep.check_grid(
+             scenes.load_scene(_SCENES / "sweep_crane.toml"),
+             oc.studies.sweep.load_grid(_bytes(tmp, "grid.toml", b"hs = [true, 2.0]\n")),
+             "grid.toml"),
+         cli=lambda tmp: ["sweep", "--scene", str(_SCENES / "sweep_crane.toml"), "--grid",
+                          str(_bytes(tmp, "grid.toml", b"hs = [true, 2.0]\n")), "--out",
+                          str(tmp / "out" / "results")]),
     # ---- values a cast would silently change (issue 21, item 6)
     Case("complex-sea-times", "complex times for a ship's motion", oc.SeaStateError,
          r"t has complex values: give real numbers \[s\]",
@@ -640,6 +668,12 @@ CASES = [
          r"--initial-sway: applies to a payload on a cable",
          cli=lambda tmp: ["id", "--duration", "1", "--initial-sway", "0.1", "0"]),
 ]
+
+
+def _link(path: Path, target: str) -> Path:
+    """``path`` made a symbolic link to ``target`` (which need not exist)."""
+    path.symlink_to(target)
+    return path
 
 
 def _crane():
@@ -692,12 +726,24 @@ def run_cli(case, tmp: Path):
     if argv[0] == "id" and "--plot" not in argv:
         argv += ["--plot", str(out / "x.png")]
     err, stdout = io.StringIO(), io.StringIO()
+    before = _checksums(tmp, out)
     with contextlib.redirect_stderr(err), contextlib.redirect_stdout(stdout):
         try:
             status = main(argv)
         except SystemExit as exc:
             status = exc.code
+    assert _checksums(tmp, out) == before, "an input file was changed"
     return status, err.getvalue().splitlines(), sorted(p.name for p in out.iterdir())
+
+
+def _checksums(tmp: Path, out: Path) -> dict:
+    """SHA-256 of every file a case may read: its scratch files (``out`` aside) and the
+    shipped scenes."""
+    import hashlib
+
+    files = [p for p in tmp.rglob("*") if out not in p.parents and p.is_file()]
+    files += list(_SCENES.iterdir())
+    return {str(p): hashlib.sha256(p.read_bytes()).hexdigest() for p in files}
 
 
 @pytest.mark.parametrize("case", _params("cli"))

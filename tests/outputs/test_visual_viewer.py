@@ -8,6 +8,7 @@ screenshot's pixels. Without a browser it skips with the reason, unless
 
 import os
 import shutil
+import re
 import socket
 import sys
 import tempfile
@@ -136,6 +137,18 @@ def test_port_in_use_is_one_line_exit_2(capsys):
 def test_port_out_of_range(capsys):
     assert main(["view", "--port", "70000"]) == 2
     assert "--port 70000: give a port number in 0..65535" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("host, match", [
+    ("999.1.1.1", r"--host 999\.1\.1\.1: not an address \(.*\): give an address of this "
+                  r"machine"),                                   # once "choose another port"
+    ("192.0.2.1", r"cannot listen on 192\.0\.2\.1:0 \(.*\): 192\.0\.2\.1 is not an address "
+                  r"of this machine; give one of its addresses with --host"),   # TEST-NET-1
+])
+def test_a_bad_host_is_named_not_the_port(capsys, host, match):
+    assert main(["view", "--trajectory", "table1", "--host", host, "--port", "0"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and re.search(match, err), err
 
 
 def test_missing_viser_gives_install_hint(robot, monkeypatch):

@@ -79,7 +79,9 @@ def _bits(df):
     ("hs = [1.0, 1.0]\n", "names a value twice"),
     ('"payload.mass" = [1.0, -2.0]\n', r"payload.mass\[1\] = -2: .*negative"),
     ('payload_mass = [1.0]\n"payload.mass" = [2.0]\n', "name the same robot field"),
-    ("heading = ['x']\n", r"heading\[0\] = \"x\": must be a finite number"),
+    ("heading = ['x']\n", r"heading\[0\] = \"x\": is text, not a number: give a finite number"),
+    ("hs = [true]\n", r"hs\[0\] = true: is a boolean, not a number"),
+    ('"payload.mass" = [true, 2.0]\n', r"payload.mass\[0\] = true: is a boolean, not a number"),
     ("heading = [90.0, 450.0]\n", r"names a value twice \(headings modulo 360°\)"),
     ("heading = [-90.0, 270.0]\n", r"names a value twice \(headings modulo 360°\)"),
 ])

@@ -12,6 +12,7 @@ from offshore_crane.conventions import ACTUATORS, GRAVITY
 from offshore_crane.dynamics import LEG_MODELS, METHODS
 from offshore_crane.errors import SceneError
 from offshore_crane.io import toml_value
+from offshore_crane.validation import not_a_number
 from offshore_crane.scenes.keys import (CABLE_KEYS, CONTROLLER_KEYS, CONTROL_KEYS, INERTIA_KEYS,
                                         OPERATION_KEYS, PAYLOAD_KEYS, SEA_KEYS, SECTIONS,
                                         SUBSYSTEM_KEYS, TOP_KEYS, TRAJECTORY_KEYS, normalised,
@@ -49,8 +50,9 @@ class _Reader:
         if key not in self.table:
             return default
         v = self.table[key]
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            self.fail(key, f"must be a finite number{f' [{unit}]' if unit else ''}")
+        problem = not_a_number(v)
+        if problem:
+            self.fail(key, f"{problem}: give a finite number{f' [{unit}]' if unit else ''}")
         if positive and v <= 0:
             self.fail(key, f"must be > 0{f' {unit}' if unit else ''}")
         if minimum is not None and v < minimum:

@@ -28,6 +28,10 @@ from offshore_crane.errors import InputError
 FORMATS = ("gif", "mp4")
 #: GIF frames are kept in memory (one byte a pixel) until written: refuse beyond this.
 GIF_MAX_PIXELS = 1_000_000_000
+#: The longest frame a GIF can hold [s]: its delay is two bytes of centiseconds.
+GIF_LONGEST_FRAME = 65535 / 100.0
+#: The lowest frame rate a GIF can play [Hz] (a frame of :data:`GIF_LONGEST_FRAME`).
+GIF_MIN_FPS = 1.0 / GIF_LONGEST_FRAME
 #: Colours of each GIF frame's palette (flat shading needs few; fewer keep files small).
 GIF_COLOURS = 64
 #: The still's frames, drawn as axis triads (x red, y green, z blue) with their names.
@@ -136,7 +140,7 @@ def write_gif(target, images, fps: float) -> int:
     for im in images:
         kept.append(im.quantize(GIF_COLOURS, method=Image.Quantize.MEDIANCUT,
                                 dither=Image.Dither.NONE))
-    duration = max(20, int(round(1000.0 / fps / 10.0)) * 10)
+    duration = max(20, int(round(1000.0 / fps / 10.0)) * 10)    # [ms], whole centiseconds
     with open_output(target, "wb") as fh:
         kept[0].save(fh, format="GIF", save_all=True, append_images=kept[1:],
                      duration=duration, loop=0, disposal=1, optimize=False)
@@ -202,6 +206,10 @@ def animate(robot, motion, target, *, fps: float = 30.0, speed: float = 1.0,
     if fmt == "mp4" and (width % 2 or height % 2):
         raise InputError(f"an MP4 needs an even width and height, got {width} x {height}",
                          name="--size")
+    if fmt == "gif" and fps < GIF_MIN_FPS:
+        raise InputError(f"--fps {fps:g}: a GIF frame lasts at most {GIF_LONGEST_FRAME:g} s "
+                         f"(two bytes of centiseconds), so a GIF needs --fps >= "
+                         f"{GIF_MIN_FPS:.4g}: raise --fps or write an MP4", name="--fps")
     if fmt == "gif" and len(times) * width * height > GIF_MAX_PIXELS:
         raise InputError(f"a GIF of {len(times)} frames of {width} x {height} would hold "
                          f"{len(times) * width * height / 1e9:.1f} G pixels in memory: "

@@ -33,6 +33,7 @@ import numpy as np
 
 from offshore_crane.conventions import ACTUATOR_UNITS, ACTUATORS, COORDINATES
 from offshore_crane.errors import InputError, TrajectoryError
+from offshore_crane.validation import check_memory
 
 #: Columns of a run's CSV that :func:`read_run` reads (others are ignored if known).
 FORCE_COLUMNS = tuple(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS, ACTUATOR_UNITS))
@@ -162,6 +163,11 @@ def read_run(path) -> Motion:
                   block(list(COORDINATES)), qd, qdd, X, block(list(SWAY_COLUMNS)))
 
 
+#: Numbers held per frame: its time, and q, q̇, q̈, X and the sway (35 columns)
+#: interpolated at it with two temporaries each.
+FRAME_COLUMNS = 1 + 3 * 35
+
+
 def frame_times(motion: Motion, fps: float, speed: float = 1.0,
                 duration: float | None = None) -> np.ndarray:
     """Times [s] of the motion shown by each frame: ``t0 + k · speed / fps``.
@@ -172,8 +178,9 @@ def frame_times(motion: Motion, fps: float, speed: float = 1.0,
         duration: Motion time to show from the start [s] (default: all of it).
 
     Raises:
-        InputError: fps, speed or duration not finite and > 0, or a duration longer than
-            the motion.
+        InputError: fps, speed or duration not finite and > 0, a duration longer than
+            the motion, or more frames than memory holds
+            (:func:`offshore_crane.validation.check_memory`).
     """
     for name, value in (("--fps", fps), ("--speed", speed)):
         if not (isinstance(value, (int, float, np.floating)) and np.isfinite(value)
@@ -188,8 +195,11 @@ def frame_times(motion: Motion, fps: float, speed: float = 1.0,
             raise InputError(f"--duration {duration:g} s is longer than the motion "
                              f"({t1 - t0:g} s)", name="--duration")
         t1 = t0 + duration
-    n = int(np.floor((t1 - t0) * fps / speed * (1 + 1e-12))) + 1
-    return t0 + np.arange(n) * (speed / fps)
+    frames = np.floor((t1 - t0) * fps / speed * (1 + 1e-12)) + 1.0
+    check_memory(8.0 * FRAME_COLUMNS * frames, f"{frames:.15g} frames of {t1 - t0:g} s at "
+                 f"--fps {fps:g} and --speed {speed:g}", "raise --speed, lower --fps or "
+                 "shorten --duration", "--speed")
+    return t0 + np.arange(int(frames)) * (speed / fps)
 
 
 def _lerp(t: np.ndarray, y: np.ndarray, times: np.ndarray) -> np.ndarray:

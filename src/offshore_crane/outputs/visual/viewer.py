@@ -51,14 +51,28 @@ def check_port(host: str, port: int) -> None:
     if not isinstance(port, int) or not 0 <= port <= 65535:
         raise ViewerError(f"--port {port!r}: give a port number in 0..65535 (0: any free "
                           "port)", host=host, port=port)
+    import errno
+
+    try:
+        socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
+    except (socket.gaierror, UnicodeError) as exc:
+        raise ViewerError(f"--host {host}: not an address ({getattr(exc, 'strerror', exc)}): "
+                          "give an address of this machine (127.0.0.1 for this machine "
+                          "only, 0.0.0.0 for every interface)", host=host, port=port) from None
     family = socket.AF_INET6 if ":" in host else socket.AF_INET
     with socket.socket(family, socket.SOCK_STREAM) as s:
         try:
             s.bind((host, port))
         except OSError as exc:
+            why = {errno.EADDRINUSE: "another program uses it; choose another port with "
+                                     "--port",
+                   errno.EADDRNOTAVAIL: f"{host} is not an address of this machine; give "
+                                        "one of its addresses with --host (127.0.0.1, "
+                                        "0.0.0.0)",
+                   errno.EACCES: "a port below 1024 needs privileges; choose a port from "
+                                 "1024 with --port"}.get(exc.errno, "check --host and --port")
             raise ViewerError(f"--port {port}: cannot listen on {host}:{port} "
-                              f"({exc.strerror}): another program uses it; choose another "
-                              "port with --port", host=host, port=port) from None
+                              f"({exc.strerror}): {why}", host=host, port=port) from None
 
 
 class Viewer:

@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 
 from offshore_crane.errors import GridError
 from offshore_crane.io import toml_value
+from offshore_crane.validation import not_a_number
 
 
 #: Grid keys that set the scene's ``[sea]`` (full scale): Hs [m], Tp [s], heading [deg],
@@ -152,16 +153,16 @@ def check_grid(scene, grid: dict, where: str = "grid", max_cases: int = MAX_CASE
             robot_keys.append(name)
         checked = []
         for i, v in enumerate(raw):
-            bad = isinstance(v, bool) or not isinstance(v, (int, float))
             if key == "seed":
-                if bad or not isinstance(v, int) or v < 0:
+                if isinstance(v, bool) or not isinstance(v, int) or v < 0:
                     raise GridError(f"{where}: seed[{i}] = {toml_value(v)}: must be an integer "
                                     "≥ 0", path=where, key=key, index=i)
                 checked.append(int(v))
                 continue
-            if bad or not math.isfinite(v):
-                raise GridError(f"{where}: {key}[{i}] = {toml_value(v)}: must be a finite "
-                                "number", path=where, key=key, index=i)
+            problem = not_a_number(v)
+            if problem:
+                raise GridError(f"{where}: {key}[{i}] = {toml_value(v)}: {problem}: give a "
+                                "finite number", path=where, key=key, index=i)
             # a heading is a direction: 450° and -270° are the heading 90° (one case)
             checked.append(float(v) % 360.0 if key == "heading" else float(v))
         if len(set(checked)) != len(checked):
