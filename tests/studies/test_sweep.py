@@ -274,6 +274,55 @@ def test_killed_sweep_rerun_has_every_case_once(tmp_path):
     assert not list(out.glob(".oc-*.tmp"))
 
 
+def _children(pid: int, marker: str) -> set:
+    """Pids of the processes whose parent is ``pid`` and whose command line holds
+    ``marker`` (read from /proc)."""
+    found = set()
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            status = (entry / "status").read_text()
+            cmdline = (entry / "cmdline").read_bytes().replace(b"\0", b" ").decode()
+        except OSError:
+            continue
+        ppid = int(next(l.split()[1] for l in status.splitlines() if l.startswith("PPid:")))
+        if ppid == pid and marker in cmdline:
+            found.add(int(entry.name))
+    return found
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="reads /proc (Linux)")
+def test_a_killed_sweeps_workers_exit(tmp_path):
+    """SIGKILL leaves the sweep no time to stop its joblib pool: the workers notice they
+    were orphaned and exit within a second or two (they idled ~300 s with ~180 MB each)."""
+    seeds = ", ".join(str(s) for s in range(400))
+    grid = _grid(tmp_path, f"hs = [1.0, 2.0]\nseed = [{seeds}]\n")
+    cmd = [sys.executable, "-m", "offshore_crane", "sweep", "--scene", str(_scene(tmp_path)),
+           "--grid", str(grid), "--out", str(tmp_path / "res"), "--workers", "2",
+           "--no-progress"]
+    proc = subprocess.Popen(cmd, env={**os.environ, "PYTHONPATH": str(SRC)},
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    workers: set = set()
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and len(workers) < 2 and proc.poll() is None:
+            workers = _children(proc.pid, "LokyProcess")
+            time.sleep(0.05)
+        time.sleep(0.5)                               # the workers are running cases
+        assert proc.poll() is None and len(workers) == 2, "no workers seen: longer grid"
+        proc.send_signal(signal.SIGKILL)
+    finally:
+        proc.wait()
+    deadline = time.monotonic() + 5.0                 # ORPHAN_POLL 0.5 s, and a case
+    while time.monotonic() < deadline and any(Path(f"/proc/{w}").exists() for w in workers):
+        time.sleep(0.1)
+    alive = [w for w in workers if Path(f"/proc/{w}").exists()
+             and "LokyProcess" in Path(f"/proc/{w}/cmdline").read_bytes().decode(errors="replace")]
+    assert not alive, f"workers {alive} outlived the sweep by 5 s"
+
+
 def test_out_of_another_scene_is_refused(tmp_path, capsys):
     grid = _grid(tmp_path, "hs = [1.0]\n")
     out = tmp_path / "res"

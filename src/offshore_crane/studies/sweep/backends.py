@@ -107,9 +107,14 @@ def connect(scheduler: str, workers: int | None = None, timeout: float = CONNECT
         _handshake(scheduler, timeout)
     try:
         if scheduler == "local":
+            # no dashboard; the scheduler's own HTTP routes (health) still listen, on
+            # a free port of this machine only, not on 8787 (a second sweep warned that
+            # "Port 8787 is already in use")
             cluster = distributed.LocalCluster(n_workers=workers or LOCAL_WORKERS,
                                                threads_per_worker=1, processes=True,
-                                               dashboard_address=None)
+                                               dashboard_address=None,
+                                               scheduler_kwargs={
+                                                   "dashboard_address": "127.0.0.1:0"})
             return distributed.Client(cluster), cluster
         logging.getLogger("distributed").setLevel(logging.CRITICAL)
         return distributed.Client(scheduler, timeout=f"{timeout}s"), None
@@ -130,7 +135,36 @@ def run_on_joblib(payloads, workers: int):
     joblib = install_hint("joblib", "--workers (parallel cases)")
     parallel = joblib.Parallel(n_jobs=workers, backend="loky",
                                return_as="generator_unordered", batch_size=1)
-    yield from parallel(joblib.delayed(run_task)(p) for p in payloads)
+    yield from parallel(joblib.delayed(run_in_worker)(p) for p in payloads)
+
+
+#: How often a joblib worker looks whether the sweep that started it still lives [s].
+ORPHAN_POLL = 0.5
+_watching: list = []
+
+
+def run_in_worker(payload):
+    """:func:`~offshore_crane.studies.sweep.cases.run_task` on a joblib worker, which
+    first starts a watchdog: when the sweep process dies (SIGKILL leaves no time to stop
+    the pool), the worker is re-parented and exits within :data:`ORPHAN_POLL` s instead
+    of idling for loky's 300 s with ~180 MB each. Workers only compute; the sweep's
+    process writes every row, so nothing is half-written by the exit."""
+    if not _watching:
+        import os
+        import threading
+        import time
+
+        parent = os.getppid()
+
+        def watch():
+            while os.getppid() == parent:
+                time.sleep(ORPHAN_POLL)
+            os._exit(1)
+
+        _watching.append(threading.Thread(target=watch, daemon=True,
+                                          name="offshore-crane orphan watchdog"))
+        _watching[0].start()
+    return run_task(payload)
 
 
 def run_on_dask(payloads, client):
