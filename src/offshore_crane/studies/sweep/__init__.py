@@ -25,12 +25,14 @@ the compiled kernels up (:func:`offshore_crane.dynamics.warm_up`) before startin
 so that they load them from the on-disk cache instead of compiling them in parallel.
 
 **Results** (:class:`ResultsStore`): a directory holding ``_manifest.json`` (the scene's
-content hash and the grids run) and one Parquet file per finished case
-(``case-<id>.parquet``, written atomically as the case finishes), which together form one
-Parquet dataset (``pyarrow.dataset.dataset(dir)`` reads it; names starting with ``_`` or
-``.`` are not data). Rerunning with the same directory skips the cases already there, so a
-killed sweep loses only the cases in flight; a directory that holds another scene's
-results, or anything but results, is refused before anything runs.
+content hash and the grids run), a lock held for the whole run, and the rows in Parquet
+files: batches written while the run goes (every 2000 rows or 2 s), compacted into one
+``rows-<run>.parquet`` at its end (:mod:`offshore_crane.studies.sweep.rowfiles`); together
+one Parquet dataset (``pyarrow.dataset.dataset(dir)`` reads it; names starting with ``_``
+or ``.`` are not data; :func:`read_results` gives each case once). Rerunning with the same
+directory skips the cases already there, so a killed sweep loses only the cases in flight
+and at most 2 s of finished rows; a directory that holds another scene's results, or
+anything but results, is refused before anything runs.
 
 joblib, Dask (``distributed``), pandas, pyarrow and tqdm are optional (``pip install
 offshore-crane[sweep]``), imported when used."""

@@ -57,7 +57,7 @@ def scheduler_address(scheduler) -> tuple[str, int]:
     return parts.hostname, port
 
 
-def _handshake(scheduler: str, timeout: float) -> None:
+def handshake(scheduler: str, timeout: float = CONNECT_TIMEOUT) -> None:
     """Connect to the address and wait for the scheduler's handshake (a Dask scheduler
     writes its own at once), all within ``timeout`` [s]: a closed port and a listener
     that is not Dask (a web server waits for a request forever) both end here."""
@@ -104,7 +104,7 @@ def connect(scheduler: str, workers: int | None = None, timeout: float = CONNECT
     import logging
 
     if scheduler != "local":
-        _handshake(scheduler, timeout)
+        handshake(scheduler, timeout)
     try:
         if scheduler == "local":
             # no dashboard; the scheduler's own HTTP routes (health) still listen, on

@@ -8,13 +8,16 @@ import os
 import sys
 import time
 
-from offshore_crane.studies.sweep.backends import (check_scheduler, connect, run_in_process,
+from offshore_crane.errors import SchedulerError
+from offshore_crane.studies.sweep.backends import (check_scheduler, connect, handshake,
+                                                   run_in_process,
                                                    run_on_dask, run_on_joblib, warm_up_scene,
                                                    warm_up_workers)
 from offshore_crane.studies.sweep.cases import row_schema
 from offshore_crane.studies.sweep.grid import (MAX_CASES, Grid, case_id, check_grid, install_hint,
                                                load_grid)
-from offshore_crane.studies.sweep.store import ResultsStore, results_table
+from offshore_crane.studies.sweep.rowfiles import batch_seconds
+from offshore_crane.studies.sweep.store import ResultsStore, conform, results_table
 
 
 def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=None, *,
@@ -66,28 +69,35 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
                                 or workers < 1):
         raise InputError(f"workers = {workers!r}: must be an integer ≥ 1", name="workers")
     scheduler = check_scheduler(scheduler)
+    batch_seconds()                     # a bad OFFSHORE_CRANE_BATCH_SECONDS: refused now
     backend = resolve_backend(backend)
     install_hint("pandas", "A sweep's results table")
     schema = row_schema(grid)
     cases = grid.cases()
     ids = [case_id(c) for c in cases]
     store = ResultsStore.open(out, scene) if out is not None else None
-    finished = store.done() if store is not None else set()
-    pending = [(scene, c, backend) for c, cid in zip(cases, ids) if cid not in finished]
-    pending = list({case_id(p[1]): p for p in pending}.values())     # each case once
+    if scheduler not in (None, "local"):
+        handshake(scheduler)            # an address that is no Dask scheduler: nothing written
     client = cluster = None
-    if scheduler is not None and pending:
-        client, cluster = connect(scheduler, workers)
     rows: dict = {}
-    info = {"cases": len(set(ids)), "skipped": len(set(ids) & finished), "ran": 0,
-            "failed": 0, "case_seconds": [], "compute_seconds": []}
+    info = {"cases": len(set(ids)), "skipped": 0, "ran": 0, "failed": 0,
+            "case_seconds": [], "compute_seconds": []}
     try:
-        if store is not None:
-            store.lock(scene)
-            finished = store.done()                 # as found under the lock
-            pending = [p for p in pending if case_id(p[1]) not in finished]
-            info["skipped"] = len(set(ids) & finished)
+        finished: set = set()
+        if store is not None:           # the directory is this run's, its manifest on
+            store.lock(scene)           # disk, before a cluster starts or a case runs
+            finished = store.done()
             store.create(grid)
+        info["skipped"] = len(set(ids) & finished)
+        pending = list({cid: (scene, c, backend) for c, cid in zip(cases, ids)
+                        if cid not in finished}.values())           # each case once
+        if scheduler is not None and pending:
+            try:
+                client, cluster = connect(scheduler, workers)
+            except SchedulerError:
+                if store is not None:
+                    store.discard_if_new()      # "nothing was run or written" holds
+                raise
         if pending:
             warm_up_scene(scene)
             if client is not None and cluster is None:
@@ -104,10 +114,11 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             tqdm = install_hint("tqdm", "the progress bar")
             bar = tqdm.tqdm(total=len(pending), unit="case", file=sys.stderr,
                             desc="sweep", leave=False)
+        writer = store.writer(schema) if store is not None else None
         try:
             for cid, row, seconds, compute in results:
-                if store is not None:
-                    store.write(row, schema)
+                if writer is not None:
+                    writer.add(row)
                 rows[cid] = row
                 info["ran"] += 1
                 info["failed"] += row["status"] != "ok"
@@ -118,6 +129,10 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
         finally:
             if bar is not None:
                 bar.close()
+            if writer is not None:
+                writer.flush()          # whatever stops the run, what it computed stays
+        if writer is not None:
+            writer.finish()             # this run's batches into one file
         info["seconds"] = time.perf_counter() - t0
     finally:
         if store is not None:
@@ -132,7 +147,9 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
     table = results_table(fresh, schema)
     if store is not None and len(fresh) < len(set(ids)):         # and those run before
         pa = install_hint("pyarrow", "A sweep's results (Parquet)")
-        table = pa.concat_tables([table, store.read(schema, set(ids) - set(rows))])
+        before = store.read(set(ids) - set(rows))
+        if before is not None:
+            table = pa.concat_tables([table, conform(before, schema)])
     df = table.to_pandas()
     order = {cid: i for i, cid in enumerate(ids)}
     df.insert(0, "case", df["case_id"].map(order).astype("int64"))

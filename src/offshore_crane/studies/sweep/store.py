@@ -1,5 +1,6 @@
-"""The results store: a Parquet dataset with a manifest naming the scene, written row by row,
-resumed after a stop.
+"""The results store: a directory with a manifest naming the scene and its grids, locked for
+one run at a time, its rows in Parquet row files (:mod:`.rowfiles`: batches while a run
+goes, one file per run after it), resumed after a stop.
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from pathlib import Path
 
 from offshore_crane.errors import ResultsDirectoryError
 from offshore_crane.studies.sweep.grid import Grid, install_hint
+from offshore_crane.studies.sweep.rowfiles import BatchWriter, case_ids, read_rows, recover
 
 
 MANIFEST = "_manifest.json"
@@ -40,9 +42,10 @@ LOCK, LOCK_INFO = "_lock", "_lock.json"
 class ResultsStore:
     """A sweep's results directory (see the module docstring).
 
-    Create with :meth:`open` (checks only, writes nothing), then :meth:`create` before
-    the first row; :meth:`write` stores a row atomically; :meth:`done` lists the finished
-    case ids; :meth:`read` returns the rows as a ``pyarrow.Table``.
+    Create with :meth:`open` (checks only, writes nothing), :meth:`lock` it for the run,
+    :meth:`create` the manifest before the first case runs; :meth:`writer` stores the
+    rows in batches; :meth:`done` lists the finished case ids; :meth:`read` returns the
+    rows as a ``pyarrow.Table``, each case once.
     """
 
     def __init__(self, path, scene_name: str, digest: str, manifest: dict | None):
@@ -109,6 +112,8 @@ class ResultsStore:
         import datetime
 
         filelock = install_hint("filelock", "A sweep's results directory lock")
+        self._created = not os.path.isdir(self.path)
+        self._had_manifest = os.path.isfile(os.path.join(self.path, MANIFEST))
         self._make_directory()
         self._lock = filelock.FileLock(os.path.join(self.path, LOCK), timeout=0)
         try:
@@ -132,6 +137,11 @@ class ResultsStore:
             self.release()
             raise
         self.manifest = current.manifest
+        try:
+            recover(self.path)              # what killed runs left, made whole
+        except BaseException:
+            self.release()
+            raise
 
     def _make_directory(self) -> None:
         try:
@@ -140,6 +150,24 @@ class ResultsStore:
             raise ResultsDirectoryError(f"--out {self.path}: cannot create the directory: "
                                         f"{exc.strerror}", path=self.path,
                                         reason=str(exc.strerror)) from None
+
+    def discard_if_new(self) -> None:
+        """Remove the directory this run made (call under :meth:`lock`, before any row):
+        its manifest and lock files, and the directory when it was new."""
+        if self._had_manifest:
+            return
+        for name in (MANIFEST, LOCK_INFO):
+            try:
+                os.unlink(os.path.join(self.path, name))
+            except OSError:
+                pass
+        self.release()
+        try:
+            os.unlink(os.path.join(self.path, LOCK))
+            if self._created:
+                os.rmdir(self.path)
+        except OSError:
+            pass
 
     def release(self) -> None:
         """Give the directory back (see :meth:`lock`)."""
@@ -160,12 +188,6 @@ class ResultsStore:
                                      "scene": {"name": self.scene_name,
                                                "hash": self.digest},
                                      "grids": []}
-        for name in os.listdir(self.path):          # a killed run's half-written row
-            if name.startswith(".oc-") and name.endswith(".tmp"):
-                try:
-                    os.unlink(os.path.join(self.path, name))
-                except OSError:
-                    pass
         if grid.as_dict() not in manifest["grids"]:
             manifest["grids"].append(grid.as_dict())
             target = os.path.join(self.path, MANIFEST)
@@ -174,43 +196,23 @@ class ResultsStore:
                 os.fsync(fh.fileno())
         self.manifest = manifest
 
-    def part(self, cid: str) -> str:
-        return os.path.join(self.path, f"case-{cid}.parquet")
-
     def done(self) -> set:
-        """Case ids with a row in the directory."""
-        if not os.path.isdir(self.path):
-            return set()
-        return {n[5:-8] for n in os.listdir(self.path)
-                if n.startswith("case-") and n.endswith(".parquet")}
+        """Case ids with a row in the directory.
 
-    def write(self, row: dict, schema) -> None:
-        """Store one row atomically (temporary file + rename in the directory)."""
-        from offshore_crane.io import write_bytes
+        Raises:
+            ResultsDirectoryError: a damaged row file (named).
+        """
+        return case_ids(self.path)
 
-        write_bytes(self.part(row["case_id"]), _parquet_bytes([row], schema))
+    def writer(self, schema) -> BatchWriter:
+        """A :class:`~offshore_crane.studies.sweep.rowfiles.BatchWriter` for this run's
+        rows (call under :meth:`lock`, after :meth:`create`)."""
+        return BatchWriter(self.path, schema)
 
-    def read(self, schema, ids=None):
-        """The rows (``pyarrow.Table``) of ``ids`` (default all), unordered."""
-        pa = install_hint("pyarrow", "A sweep's results (Parquet)")
-        import pyarrow.parquet as pq
-
-        names = sorted(self.done() if ids is None else set(ids) & self.done())
-        tables = [pq.ParquetFile(self.part(c)).read().cast(schema) for c in names]
-        return pa.concat_tables(tables) if tables else schema.empty_table()
-
-
-def _parquet_bytes(rows: list, schema) -> bytes:
-    pa = install_hint("pyarrow", "A sweep's results (Parquet)")
-    import pyarrow.parquet as pq
-
-    table = pa.Table.from_pylist(rows, schema=schema)
-    sink = pa.BufferOutputStream()
-    # one row: no compression, dictionaries or statistics (they cost ~1 ms a part and
-    # save nothing); a reader merging the parts may rewrite them compacted
-    pq.write_table(table, sink, compression="none", use_dictionary=False,
-                   write_statistics=False)
-    return sink.getvalue().to_pybytes()
+    def read(self, ids=None):
+        """The rows (``pyarrow.Table``, each case once, unordered) of ``ids`` (default
+        all), or None when there are none."""
+        return read_rows(self.path, ids=ids)
 
 
 def results_table(rows, schema):
@@ -218,8 +220,32 @@ def results_table(rows, schema):
     return pa.Table.from_pylist(rows, schema=schema)
 
 
+def conform(table, schema):
+    """``table``'s columns as ``schema`` orders and types them (a column it lacks: null)."""
+    pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+
+    columns = [table.column(f.name).cast(f.type) if f.name in table.column_names
+               else pa.nulls(table.num_rows, f.type) for f in schema]
+    return pa.Table.from_arrays(columns, schema=schema)
+
+
 def read_results(out):
-    """Every row of a results directory as a ``pandas.DataFrame`` (for a notebook)."""
+    """Every row of a results directory as a ``pandas.DataFrame``, each case once (for a
+    notebook): the columns are the union of its grids' (a robot field a row's grid did not
+    vary is null there).
+
+    Raises:
+        ResultsDirectoryError: ``out`` is not a results directory (no manifest), or a row
+            file is damaged (named).
+    """
     install_hint("pandas", "A sweep's results table")     # to_pandas needs it
-    ds = install_hint("pyarrow.dataset", "A sweep's results (Parquet)")
-    return ds.dataset(os.fspath(out), format="parquet").to_table().to_pandas()
+    given = os.fspath(out)
+    if not os.path.isfile(os.path.join(given, MANIFEST)):
+        reason = f"no {MANIFEST}: not a sweep's results directory"
+        raise ResultsDirectoryError(f"{given}: {reason}", path=given, reason=reason)
+    table = read_rows(given)
+    if table is None:
+        import pandas as pd
+
+        return pd.DataFrame({"case_id": pd.Series(dtype="string")})
+    return table.to_pandas()
