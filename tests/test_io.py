@@ -273,3 +273,20 @@ def test_no_output_may_touch_an_indirect_input(tmp_path, capsys, case):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "is also an input" in err, err
     assert _digest(target) == before
+
+
+def test_refuse_inside_compares_real_paths(tmp_path):
+    """An output inside an owned directory is refused whatever its spelling (``..``, a
+    symbolic link from outside); a sibling whose name merely starts alike is not."""
+    from offshore_crane.io import refuse_inside
+
+    owned = tmp_path / "res"
+    owned.mkdir()
+    (tmp_path / "link").symlink_to(owned)
+    for given in (owned, owned / "a.csv", tmp_path / "x" / ".." / "res" / "a.csv",
+                  tmp_path / "link" / "a.csv"):
+        with pytest.raises(OutputError, match=r"--csv: cannot write .*: is inside --out"):
+            refuse_inside({"--csv": given}, owned, "--out")
+    refuse_inside({"--csv": tmp_path / "res2" / "a.csv", "--plot": None, "--x": "-"},
+                  owned, "--out")
+    refuse_inside({"--csv": owned / "a.csv"}, None, "--out")       # no owned directory

@@ -170,6 +170,31 @@ def plan_outputs(outputs: dict, inputs=(), formats: dict | None = None) -> dict:
     return planned
 
 
+def refuse_inside(outputs: dict, directory, owner: str) -> None:
+    """Refuse outputs that would land in ``directory`` (a directory another output owns,
+    e.g. a sweep's results, whose files it alone writes), compared by real path.
+
+    Args:
+        outputs: ``{name: path or None}`` (a file, or a directory of outputs).
+        directory: The owned directory (it need not exist yet).
+        owner: Its option, for messages (``"--out"``).
+
+    Raises:
+        OutputError: naming the option, the path and the directory.
+    """
+    if directory is None:
+        return
+    home = os.path.realpath(os.fspath(directory))
+    for name, given in outputs.items():
+        if given is None or os.fspath(given) == "-":
+            continue
+        where = os.path.realpath(os.fspath(given))
+        if os.path.commonpath([home, where]) == home:
+            _fail(name, os.fspath(given), f"is inside {owner} {os.fspath(directory)}, whose "
+                  "files only the run may write (they would be taken for its results or "
+                  "replace them): write it elsewhere")
+
+
 def _probe(name: str, given: str, directory: str) -> None:
     """Create and remove an empty file in ``directory``: the only reliable test that it
     can be written (permission bits do not stop root; a read-only mount does)."""

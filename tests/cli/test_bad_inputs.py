@@ -141,6 +141,7 @@ def _argv(write, *extra):
 
 def _bytes(tmp: Path, name: str, data: bytes) -> Path:
     path = tmp / name
+    path.parent.mkdir(parents=True, exist_ok=True)
     path.write_bytes(data)
     return path
 
@@ -625,6 +626,28 @@ CASES = [
          cli=lambda tmp: ["sweep", "--scene", str(_SCENES / "sweep_crane.toml"), "--grid",
                           str(_bytes(tmp, "grid.toml", b"hs = [true, 2.0]\n")), "--out",
                           str(tmp / "out" / "results")]),
+    # ---- a sweep's outputs inside its own results directory (issue 21, item 1)
+    Case("sweep-csv-in-new-results", "sweep --csv inside the --out directory it creates",
+         oc.OutputError, r"--csv: cannot write .*/out/res/rows\.csv: is inside --out "
+         r".*/out/res, whose files only the run may write",
+         cli=lambda tmp: ["sweep", "--scene", str(_SCENES / "sweep_crane.toml"), "--grid",
+                          str(_bytes(tmp, "grid.toml", b"hs = [1.0]\n")), "--out",
+                          str(tmp / "out" / "res"), "--csv",
+                          str(tmp / "out" / "res" / "rows.csv")]),
+    Case("sweep-csv-over-manifest", "sweep --csv onto an existing results directory's "
+         "manifest (once turned into CSV: the directory then refused as damaged)",
+         oc.OutputError, r"--csv: cannot write .*/old/_manifest\.json: is inside --out",
+         cli=lambda tmp: ["sweep", "--scene", str(_SCENES / "sweep_crane.toml"), "--grid",
+                          str(_bytes(tmp, "grid.toml", b"hs = [1.0]\n")), "--out",
+                          str(_bytes(tmp, "old/_manifest.json", b"{}").parent), "--csv",
+                          str(tmp / "old" / "_manifest.json")]),
+    Case("sweep-plot-is-results", "sweep --plot into the results directory (once a PNG in "
+         "the Parquet dataset: read_results failed)", oc.OutputError,
+         r"--plot: cannot write .*/out/res/\.\./res: is inside --out",
+         cli=lambda tmp: ["sweep", "--scene", str(_SCENES / "sweep_crane.toml"), "--grid",
+                          str(_bytes(tmp, "grid.toml", b"hs = [1.0]\n")), "--out",
+                          str(tmp / "out" / "res"), "--plot",
+                          str(tmp / "out" / "res" / ".." / "res")]),
     # ---- values a cast would silently change (issue 21, item 6)
     Case("complex-sea-times", "complex times for a ship's motion", oc.SeaStateError,
          r"t has complex values: give real numbers \[s\]",

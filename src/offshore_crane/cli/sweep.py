@@ -80,7 +80,7 @@ def run(args) -> int:
 
     from offshore_crane import scenes
     from offshore_crane.studies import sweep
-    from offshore_crane.io import plan_outputs
+    from offshore_crane.io import plan_outputs, refuse_inside
     from offshore_crane.studies.sizing import CAPACITIES
     from offshore_crane.cli.common import robot_scene
 
@@ -93,6 +93,7 @@ def run(args) -> int:
     grid = sweep.check_grid(scene, sweep.load_grid(args.grid), args.grid,
                             sweep.MAX_CASES if args.max_cases is None else args.max_cases)
     scatter = sweep.load_scatter(args.scatter) if args.scatter else None
+    refuse_inside({"--csv": args.csv, "--plot": args.plot}, args.out, "--out")
     planned = plan_outputs({"--csv": args.csv}, [args.scene, args.grid, args.scatter,
                                                  *scene.inputs()])
     plot_dir = _plot_dir(args.plot)
