@@ -111,8 +111,8 @@ def test_grid_case_count_is_capped_before_anything_is_built(tmp_path, capsys):
     assert time.perf_counter() - t0 < 0.5
     with pytest.raises(GridError, match="makes 4 cases .* more than the limit 3"):
         sweep.check_grid(scene, {"hs": [1.0, 2.0], "seed": [0, 1]}, max_cases=3)
-    assert len(sweep.check_grid(scene, {"hs": [1.0, 2.0], "seed": [0, 1]},
-                                max_cases=4).cases()) == 4
+    small = sweep.check_grid(scene, {"hs": [1.0, 2.0], "seed": [0, 1]}, max_cases=4)
+    assert small.count == len(list(small.cases())) == 4
     grid = _grid(tmp_path, "hs = [1.0, 2.0]\nseed = [0, 1, 2]\n")
     out = tmp_path / "res"
     assert main(["sweep", "--scene", str(_scene(tmp_path)), "--grid", str(grid), "--out",
@@ -125,10 +125,10 @@ def test_grid_headings_are_directions(tmp_path):
     """A heading of 450° or -270° is the heading 90°: the same case (id included) as 90°,
     so that operability by heading never counts one direction twice (issue 21)."""
     scene = scenes.load_scene(_scene(tmp_path))
-    ids = [sweep.case_id(sweep.check_grid(scene, {"heading": [h]}).cases()[0])
+    ids = [sweep.case_id(scene, next(sweep.check_grid(scene, {"heading": [h]}).cases()))
            for h in (90.0, 450.0, -270.0, 810.0)]
     assert len(set(ids)) == 1
-    assert sweep.check_grid(scene, {"heading": [-10.0]}).cases() == [{"heading": 350.0}]
+    assert list(sweep.check_grid(scene, {"heading": [-10.0]}).cases()) == [{"heading": 350.0}]
 
 
 def test_grid_product_order_and_names(tmp_path):
@@ -136,9 +136,46 @@ def test_grid_product_order_and_names(tmp_path):
     grid = sweep.check_grid(scene, sweep.load_grid(_grid(tmp_path, (
         "seed = [0, 1]\nhs = [1.0, 2.0]\npayload.mass = [0, 3]\n"))))
     assert grid.keys == ("payload.mass", "hs", "seed")          # robot slowest, seed fastest
-    cases = grid.cases()
+    cases = list(grid.cases())
     assert len(cases) == 8 and cases[1] == {"payload.mass": 0.0, "hs": 1.0, "seed": 1}
-    assert len({sweep.case_id(c) for c in cases}) == 8
+    ids = sweep.CaseIds(scene)
+    assert len({ids(c) for c in cases}) == 8
+
+
+def test_a_grid_value_equal_to_the_scenes_own_is_the_scenes_case(tmp_path):
+    """Case ids are of the resolved case: Hs 2.5 m on a scene of Hs 2.5 m, 2 kg of payload
+    on a payload of 2 kg, the seed the scene has, a heading of 450° on a scene heading
+    90°, a field by its alias: each is the scene's own case. Rerunning a grid that names
+    them runs nothing again, the rows carry this grid's values, and read_results returns
+    each case once with the scene's value where a row's grid did not vary a key."""
+    scene = scenes.load_scene(_scene(tmp_path))
+    ids = sweep.CaseIds(scene)
+    own = ids({})
+    for same in ({"hs": 2.5}, {"payload.mass": 2.0}, {"seed": 1}, {"heading": 450.0},
+                 {"tp": 8.0, "scale": 20.0},
+                 {"hs": 2.5, "payload.mass": 2.0, "seed": 1}):
+        assert ids(same) == own, same
+    for other in ({"hs": 2.4}, {"payload.mass": 2.5}, {"seed": 2}, {"heading": 91.0},
+                  {"arm.link1.mass": 9.0}):
+        assert ids(other) != own, other
+    assert sweep.case_id(scene, {"payload.mass": 2.0}) == own
+    out = tmp_path / "res"
+    first = sweep.run(scene, {"seed": [1, 2]}, out=out)
+    stats: dict = {}
+    second = sweep.run(scene, {"hs": [2.5, 3.0], "seed": [1, 2]}, out=out, stats=stats)
+    assert (stats["cases"], stats["skipped"], stats["ran"]) == (4, 2, 2)
+    assert list(second["hs"]) == [2.5, 2.5, 3.0, 3.0]          # this grid's names
+    assert list(second["seed"]) == [1, 2, 1, 2]
+    assert set(first["case_id"]) == set(second["case_id"][:2])
+    third = sweep.run(scene, {"payload.mass": [2.0, 3.0], "seed": [1]}, out=out,
+                      stats=stats)
+    assert (stats["skipped"], stats["ran"]) == (1, 1)
+    assert list(third["payload.mass"]) == [2.0, 3.0]
+    df = sweep.read_results(out).sort_values("case_id")
+    assert len(df) == 5 and df["case_id"].is_unique
+    assert not df[["hs", "seed", "payload.mass"]].isna().any().any()   # the scene's values
+    row = df[df["case_id"] == own].iloc[0]
+    assert (row["hs"], row["seed"], row["payload.mass"]) == (2.5, 1, 2.0)
 
 
 # --------------------------------------------------------------------------- backends
@@ -335,6 +372,38 @@ def test_a_version_1_directory_of_one_file_per_case_is_read_and_resumed(tmp_path
     again = sweep.run(scene, {"hs": [1.0, 2.0, 3.0]}, out=out, stats=stats)
     assert (stats["skipped"], stats["ran"]) == (2, 1)
     assert set(first["case_id"]) < set(again["case_id"])
+    assert len(sweep.read_results(out)) == 3
+
+
+def test_a_version_1_directory_is_migrated_to_resolved_case_ids(tmp_path):
+    """Rows stored under version 1's ids (a hash of the grid's values as given) are given
+    their resolved cases' ids when a run takes the directory: nothing is run again, a
+    grid naming the scene's own value finds its case, each case is read once."""
+    import hashlib
+
+    from offshore_crane.studies.sweep import rowfiles
+
+    scene = scenes.load_scene(_scene(tmp_path))
+    out = tmp_path / "res"
+    first = sweep.run(scene, {"hs": [2.5, 3.0]}, out=out)
+    table = rowfiles.read_rows(str(out))
+    old = [hashlib.sha256(json.dumps({"hs": h}, sort_keys=True).encode()).hexdigest()[:16]
+           for h in table.column("hs").to_pylist()]
+    import pyarrow as pa
+    table = table.set_column(0, "case_id", pa.array(old, pa.string()))
+    for p in out.glob("rows-*"):
+        p.unlink()
+    (out / "rows-19990101T000000-1-abcd.parquet").write_bytes(rowfiles.parquet_bytes(table))
+    manifest = json.loads((out / "_manifest.json").read_text())
+    manifest["version"] = 1
+    del manifest["scene"]["values"]
+    (out / "_manifest.json").write_text(json.dumps(manifest))
+    stats: dict = {}
+    again = sweep.run(scene, {"seed": [1, 2]}, out=out, stats=stats)   # seed 1: Hs 2.5
+    assert (stats["skipped"], stats["ran"]) == (1, 1)
+    assert json.loads((out / "_manifest.json").read_text())["version"] == 2
+    assert set(first["case_id"]) <= set(sweep.read_results(out)["case_id"])
+    assert first["case_id"][0] == again["case_id"][0]
     assert len(sweep.read_results(out)) == 3
 
 

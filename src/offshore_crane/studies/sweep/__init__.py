@@ -39,8 +39,9 @@ offshore-crane[sweep]``), imported when used."""
 
 from __future__ import annotations
 
-from offshore_crane.studies.sweep.grid import (MAX_CASES, SEA_KEYS, Grid, case_id, case_scene,
-                                               check_grid, load_grid)
+from offshore_crane.studies.sweep.grid import (MAX_CASES, SEA_KEYS, CaseIds, Grid, case_id,
+                                               case_scene, check_grid, load_grid,
+                                               scene_values)
 from offshore_crane.studies.sweep.cases import CASE_COLUMNS, CaseRun, record, run_case, row_schema
 from offshore_crane.studies.sweep.store import (MANIFEST, MANIFEST_FORMAT, scene_hash,
                                                 ResultsStore, read_results)

@@ -133,17 +133,19 @@ def _failed_row() -> dict:
     return row
 
 
-def run_case(scene, params: dict, backend: str = "auto", timing: dict | None = None) -> dict:
+def run_case(scene, params: dict, backend: str = "auto", timing: dict | None = None,
+             cid: str | None = None) -> dict:
     """One case: the row of :func:`row_schema` (``case_id``, the case's values, its
     status, error and envelope). A library error (workspace, singularity, simulation
     stopped, missing capability) is recorded in the row (``status = "failed"``,
     ``error_type``, ``error``) instead of raised; the row's other numbers are then NaN.
     ``timing`` (a dict), when given, receives ``compute``: the case's own computation
     (trajectory and dynamics, :attr:`CaseRun.seconds`) [s] — never part of the row, which
-    holds only what is reproducible."""
+    holds only what is reproducible. ``cid``: the case's id when the caller has it
+    (:class:`~offshore_crane.studies.sweep.grid.CaseIds`), else computed."""
     import warnings
 
-    row = {"case_id": case_id(params), **params}
+    row = {"case_id": cid if cid is not None else case_id(scene, params), **params}
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
@@ -163,13 +165,13 @@ def run_case(scene, params: dict, backend: str = "auto", timing: dict | None = N
 
 
 def run_task(payload):
-    """What a worker runs: ``(scene, params, backend)`` → ``(case_id, row, seconds,
-    compute seconds)``: the run time of :func:`run_case` whole and of the case's own
-    computation [s]."""
-    scene, params, backend = payload
+    """What a worker runs: ``(scene, params, backend, case id)`` → ``(case_id, row,
+    seconds, compute seconds)``: the run time of :func:`run_case` whole and of the case's
+    own computation [s]."""
+    scene, params, backend, cid = payload
     timing: dict = {}
     t0 = time.perf_counter()
-    row = run_case(scene, params, backend, timing)
+    row = run_case(scene, params, backend, timing, cid)
     return row["case_id"], row, time.perf_counter() - t0, timing["compute"]
 
 

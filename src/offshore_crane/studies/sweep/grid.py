@@ -43,12 +43,18 @@ class Grid:
     values: dict
     where: str = "grid"
 
-    def cases(self) -> list[dict]:
-        """The product of the lists, in order: the last key varies fastest (the seeds
-        of one case are consecutive; robot fields vary slowest, so that a worker keeps
-        its robot for many cases)."""
-        return [dict(zip(self.keys, combo))
-                for combo in itertools.product(*(self.values[k] for k in self.keys))]
+    def cases(self):
+        """The product of the lists, in order, made one at a time (an iterator of
+        ``{key: value}``): the last key varies fastest (the seeds of one case are
+        consecutive; robot fields vary slowest, so that a worker keeps its robot for many
+        cases)."""
+        return (dict(zip(self.keys, combo))
+                for combo in itertools.product(*(self.values[k] for k in self.keys)))
+
+    @property
+    def count(self) -> int:
+        """How many cases :meth:`cases` makes."""
+        return math.prod(len(self.values[k]) for k in self.keys)
 
     def as_dict(self) -> dict:
         return {k: list(self.values[k]) for k in self.keys}
@@ -194,8 +200,104 @@ def case_scene(scene, params: dict, origin: str | None = None):
     return replace(scene, origin=origin or f"{scene.where()} case {params}", **changes)
 
 
-def case_id(params: dict) -> str:
-    """A case's identity: 16 hex digits of the SHA-256 of its values (sorted keys,
-    floats by ``repr``), stable across runs, processes and grid orders."""
-    text = json.dumps({k: params[k] for k in sorted(params)}, sort_keys=True)
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
+class CaseIds:
+    """Case ids of one scene's cases: 16 hex digits of the SHA-256 of the *resolved* case —
+    the digest of the robot the case's fields resolve to
+    (:meth:`offshore_crane.robot.description.Description.digest`) and the case's sea
+    values that differ from the scene's own (defaults of the sea functions filled in,
+    headings modulo 360°, numbers as floats).
+
+    So a grid value equal to the scene's own (``hs = [2.5]`` on a scene of Hs 2.5 m,
+    ``"payload.mass" = [2.0]`` on a payload of 2 kg) is the scene's own case, whatever the
+    grid that names it; an id is stable across runs, processes, grid orders and
+    spellings (ids identify cases of one scene: a results directory holds one scene's).
+    The robot is resolved once per combination of robot fields (cached); an id costs
+    ~5 µs after that.
+    """
+
+    def __init__(self, scene):
+        self.scene = scene
+        self._robots: dict = {}
+        self._sea = (_canonical_sea(_sea_defaults(scene)) if scene.trajectory == "sea"
+                     else {})
+
+    def robot_digest(self, robot: dict) -> str:
+        """Digest of the scene's robot with the fields ``robot`` (dotted names) over its
+        own."""
+        from offshore_crane.robot.description import resolve
+
+        key = tuple(sorted(robot.items()))
+        if key not in self._robots:
+            self._robots[key] = resolve(self.scene.robot_description,
+                                        {**self.scene.robot, **robot}).digest()
+        return self._robots[key]
+
+    def __call__(self, params: dict) -> str:
+        robot, sea = {}, []
+        for key, value in params.items():
+            if key in SEA_KEYS:
+                value = _canonical_value(key, value)
+                if value != self._sea.get(key):
+                    sea.append(f"{key}={value!r}")
+            else:
+                robot[key] = value
+        text = self.robot_digest(robot) + ";" + ";".join(sorted(sea))
+        return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _sea_defaults(scene) -> dict:
+    """The scene's ``[sea]`` with the sea motion's defaults for the keys it omits."""
+    import inspect
+
+    from offshore_crane.motion.sea import sea_motion
+
+    defaults = {("heading" if n == "heading_deg" else n): p.default
+                for n, p in inspect.signature(sea_motion).parameters.items()
+                if p.default is not inspect.Parameter.empty and n not in ("check",)}
+    return {**defaults, **scene.sea}
+
+
+def _canonical_value(key: str, v):
+    """A sea value as the motion sees it: numbers as floats (``seed`` an int), the heading
+    modulo 360°, sequences as lists."""
+    if isinstance(v, bool) or v is None or isinstance(v, str):
+        return v
+    if isinstance(v, (int, float)):
+        if key == "seed":
+            return int(v)
+        return float(v) % 360.0 if key == "heading" else float(v)
+    if isinstance(v, (list, tuple)):
+        return [_canonical_value(key, x) for x in v]
+    return v
+
+
+def _canonical_sea(sea: dict) -> dict:
+    return {k: _canonical_value(k, v) for k, v in sea.items()}
+
+
+def scene_values(scene, keys) -> dict:
+    """The scene's own value of each grid key it has one for: a sea key's (defaults
+    filled in), a robot field's as its description resolves it (a field the description
+    leaves to a default it does not list is left out)."""
+    from offshore_crane.robot.description import resolve
+
+    out: dict = {}
+    sea = _canonical_sea(_sea_defaults(scene)) if scene.trajectory == "sea" else {}
+    spec = None
+    for key in keys:
+        if key in SEA_KEYS:
+            if key in sea:
+                out[key] = sea[key]
+            continue
+        if spec is None:
+            spec = resolve(scene.robot_description, scene.robot)
+        value = spec.values.get(key)
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            out[key] = float(value)
+    return out
+
+
+def case_id(scene, params: dict) -> str:
+    """The id of one case of ``scene`` (:class:`CaseIds`; for many cases make one
+    :class:`CaseIds` and call it, the robot is then resolved once per combination)."""
+    return CaseIds(scene)(params)

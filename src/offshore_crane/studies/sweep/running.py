@@ -14,10 +14,15 @@ from offshore_crane.studies.sweep.backends import (check_scheduler, connect, han
                                                    run_on_dask, run_on_joblib, warm_up_scene,
                                                    warm_up_workers)
 from offshore_crane.studies.sweep.cases import row_schema
-from offshore_crane.studies.sweep.grid import (MAX_CASES, Grid, case_id, check_grid, install_hint,
-                                               load_grid)
+from offshore_crane.studies.sweep.grid import (MAX_CASES, CaseIds, Grid, check_grid,
+                                               install_hint, load_grid, scene_values)
 from offshore_crane.studies.sweep.rowfiles import batch_seconds
-from offshore_crane.studies.sweep.store import ResultsStore, conform, results_table
+from offshore_crane.studies.sweep.store import (ResultsStore, conform, results_table,
+                                                with_values)
+
+
+#: Rows of a run held as Python dicts before they are packed into an Arrow table.
+HELD_ROWS = 2000
 
 
 def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=None, *,
@@ -73,24 +78,34 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
     backend = resolve_backend(backend)
     install_hint("pandas", "A sweep's results table")
     schema = row_schema(grid)
-    cases = grid.cases()
-    ids = [case_id(c) for c in cases]
+    identify = CaseIds(scene)
     store = ResultsStore.open(out, scene) if out is not None else None
     if scheduler not in (None, "local"):
         handshake(scheduler)            # an address that is no Dask scheduler: nothing written
     client = cluster = None
-    rows: dict = {}
-    info = {"cases": len(set(ids)), "skipped": 0, "ran": 0, "failed": 0,
+    held: list = []                     # this run's rows: Arrow tables of HELD_ROWS, and
+    rows: list = []                     # the dicts since the last one
+    info = {"cases": 0, "skipped": 0, "ran": 0, "failed": 0,
             "case_seconds": [], "compute_seconds": []}
+    order: dict = {}                    # case id -> its first index in the grid
+    earlier: dict = {}                  # case id -> values, of cases found in the store
     try:
         finished: set = set()
         if store is not None:           # the directory is this run's, its manifest on
             store.lock(scene)           # disk, before a cluster starts or a case runs
             finished = store.done()
-            store.create(grid)
-        info["skipped"] = len(set(ids) & finished)
-        pending = list({cid: (scene, c, backend) for c, cid in zip(cases, ids)
-                        if cid not in finished}.values())           # each case once
+            store.create(grid, scene_values(scene, grid.keys))
+        pending = []
+        for i, params in enumerate(grid.cases()):       # made one at a time
+            cid = identify(params)
+            if cid in order:
+                continue                                # the same resolved case again
+            order[cid] = i
+            if cid in finished:
+                earlier[cid] = params
+            else:
+                pending.append((scene, params, backend, cid))
+        info.update(cases=len(order), skipped=len(earlier))
         if scheduler is not None and pending:
             try:
                 client, cluster = connect(scheduler, workers)
@@ -119,7 +134,10 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             for cid, row, seconds, compute in results:
                 if writer is not None:
                     writer.add(row)
-                rows[cid] = row
+                rows.append(row)
+                if len(rows) >= HELD_ROWS:      # 1.3 kB a row as Arrow, 7 kB as a dict
+                    held.append(results_table(rows, schema))
+                    rows = []
                 info["ran"] += 1
                 info["failed"] += row["status"] != "ok"
                 info["case_seconds"].append(seconds)
@@ -143,14 +161,13 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             cluster.close()
     if stats is not None:
         stats.update(info)
-    fresh = [rows[c] for c in dict.fromkeys(ids) if c in rows]   # rows of this run, held
-    table = results_table(fresh, schema)
-    if store is not None and len(fresh) < len(set(ids)):         # and those run before
-        pa = install_hint("pyarrow", "A sweep's results (Parquet)")
-        before = store.read(set(ids) - set(rows))
+    pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+    table = pa.concat_tables(held + [results_table(rows, schema)])   # rows of this run
+    if earlier:                                                  # and those run before
+        before = store.read(set(earlier))
         if before is not None:
-            table = pa.concat_tables([table, conform(before, schema)])
+            table = pa.concat_tables([table, with_values(conform(before, schema), grid,
+                                                         earlier)])
     df = table.to_pandas()
-    order = {cid: i for i, cid in enumerate(ids)}
     df.insert(0, "case", df["case_id"].map(order).astype("int64"))
     return df.sort_values("case", kind="stable").reset_index(drop=True)

@@ -18,6 +18,9 @@ from offshore_crane.studies.sweep.rowfiles import BatchWriter, case_ids, read_ro
 
 MANIFEST = "_manifest.json"
 MANIFEST_FORMAT = "offshore-crane sweep results"
+#: 2: case ids of the resolved case (:class:`~offshore_crane.studies.sweep.grid.CaseIds`);
+#: 1: of the grid's values as given (migrated when a run takes the directory).
+MANIFEST_VERSION = 2
 
 
 # =========================================================================== the store
@@ -139,9 +142,43 @@ class ResultsStore:
         self.manifest = current.manifest
         try:
             recover(self.path)              # what killed runs left, made whole
+            if self.manifest is not None and self.manifest.get("version", 1) < 2:
+                self._migrate(scene)
         except BaseException:
             self.release()
             raise
+
+    def _migrate(self, scene) -> None:
+        """Version-1 rows under the ids of their resolved cases (the grid keys' values of
+        each row), each case once, in one new file; the old files removed; then the
+        manifest says version 2. Killed on the way, the next run does it again (the
+        new file's ids map to themselves)."""
+        from offshore_crane.io import write_bytes, write_text
+        from offshore_crane.studies.sweep.grid import CaseIds
+        from offshore_crane.studies.sweep.rowfiles import (new_run_token, parquet_bytes,
+                                                           row_files)
+
+        pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+        import numpy as np
+
+        names = row_files(self.path)
+        table = read_rows(self.path, names)
+        if table is not None:
+            keys = [k for k in dict.fromkeys(k for g in self.manifest["grids"] for k in g)
+                    if k in table.column_names]
+            identify = CaseIds(scene)
+            ids = [identify({k: v for k, v in row.items() if v is not None})
+                   for row in table.select(keys).to_pylist()]
+            table = table.set_column(table.schema.get_field_index("case_id"), "case_id",
+                                     pa.array(ids, pa.string()))
+            _, first = np.unique(np.asarray(ids, dtype=object), return_index=True)
+            table = table.take(pa.array(np.sort(first)))
+            target = f"rows-{new_run_token()}.parquet"
+            write_bytes(os.path.join(self.path, target), parquet_bytes(table))
+            for n in names:
+                os.unlink(os.path.join(self.path, n))
+        self.manifest["version"] = MANIFEST_VERSION
+        write_text(os.path.join(self.path, MANIFEST), json.dumps(self.manifest, indent=1))
 
     def _make_directory(self) -> None:
         try:
@@ -179,17 +216,24 @@ class ResultsStore:
                 pass
             lock.release()
 
-    def create(self, grid: Grid) -> None:
-        """Make the directory and write (or extend) the manifest with ``grid``."""
+    def create(self, grid: Grid, values: dict | None = None) -> None:
+        """Make the directory and write (or extend) the manifest with ``grid`` and the
+        scene's own ``values`` of its keys (:func:`~offshore_crane.studies.sweep.grid.
+        scene_values`: what a row of a grid that did not vary a key had)."""
         from offshore_crane.io import write_text
 
         self._make_directory()
-        manifest = self.manifest or {"format": MANIFEST_FORMAT, "version": 1,
+        manifest = self.manifest or {"format": MANIFEST_FORMAT,
+                                     "version": MANIFEST_VERSION,
                                      "scene": {"name": self.scene_name,
                                                "hash": self.digest},
                                      "grids": []}
-        if grid.as_dict() not in manifest["grids"]:
-            manifest["grids"].append(grid.as_dict())
+        known = manifest["scene"].setdefault("values", {})
+        new_values = {k: v for k, v in (values or {}).items() if k not in known}
+        if grid.as_dict() not in manifest["grids"] or new_values:
+            known.update(new_values)
+            if grid.as_dict() not in manifest["grids"]:
+                manifest["grids"].append(grid.as_dict())
             target = os.path.join(self.path, MANIFEST)
             write_text(target, json.dumps(manifest, indent=1))
             with open(target, "rb") as fh:          # on disk before any case runs
@@ -229,10 +273,25 @@ def conform(table, schema):
     return pa.Table.from_arrays(columns, schema=schema)
 
 
+def with_values(table, grid: Grid, values: dict):
+    """``table`` with its grid-key columns set from ``values`` (``{case id: {key:
+    value}}``): rows stored by another grid hold their case under that grid's keys (a
+    key it did not vary is null there), this grid names it by its own."""
+    pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+
+    ids = table.column("case_id").to_pylist()
+    for key in grid.keys:
+        i = table.schema.get_field_index(key)
+        column = pa.array([values[c][key] for c in ids], table.schema.field(i).type)
+        table = table.set_column(i, key, column)
+    return table
+
+
 def read_results(out):
     """Every row of a results directory as a ``pandas.DataFrame``, each case once (for a
-    notebook): the columns are the union of its grids' (a robot field a row's grid did not
-    vary is null there).
+    notebook): the columns are the union of its grids'; where a row's grid did not vary a
+    key, its cell holds the scene's own value (from the manifest; null when the scene's
+    description does not list the field).
 
     Raises:
         ResultsDirectoryError: ``out`` is not a results directory (no manifest), or a row
@@ -248,4 +307,23 @@ def read_results(out):
         import pandas as pd
 
         return pd.DataFrame({"case_id": pd.Series(dtype="string")})
+    try:
+        values = json.loads(Path(given, MANIFEST).read_text(encoding="utf-8"))["scene"].get(
+            "values", {})
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        raise ResultsDirectoryError(f"{given}: its {MANIFEST} is damaged or not a sweep "
+                                    "manifest", path=given, reason="damaged manifest") from None
+    import pyarrow.compute as pc
+
+    for key, value in values.items():
+        i = table.schema.get_field_index(key)
+        if i >= 0 and table.column(i).null_count:
+            column = table.column(i)
+            table = table.set_column(i, key, pc.fill_null(column, _scalar(value,
+                                                                          column.type)))
     return table.to_pandas()
+
+
+def _scalar(value, type_):
+    pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+    return pa.scalar(value).cast(type_)
