@@ -17,7 +17,7 @@ bit-identical to one thread (every sample is computed independently).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from offshore_crane.kernel_cache import njit
 
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.dynamics import backends

@@ -13,7 +13,7 @@ from __future__ import annotations
 from typing import Callable
 
 import numpy as np
-from numba import njit
+from offshore_crane.kernel_cache import njit
 
 from offshore_crane.dynamics.jit import JIT
 

@@ -5,7 +5,7 @@ Cholesky solve of ``M q̈ = A X − h``. Compiled with Numba, no Python objects.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from offshore_crane.kernel_cache import njit
 
 from offshore_crane.dynamics.jit import JIT
 

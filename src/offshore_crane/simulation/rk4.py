@@ -7,7 +7,7 @@ hash only (see :func:`_make`).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from offshore_crane.kernel_cache import njit
 
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage

@@ -22,7 +22,7 @@ They close over the formulas' hash only (the disk cache keys on it, see
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from offshore_crane.kernel_cache import njit
 
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.formulas import STORE_WIDTH

@@ -18,7 +18,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from numba import njit
+from offshore_crane.kernel_cache import njit
 
 from offshore_crane.conventions import N_LEGS
 from offshore_crane.errors import NumericalError

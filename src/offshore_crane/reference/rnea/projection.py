@@ -18,7 +18,7 @@ import weakref
 from typing import Any, NamedTuple
 
 import numpy as np
-from numba import njit
+from offshore_crane.kernel_cache import njit
 
 from offshore_crane.reference.rnea.closure import tree_state
 from offshore_crane.reference.rnea.tree import read_tree

@@ -1,0 +1,105 @@
+"""Numba's ``njit`` with an on-disk cache that recovers from damaged entries.
+
+Numba keeps a compiled kernel beside its source (``__pycache__/<module>.<function>-<line>.
+py311.nbi``, the index, and ``….<n>.nbc``, one file per compiled signature). A file cut
+short (a full disk, a killed copy) or garbled made every later run fail with Numba's own
+``UnpicklingError`` until the user deleted ``__pycache__`` by hand. Every kernel of this
+package is made by :func:`njit` below, a drop-in for ``numba.njit`` whose cache, when an
+entry cannot be loaded, removes that function's index and data files, warns once
+(:class:`KernelCacheWarning`, one line naming the files and the reason) and lets Numba
+compile the function again, which writes a fresh entry.
+
+The recovering cache subclasses ``numba.core.caching.FunctionCache`` (Numba's own cache
+of ``cache=True``) and replaces it on the dispatcher; the file names come from that
+class (``_cache_file``), so they follow Numba's layout. Numba is imported only when a
+kernel is made.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+import warnings
+
+_WARNED: set = set()
+_WARNED_LOCK = threading.Lock()
+
+
+class KernelCacheWarning(UserWarning):
+    """A damaged compiled-kernel cache entry was removed and the kernel compiled again."""
+
+
+def njit(*args, **options):
+    """``numba.njit`` (same arguments), with :class:`RecoveringCache` when
+    ``cache=True``."""
+    import numba
+
+    from numba.core.dispatcher import Dispatcher
+
+    decorate = numba.njit(*args, **options)
+    if isinstance(decorate, Dispatcher):            # njit(f, ...)
+        return _recovering(decorate)
+    return lambda f: _recovering(decorate(f))       # njit(...)(f)
+
+
+def _recovering(dispatcher):
+    """Give ``dispatcher`` a :class:`RecoveringCache` in place of Numba's, if it caches."""
+    from numba.core.caching import FunctionCache
+
+    cache = getattr(dispatcher, "_cache", None)
+    if type(cache) is FunctionCache:
+        dispatcher._cache = _cache_class()(dispatcher.py_func)
+    return dispatcher
+
+
+_CLASS: list = []
+
+
+def _cache_class():
+    """:class:`RecoveringCache`, defined on first use (it subclasses a Numba class)."""
+    if not _CLASS:
+        from numba.core.caching import FunctionCache
+
+        class RecoveringCache(FunctionCache):
+            """Numba's function cache; an entry that fails to load is removed (its index
+            and data files), reported once, and compiled again."""
+
+            def load_overload(self, sig, target_context):
+                try:
+                    return super().load_overload(sig, target_context)
+                except Exception as exc:        # any failure to read an entry: recompile
+                    remove_entry(self._cache_file, self._py_func.__qualname__, exc)
+                    return None
+
+        _CLASS.append(RecoveringCache)
+    return _CLASS[0]
+
+
+def entry_files(cache_file) -> list[str]:
+    """The files of one function's cache entry: its index and its data files."""
+    directory = cache_file._cache_path
+    base = cache_file._index_name[: -len(".nbi")]
+    names = [n for n in os.listdir(directory) if n == cache_file._index_name
+             or (n.startswith(base + ".") and n.endswith(".nbc"))] \
+        if os.path.isdir(directory) else []
+    return [os.path.join(directory, n) for n in sorted(names)]
+
+
+def remove_entry(cache_file, name: str, exc: Exception) -> None:
+    """Remove one function's damaged entry (what can be removed) and warn once."""
+    files = entry_files(cache_file)
+    for path in files:
+        try:
+            os.unlink(path)
+        except OSError:
+            pass
+    reason = (str(exc).splitlines() or [""])[0]
+    key = (cache_file._cache_path, cache_file._index_name)
+    with _WARNED_LOCK:
+        if key in _WARNED:
+            return
+        _WARNED.add(key)
+    where = os.path.join(cache_file._cache_path, cache_file._index_name[: -len(".nbi")])
+    warnings.warn(KernelCacheWarning(
+        f"compiled-kernel cache entry {where}.* could not be loaded ({type(exc).__name__}: "
+        f"{reason}): removed {len(files)} file(s), compiling {name} again"), stacklevel=2)
