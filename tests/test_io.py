@@ -175,6 +175,46 @@ def test_signal_mid_write_leaves_nothing(tmp_path, sig, status, word):
     assert list(tmp_path.iterdir()) == []          # no target, no temporary file
 
 
+SRC = Path(__file__).resolve().parents[1] / "src"
+
+
+def test_a_ctrl_c_while_the_program_exits_is_no_traceback(tmp_path):
+    """The program's exit (after the command's status is known) ignores Ctrl-C: an
+    at-exit hook that interrupts itself (as a pool joining its threads at exit met the
+    user's Ctrl-C) leaves the status and stderr clean. Fails with ``sys.exit(main())``:
+    "Exception ignored in atexit callback ... KeyboardInterrupt"."""
+    code = ("import atexit, os, signal, sys, time\n"
+            "def late():\n"
+            "    os.kill(os.getpid(), signal.SIGINT)\n"
+            "    time.sleep(0.2)\n"
+            "atexit.register(late)\n"
+            "sys.argv = ['offshore-crane', 'id', '--duration', '0.05', '--no-limits']\n"
+            "from offshore_crane.__main__ import entry\n"
+            "entry()\n")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(SRC)}, cwd=tmp_path,
+                          timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert "Traceback" not in proc.stderr and "Exception ignored" not in proc.stderr
+
+
+@pytest.mark.slow
+def test_a_sweep_stops_its_worker_pool_before_returning(tmp_path, capsys):
+    """The command line stops joblib's pool itself (a Ctrl-C there is the one-line
+    interruption), so nothing is left to join at the interpreter's exit."""
+    from joblib.externals.loky import reusable_executor
+
+    from offshore_crane.cli import main
+
+    grid = tmp_path / "grid.toml"
+    grid.write_text("hs = [1.0, 1.5]\n")
+    scenes_dir = Path(__file__).resolve().parents[1] / "scenes"
+    assert main(["sweep", "--scene", str(scenes_dir / "sweep_crane.toml"), "--grid",
+                 str(grid), "--workers", "2", "--no-progress"]) == 0
+    executor = reusable_executor._executor
+    assert executor is None or executor._executor_manager_thread is None   # stopped
+
+
 # --------------------------------------------------------------------------- pipes
 def _fifo_with_writer(tmp_path, data: bytes):
     """A FIFO that a thread fills with ``data`` once (like ``<(cat file)``)."""

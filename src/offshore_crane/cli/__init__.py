@@ -78,7 +78,10 @@ def main(argv=None) -> int:
             warnings.filterwarnings("ignore", category=RuntimeWarning)
             warnings.showwarning = one_line
             args = build_parser().parse_args(_negative_numbers(argv))
-            return args.run(args)
+            try:
+                return args.run(args)
+            finally:
+                _stop_pool()            # interruptible here, not at the interpreter's exit
     except OffshoreCraneError as exc:
         print(f"offshore-crane: error: {exc}", file=sys.stderr)
         return BAD_INPUT
@@ -93,6 +96,14 @@ def main(argv=None) -> int:
     except BrokenPipeError:
         _quiet_stdout()
         return BROKEN_PIPE
+
+
+def _stop_pool() -> None:
+    """Stop the joblib worker pool a command started (none started: nothing imported)."""
+    if "joblib.externals.loky.reusable_executor" in sys.modules:
+        from offshore_crane.studies.sweep.backends import shutdown_pool
+
+        shutdown_pool()
 
 
 def _quiet_stdout() -> None:

@@ -138,6 +138,18 @@ def run_on_joblib(payloads, workers: int):
     yield from parallel(joblib.delayed(run_in_worker)(p) for p in payloads)
 
 
+def shutdown_pool() -> None:
+    """Stop joblib's worker pool if this process started one (for a program about to
+    end: the pool is otherwise kept for the next sweep and joined at the interpreter's
+    exit, where a Ctrl-C printed an "Exception ignored" traceback). Imports nothing."""
+    import sys
+
+    module = sys.modules.get("joblib.externals.loky.reusable_executor")
+    executor = getattr(module, "_executor", None) if module is not None else None
+    if executor is not None:
+        executor.shutdown(wait=True)
+
+
 #: How often a joblib worker looks whether the sweep that started it still lives [s].
 ORPHAN_POLL = 0.5
 _watching: list = []
