@@ -60,6 +60,7 @@ class Case:
 
 
 _SCENES = Path(__file__).resolve().parents[2] / "scenes"
+_LAB = Path(__file__).resolve().parents[2] / "models" / "descriptions" / "lab.toml"
 
 
 # --------------------------------------------------------------------------- helpers
@@ -648,6 +649,29 @@ CASES = [
                           str(_bytes(tmp, "grid.toml", b"hs = [1.0]\n")), "--out",
                           str(tmp / "out" / "res"), "--plot",
                           str(tmp / "out" / "res" / ".." / "res")]),
+    # ---- an output that is an input read through another (issue 21, item 1)
+    Case("export-over-its-description", "export --mjcf onto the --robot description it "
+         "reads (named .xml)", oc.OutputError,
+         r"--mjcf: cannot write .*desc\.xml: is also an input",
+         cli=lambda tmp: ["export", "--robot", str(_bytes(tmp, "desc.xml", _LAB.read_bytes())),
+                          "--mjcf", str(tmp / "desc.xml")]),
+    Case("scene-description-as-output", "id --out onto the description the scene names",
+         oc.OutputError, r"--out: cannot write .*robot\.toml: is also an input",
+         cli=lambda tmp: ["id", "--scene", str(_scene_with_description(tmp)), "--out",
+                          str(tmp / "robot.toml")]),
+    # ---- sizes and addresses checked by our code first (issue 21, items 4 and 5)
+    Case("cable-substeps-memory", "--substeps 1e8 on a hanging load (once 298 GiB "
+         "allocated)", oc.InputError,
+         r"substeps \(\d+ rows\) needs .* of memory, more than the limit .*lower substeps "
+         r"\(--substeps\)",
+         cli=lambda tmp: ["id", "--duration", "10", "--set", "payload.mass=2", "--set",
+                          "payload.cable_length=0.5", "--substeps", "100000000"]),
+    Case("scheduler-negative-port", "sweep --scheduler with a negative port (once a "
+         "ValueError from distributed)", oc.SchedulerError,
+         r"--scheduler tcp://127\.0\.0\.1:-5: the port must be 1\.\.65535",
+         cli=lambda tmp: ["sweep", "--scene", str(_SCENES / "sweep_crane.toml"), "--grid",
+                          str(_bytes(tmp, "grid.toml", b"hs = [1.0]\n")), "--scheduler",
+                          "tcp://127.0.0.1:-5", "--out", str(tmp / "out" / "res")]),
     # ---- values a cast would silently change (issue 21, item 6)
     Case("complex-sea-times", "complex times for a ship's motion", oc.SeaStateError,
          r"t has complex values: give real numbers \[s\]",
@@ -691,6 +715,13 @@ CASES = [
          r"--initial-sway: applies to a payload on a cable",
          cli=lambda tmp: ["id", "--duration", "1", "--initial-sway", "0.1", "0"]),
 ]
+
+
+def _scene_with_description(tmp: Path) -> Path:
+    """A Table 1 scene whose ``[robot] description`` is a copy of lab.toml beside it."""
+    _bytes(tmp, "robot.toml", _LAB.read_bytes())
+    return _bytes(tmp, "s.toml", b'name = "s"\n[robot]\ndescription = "robot.toml"\n'
+                  b'[trajectory]\nsource = "table1"\nduration = 0.1\n')
 
 
 def _link(path: Path, target: str) -> Path:
