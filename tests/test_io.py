@@ -175,7 +175,9 @@ def test_signal_mid_write_leaves_nothing(tmp_path, sig, status, word):
     assert list(tmp_path.iterdir()) == []          # no target, no temporary file
 
 
-SRC = Path(__file__).resolve().parents[1] / "src"
+#: Where the package the tests import lives (the source tree, or the installed copy in
+#: CI): subprocesses import the same one, whose compiled kernels are already cached.
+SRC = Path(oc.__file__).resolve().parents[1]
 
 
 def test_a_ctrl_c_while_the_program_exits_is_no_traceback(tmp_path):

@@ -14,7 +14,11 @@ from pathlib import Path
 
 import pytest
 
-SRC = Path(__file__).resolve().parents[1] / "src"
+import offshore_crane
+
+#: Where the package the tests import lives (the source tree, or the installed copy in
+#: CI): subprocesses import the same one, whose compiled kernels are already cached.
+SRC = Path(offshore_crane.__file__).resolve().parents[1]
 
 MODULE = '''
 from offshore_crane.kernel_cache import njit
