@@ -5,6 +5,8 @@
 - No import cycle between modules, lazy (function-level) imports included.
 - No private name imported across modules.
 - No file in ``src/`` over 500 lines (split by concept).
+- No undefined name (pyflakes): a name used on a path no test took is a NameError
+  waiting for a user (``id --out -`` met one: ``sys`` in a lambda).
 """
 
 from __future__ import annotations
@@ -191,3 +193,25 @@ def test_matplotlib_is_set_up_in_one_place_and_never_in_the_cli():
     drawing = [str(p.relative_to(PACKAGE)) for p in (PACKAGE / "cli").glob("*.py")
                if "matplotlib" in p.read_text(encoding="utf-8")]
     assert not drawing, drawing
+
+
+def test_no_undefined_name():
+    """pyflakes finds no undefined name in the package (annotations included)."""
+    from pyflakes import api, messages
+    from pyflakes.reporter import Reporter
+    import io
+
+    class Collect(Reporter):
+        def __init__(self):
+            super().__init__(io.StringIO(), io.StringIO())
+            self.found = []
+
+        def flake(self, message):
+            if isinstance(message, (messages.UndefinedName, messages.UndefinedLocal,
+                                    messages.UndefinedExport)):
+                self.found.append(str(message))
+
+    reporter = Collect()
+    for path in sorted(PACKAGE.rglob("*.py")):
+        api.checkPath(str(path), reporter)
+    assert reporter.found == []

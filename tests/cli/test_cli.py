@@ -31,6 +31,16 @@ def test_id_both_writes_csv_and_plot(tmp_path, capsys):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_id_to_standard_output(capsys):
+    """``--out -``: the CSV alone on standard output, the summary on standard error (once
+    a NameError: the path no test took)."""
+    assert main(["id", "--duration", "0.1", "--out", "-"]) == 0
+    captured = capsys.readouterr()
+    lines = captured.out.splitlines()
+    assert lines[0] == "t_s,T1_Nm,T2_Nm,Fs_N,Fl1_N,Fl2_N,Fl3_N,Fl4_N,Fl5_N,Fl6_N"
+    assert len(lines) == 12 and "offshore-crane id:" in captured.err
+
+
 def test_id_from_csv(tmp_path, capsys):
     from offshore_crane.motion import trajectories
 

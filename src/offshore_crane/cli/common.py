@@ -4,6 +4,8 @@ same), output planning, comma-separated numbers."""
 
 from __future__ import annotations
 
+import sys
+
 from offshore_crane.conventions import ACTUATORS
 from offshore_crane.errors import InputError
 

@@ -19,12 +19,16 @@ import os
 import threading
 from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from offshore_crane.conventions import (ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, ARM_JOINTS,
                            PLATFORM_JOINTS)
 from offshore_crane.robot.hybrid import HybridModel
 from offshore_crane.robot.urdf import URDF, parse_urdf
 from offshore_crane.robot.xacro_cache import expand, xacro_path
+
+if TYPE_CHECKING:
+    import numpy as np
 
 __all__ = ["Robot", "load_robot", "ACTUATORS", "ACTUATOR_UNITS", "ACTUATED_JOINTS",
            "ARM_JOINTS", "PLATFORM_JOINTS", "xacro_arguments"]

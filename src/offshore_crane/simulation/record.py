@@ -10,7 +10,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from offshore_crane.errors import InputError
+from offshore_crane.errors import InputError, SimulationError
 from offshore_crane.validation import check_memory
 
 
@@ -189,8 +189,6 @@ def divergence(res: "SimulationResult") -> str:
 def stopped(res: "SimulationResult", when: float, cause: str) -> "SimulationError":
     """The :class:`~offshore_crane.errors.SimulationError` of a run that stopped at ``when``
     [s] for ``cause``, carrying ``res`` (the samples kept); ``res.stop`` is set."""
-    from offshore_crane.errors import SimulationError
-
     res.stop = f"stopped at t = {when:.6g} s: {cause}"
     kept = (f"the {len(res)} samples computed before are kept" if len(res) else
             "no sample was computed before it")
