@@ -34,9 +34,15 @@ def pytest_sessionstart(session):
     from offshore_crane.dynamics import warm_up
     from offshore_crane.simulation.rigid import warm_up as warm_up_simulation
 
+    say = session.config.pluginmanager.get_plugin("terminalreporter")
+    if say is not None:
+        say.write_line("Numba kernels: loading them, or compiling them first on a fresh "
+                       "clone (about 1-1.5 min on 2 cores) ...", flush=True)
     t0 = time.perf_counter()
     _COMPILE["parts"] = warm_up() + warm_up_simulation() + warm_up_cable()
     _COMPILE["total"] = time.perf_counter() - t0
+    if say is not None:
+        say.write_line(f"Numba kernels ready in {_COMPILE['total']:.1f} s", flush=True)
 
 
 def pytest_terminal_summary(terminalreporter):

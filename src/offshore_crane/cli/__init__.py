@@ -66,6 +66,7 @@ def main(argv=None) -> int:
     """
     import warnings
 
+    from offshore_crane import progress
     from offshore_crane.io import Terminated, signals_as_exceptions
     from offshore_crane.robot.kinematics.workspace import OffshoreCraneWarning
 
@@ -77,6 +78,9 @@ def main(argv=None) -> int:
             warnings.simplefilter("always", OffshoreCraneWarning)
             warnings.filterwarnings("ignore", category=RuntimeWarning)
             warnings.showwarning = one_line
+            progress.configure(None)            # bars when stderr is a terminal
+            progress.listen(lambda text: print(f"offshore-crane: {text}", file=sys.stderr,
+                                               flush=True))
             args = build_parser().parse_args(_negative_numbers(argv))
             try:
                 return args.run(args)

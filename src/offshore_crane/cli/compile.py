@@ -21,9 +21,15 @@ def run(args) -> int:
     from offshore_crane.dynamics import warm_up
     from offshore_crane.simulation.rigid import warm_up as warm_up_simulation
 
+    from offshore_crane import progress
+
     total = 0.0
-    for name, seconds in warm_up() + warm_up_simulation() + warm_up_cable():
-        total += seconds
-        print(f"{name}: {seconds:.1f} s")
+    groups = (warm_up, warm_up_simulation, warm_up_cable)
+    with progress.bar(len(groups), "group", "compile") as shown:
+        for group in groups:
+            for name, seconds in group():
+                total += seconds
+                print(f"{name}: {seconds:.1f} s", flush=True)
+            shown.update()
     print(f"compiled kernels ready in {total:.1f} s")
     return 0

@@ -105,7 +105,8 @@ def run(args) -> int:
     say(f"offshore-crane id: trajectory {traj.name}, {len(t)} samples, "
         f"t = {t[0]:.2f}..{t[-1]:.2f} s, method "
         f"{'both' if scene.methods == ('kane', 'rnea') else ' + '.join(scene.methods)} "
-        f"({', '.join(f'{m} {s * 1e3:.1f} ms' for m, s in done.seconds.items())})")
+        f"({', '.join(f'{m} {s * 1e3:.1f} ms' for m, s in done.seconds.items())}"
+        f"{_kernel_time(done)})")
     say(f"model: {'exact' if not res.approximations else 'APPROXIMATE: ' + '; '.join(res.approximations)}"
         + (f"; skipped: {'; '.join(res.pruned)}" if res.pruned else ""))
     cols = [k for k, name in enumerate(ACTUATORS) if name in res.outputs]
@@ -143,3 +144,14 @@ def run(args) -> int:
              cable=cable)
         say(f"wrote {args.plot}")
     return status
+
+
+def _kernel_time(done) -> str:
+    """What the run spent before its timed part: compiling (the first time) or loading
+    the kernels; never counted as the methods' run time."""
+    ready = sum(done.prepare.values())
+    if done.compiled:
+        return f"; first compiled {done.compiled} kernels in {ready:.1f} s, cached for next time"
+    if ready >= 0.05:
+        return f"; kernels loaded in {ready:.2f} s"
+    return ""

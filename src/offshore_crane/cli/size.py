@@ -55,6 +55,7 @@ def run(args) -> int:
     import json
     import sys
 
+    from offshore_crane import progress
     from offshore_crane import scenes
     from offshore_crane.studies import sweep
     from offshore_crane.conventions import ACTUATORS
@@ -86,9 +87,11 @@ def run(args) -> int:
                    thresholds=thresholds(args))
     first = int(scene.sea.get("seed", 0)) if sea else None
     runs = []
-    for s in range(args.seeds):
-        case = sweep.case_scene(scene, {"seed": first + s}) if sea else scene
-        runs.append(sweep.record(case, robot, **options))
+    with progress.bar(args.seeds, "seed", "size") as shown:
+        for s in range(args.seeds):
+            case = sweep.case_scene(scene, {"seed": first + s}) if sea else scene
+            runs.append(sweep.record(case, robot, **options))
+            shown.update()
     exposure = args.exposure * 3600.0
     v = verdict([r.envelope for r in runs], scale=scene.sea["scale"] if sea else None,
                 exposure=exposure)

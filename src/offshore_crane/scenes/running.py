@@ -5,7 +5,7 @@ and their comparison.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -23,7 +23,11 @@ class SceneRun:
         robot: Its robot.
         trajectory: The trajectory as solved (deck pose applied).
         results: ``{method: Result}`` in the order of ``scene.methods``.
-        seconds: ``{method: run time [s]}``.
+        seconds: ``{method: run time [s]}``: the method's own computation, its kernels
+            already loaded or compiled.
+        prepare: ``{method: seconds [s]}`` spent before, loading (or, the first time,
+            compiling) the method's kernels on the first two samples.
+        compiled: Kernels compiled (not found in the cache) while preparing.
     """
 
     scene: Scene
@@ -31,6 +35,8 @@ class SceneRun:
     trajectory: object
     results: dict
     seconds: dict
+    prepare: dict = field(default_factory=dict)
+    compiled: int = 0
 
     @property
     def result(self):
@@ -81,14 +87,36 @@ def run(scene: Scene, robot=None, trajectory=None, **options) -> SceneRun:
     Raises:
         The errors of :func:`offshore_crane.dynamics.solve` and of the loaders.
     """
+    from offshore_crane import kernel_cache
+
     robot = robot or load_robot(scene)
     traj = trajectory or load_trajectory(scene, robot)
-    results, seconds = {}, {}
+    results, seconds, prepare = {}, {}, {}
+    compiled = kernel_cache.COMPILED[0]
     for m in scene.methods:
+        t0 = time.perf_counter()
+        _prepare(scene, robot, traj, m, **options)
+        prepare[m] = time.perf_counter() - t0
         t0 = time.perf_counter()
         results[m] = solve_scene(scene, robot, traj, m, scene.leg_model, **options)
         seconds[m] = time.perf_counter() - t0
-    return SceneRun(scene, robot, traj, results, seconds)
+    return SceneRun(scene, robot, traj, results, seconds, prepare,
+                    kernel_cache.COMPILED[0] - compiled)
+
+
+def _prepare(scene: Scene, robot, traj, method: str, **options) -> None:
+    """Run ``method`` on the trajectory's first two samples, so that its kernels are
+    loaded (or compiled) before its run is timed. Its result is dropped, and so is an
+    error: the run itself meets it and reports it."""
+    from offshore_crane.errors import OffshoreCraneError
+
+    if len(traj.t) <= 2:
+        return
+    head = replace(traj, t=traj.t[:2], q=traj.q[:2], qd=traj.qd[:2], qdd=traj.qdd[:2])
+    try:
+        solve_scene(scene, robot, head, method, scene.leg_model, **options)
+    except OffshoreCraneError:
+        pass
 
 
 def compare_methods(run_: SceneRun) -> list[tuple[str, float, float, int, int]]:

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from offshore_crane.simulation.control import LAW_CODES, Controller
+from offshore_crane import progress
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError, SimulationError
 from offshore_crane.validation import as_gravity
@@ -149,11 +150,13 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
     rec = Recording.empty(n_out)
     health = ws.new_health()
     status = np.zeros(3, dtype=np.int64)
-    run(Packed(plant.flat, plant.layout, plant.prismatic),
-        Packed(model.flat, model.layout, model.prismatic), g, step, n_steps, out_every,
-        StageGrid(qr, qdr, qddr),
-        LawParameters(LAW_CODES[controller.law], kp, kd, hold, nq, nqd, lo, hi), limits, q0,
-        qd0, rec, health, status)
+    progress.run_polled(
+        lambda: run(Packed(plant.flat, plant.layout, plant.prismatic),
+                    Packed(model.flat, model.layout, model.prismatic), g, step, n_steps,
+                    out_every, StageGrid(qr, qdr, qddr),
+                    LawParameters(LAW_CODES[controller.law], kp, kd, hold, nq, nqd, lo, hi),
+                    limits, q0, qd0, rec, health, status),
+        lambda: status[2], n_out, "sample", "simulate")
     n_done = int(status[2])
     t_out = tt[::2][::out_every][:n_out]
     res = SimulationResult(t=t_out, **rec._asdict(), integrator="rk4", step=step)

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from offshore_crane import progress
 from offshore_crane.simulation.control import Controller
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError
@@ -147,26 +148,28 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
     E = np.full(n_out, np.nan)
     held = None
     stop, done = None, 0
-    for s in range(n_steps + 1):
-        if hold and s % hold == 0:
-            held = law(2 * s, y, shift_dd(y))
-        k1, X_cmd, X, ok = f(2 * s, y, held)
-        if s % out_every == 0:
-            k = s // out_every
-            rec["q"][k], rec["qd"][k], rec["qdd"][k] = y[:9], y[11:20], k1[11:20]
-            sway[k], sway_rate[k], sway_acc[k] = y[9:11], y[20:22], k1[20:22]
-            rec["q_ref"][k], rec["qd_ref"][k] = qr[2 * s], qdr[2 * s]
-            rec["X_cmd"][k], rec["X"][k] = X_cmd, X
-            sat[k] = (X_cmd < lo) | (X_cmd > hi)
-            E[k] = en.sum()
-            done = k + 1
-            cause = _stop(ok, y, k1)
-            if cause is not None:
-                stop = (k, cause)
+    with progress.bar(n_out, "sample", "simulate") as shown:
+        for s in range(n_steps + 1):
+            if hold and s % hold == 0:
+                held = law(2 * s, y, shift_dd(y))
+            k1, X_cmd, X, ok = f(2 * s, y, held)
+            if s % out_every == 0:
+                k = s // out_every
+                rec["q"][k], rec["qd"][k], rec["qdd"][k] = y[:9], y[11:20], k1[11:20]
+                sway[k], sway_rate[k], sway_acc[k] = y[9:11], y[20:22], k1[20:22]
+                rec["q_ref"][k], rec["qd_ref"][k] = qr[2 * s], qdr[2 * s]
+                rec["X_cmd"][k], rec["X"][k] = X_cmd, X
+                sat[k] = (X_cmd < lo) | (X_cmd > hi)
+                E[k] = en.sum()
+                done = k + 1
+                shown.update()
+                cause = _stop(ok, y, k1)
+                if cause is not None:
+                    stop = (k, cause)
+                    break
+            if s == n_steps:
                 break
-        if s == n_steps:
-            break
-        y = rk4_step(lambda i, x: f(i, x, held)[0], 2 * s, y, k1, step)
+            y = rk4_step(lambda i, x: f(i, x, held)[0], 2 * s, y, k1, step)
     t_out = tt[::2][::out_every][:n_out]
     res = SimulationResult(t=t_out, **rec, saturated=sat, energy=E, power=np.full(n_out, 0.0),
                            integrator="rk4", step=step, sway=sway, sway_rate=sway_rate,

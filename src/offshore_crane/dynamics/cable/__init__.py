@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from offshore_crane import progress
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import (InputError, ModelError, NumericalError, SingularConfigurationError,
                      SlackCableError)
@@ -344,9 +345,13 @@ def _integrate_kane(robot, Q, Qd, Qdd, g, h, sub, y0, thresholds):
     n_out = (Q.shape[0] - 1) // (2 * sub) + 1
     Y = np.full((n_out, 6), np.nan)
     status = np.zeros(3)
-    ck.integrate(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, Q, Qd,
-                 Qdd, g, h, sub, y0, 1.0 / thresholds.error, Y, status)
+    progress.run_polled(
+        lambda: ck.integrate(arrays.flat, arrays.layout, arrays.prismatic,
+                             robot.hybrid.sway_damping, Q, Qd, Qdd, g, h, sub, y0,
+                             1.0 / thresholds.error, Y, status),
+        lambda: progress.filled_rows(Y), n_out, "sample", "swing")
     return Y, status
+
 
 
 def _forces(robot, t, q, qd, qdd, Y, g, method, limits, checks, thresholds, worst, length,

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from offshore_crane import progress
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError
 
@@ -124,9 +125,12 @@ def frames(robot, shown, *, width: int = 640, height: int = 480, camera=None,
     cmap = diverging if color_by == "force" else sequential
 
     def pictures():
-        for k in range(len(P)):
-            rgb = None if values is None else leg_face_colours(r.geo, cmap(values[k]))
-            yield r.frame(k, rgb, text=f"t = {shown.t[k]:.2f} s{caption}", overlay=overlay)
+        with progress.bar(len(P), "frame", "animate") as drawn:
+            for k in range(len(P)):
+                rgb = None if values is None else leg_face_colours(r.geo, cmap(values[k]))
+                yield r.frame(k, rgb, text=f"t = {shown.t[k]:.2f} s{caption}",
+                              overlay=overlay)
+                drawn.update()
     return r, pictures(), scale
 
 

@@ -8,6 +8,7 @@ import os
 import sys
 import time
 
+from offshore_crane import progress as shown
 from offshore_crane.errors import SchedulerError
 from offshore_crane.studies.sweep.backends import (check_scheduler, connect, handshake,
                                                    run_in_process,
@@ -124,11 +125,7 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             results = run_on_joblib(pending, min(workers, len(pending)))
         else:
             results = run_in_process(pending)
-        bar = None
-        if progress:
-            tqdm = install_hint("tqdm", "the progress bar")
-            bar = tqdm.tqdm(total=len(pending), unit="case", file=sys.stderr,
-                            desc="sweep", leave=False)
+        bar = shown.bar(len(pending), "case", "sweep", enabled=bool(progress))
         writer = store.writer(schema) if store is not None else None
         try:
             for cid, row, seconds, compute in results:
@@ -142,11 +139,9 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
                 info["failed"] += row["status"] != "ok"
                 info["case_seconds"].append(seconds)
                 info["compute_seconds"].append(compute)
-                if bar is not None:
-                    bar.update()
+                bar.update()
         finally:
-            if bar is not None:
-                bar.close()
+            bar.close()
             if writer is not None:
                 writer.flush()          # whatever stops the run, what it computed stays
         if writer is not None:

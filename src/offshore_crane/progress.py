@@ -1,0 +1,130 @@
+"""Progress of long jobs and notices of one-off waits: one mechanism for every command.
+
+Every job that can take more than a couple of seconds (a simulation, a hanging-load run,
+``size --seeds``, an animation, ``compile``, a sweep) reports through :func:`bar` — a
+``tqdm`` bar on standard error with rate and ETA, shown only after :data:`DELAY` s so
+that short runs print nothing — or :func:`run_polled` for a compiled loop running in a
+thread (its counter polled). Bars are off in the library by default (a notebook asks
+for them with ``configure(True)``); the command line turns them on when standard error
+is a terminal, so piped output stays clean.
+
+:func:`notice` writes a one-line message to whoever listens (:func:`listen`: the command
+line prints it on standard error): the kernels' compile notice
+(:mod:`offshore_crane.kernel_cache`) uses it, so that the first run says why it waits.
+"""
+
+from __future__ import annotations
+
+import sys
+import threading
+
+#: A bar appears once its job has run this long [s] (tqdm's ``delay``).
+DELAY = 2.0
+#: How often a polled job's counter is read [s].
+POLL = 0.1
+
+_state = {"enabled": False, "listener": None}
+_noticed: set = set()
+_lock = threading.Lock()
+
+
+def configure(enabled: bool | None) -> None:
+    """Bars on (True), off (False), or on when standard error is a terminal (None)."""
+    if enabled is None:
+        enabled = bool(getattr(sys.stderr, "isatty", lambda: False)())
+    _state["enabled"] = bool(enabled)
+
+
+def is_enabled() -> bool:
+    """Whether :func:`bar` draws."""
+    return _state["enabled"]
+
+
+class _Silent:
+    """A bar that draws nothing (bars off)."""
+
+    n = 0
+
+    def update(self, n: int = 1) -> None:
+        self.n += n
+
+    def close(self) -> None:
+        pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def bar(total: int | None, unit: str, desc: str, enabled: bool | None = None):
+    """A progress bar (context manager with ``update(n)``): tqdm on standard error with
+    rate and ETA when bars are on (``enabled`` overrides :func:`is_enabled`), else a
+    silent stand-in. Appears after :data:`DELAY` s; cleared when closed."""
+    if not (is_enabled() if enabled is None else enabled):
+        return _Silent()
+    try:
+        import tqdm
+    except ImportError:                 # tqdm missing: no bar, never an error
+        return _Silent()
+    return tqdm.tqdm(total=total, unit=unit, desc=desc, file=sys.stderr, leave=False,
+                     delay=DELAY, dynamic_ncols=True)
+
+
+def run_polled(job, done, total: int, unit: str, desc: str):
+    """Run ``job()`` (a compiled loop that releases the GIL) and return its result; with
+    bars on, in a thread while this one shows ``done()`` (its own counter of finished
+    units, read every :data:`POLL` s) against ``total``. Exceptions come back here; a
+    Ctrl-C stops waiting (the loop's thread is a daemon: it ends with the process)."""
+    if not is_enabled():
+        return job()
+    box: dict = {}
+
+    def target():
+        try:
+            box["value"] = job()
+        except BaseException as exc:     # re-raised in the caller's thread
+            box["error"] = exc
+
+    worker = threading.Thread(target=target, daemon=True, name=f"offshore-crane {desc}")
+    with bar(total, unit, desc) as b:
+        worker.start()
+        while worker.is_alive():
+            worker.join(POLL)
+            b.update(max(0, min(int(done()), total) - b.n))
+    if "error" in box:
+        raise box["error"]
+    return box.get("value")
+
+
+def filled_rows(Y) -> int:
+    """Rows of ``Y`` (NumPy, ``(n, ...)``) a loop has written, when it fills them in order
+    over NaN: the counter of :func:`run_polled` for such loops, found by bisection on
+    column 0 while the loop runs."""
+    import numpy as np
+
+    lo, hi = 0, len(Y)
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if np.isnan(Y[mid, 0]):
+            hi = mid
+        else:
+            lo = mid + 1
+    return lo
+
+
+def listen(listener) -> None:
+    """Send :func:`notice` lines to ``listener(text)`` (None: to nobody)."""
+    _state["listener"] = listener
+
+
+def notice(key: str, text: str) -> None:
+    """Say ``text`` once per process for ``key`` (e.g. "compile"), to the listener."""
+    with _lock:
+        if key in _noticed:
+            return
+        _noticed.add(key)
+    listener = _state["listener"]
+    if listener is not None:
+        listener(text)
