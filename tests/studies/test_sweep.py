@@ -184,18 +184,33 @@ def test_a_grid_value_equal_to_the_scenes_own_is_the_scenes_case(tmp_path):
 
 # --------------------------------------------------------------------------- backends
 @pytest.mark.slow
-def test_rows_bit_identical_serial_joblib_dask(tmp_path):
-    """The same rows, bit for bit, serially, on 2 joblib (loky) workers and on a Dask
-    LocalCluster of 2 workers."""
+def test_rows_bit_identical_serial_forked_joblib_dask(tmp_path, monkeypatch):
+    """The same rows, bit for bit, serially, on 2 forked workers (Linux), on 2 joblib
+    (loky) workers (the path elsewhere, forced here) and on a Dask LocalCluster of 2
+    workers; each run says where its cases ran."""
+    from offshore_crane.studies.sweep import running
+
     scene = scenes.load_scene(_scene(tmp_path))
-    grid = {"hs": [1.5, 3.0], "seed": [0, 1], "payload.mass": [1.0]}
-    serial = sweep.run(scene, grid, workers=1)
-    loky = sweep.run(scene, grid, workers=2)
-    dask = sweep.run(scene, grid, workers=2, scheduler="local")
-    assert len(serial) == 4 and (serial["status"] == "ok").all()
-    assert list(serial["case"]) == [0, 1, 2, 3]
+    grid = {"hs": [1.5, 3.0], "seed": [0, 1, 2, 3], "payload.mass": [1.0]}
+    where = {}
+    runs = {}
+    for name, workers, scheduler in (("serial", 1, None), ("forked", 2, None),
+                                     ("dask", 2, "local")):
+        stats: dict = {}
+        runs[name] = sweep.run(scene, grid, workers=workers, scheduler=scheduler,
+                               stats=stats)
+        where[name] = stats["backend"]
+    monkeypatch.setattr(running, "can_fork", lambda: False)
+    stats = {}
+    runs["joblib"] = sweep.run(scene, grid, workers=2, stats=stats)
+    where["joblib"] = stats["backend"]
+    assert where == {"serial": "in this process", "forked": "on 2 forked workers",
+                     "dask": "on the Dask cluster", "joblib": "on 2 joblib workers"}
+    serial = runs["serial"]
+    assert len(serial) == 8 and (serial["status"] == "ok").all()
+    assert list(serial["case"]) == list(range(8))
     ref = _bits(serial)
-    for other in (loky, dask):
+    for other in (runs["forked"], runs["joblib"], runs["dask"]):
         assert list(other.columns) == list(serial.columns)
         got = _bits(other)
         for c in ref:
@@ -496,8 +511,9 @@ def _children(pid: int, marker: str) -> set:
 @pytest.mark.slow
 @pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="reads /proc (Linux)")
 def test_a_killed_sweeps_workers_exit(tmp_path):
-    """SIGKILL leaves the sweep no time to stop its joblib pool: the workers notice they
-    were orphaned and exit within a second or two (they idled ~300 s with ~180 MB each)."""
+    """SIGKILL leaves the sweep no time to stop its workers (forked from it): they notice
+    they were orphaned and exit within a second or two (joblib's idled ~300 s with
+    ~180 MB each)."""
     seeds = ", ".join(str(s) for s in range(400))
     grid = _grid(tmp_path, f"hs = [1.0, 2.0]\nseed = [{seeds}]\n")
     cmd = [sys.executable, "-m", "offshore_crane", "sweep", "--scene", str(_scene(tmp_path)),
@@ -509,7 +525,7 @@ def test_a_killed_sweeps_workers_exit(tmp_path):
     try:
         deadline = time.monotonic() + 60
         while time.monotonic() < deadline and len(workers) < 2 and proc.poll() is None:
-            workers = _children(proc.pid, "LokyProcess")
+            workers = _children(proc.pid, "offshore_crane")
             time.sleep(0.05)
         time.sleep(0.5)                               # the workers are running cases
         assert proc.poll() is None and len(workers) == 2, "no workers seen: longer grid"
@@ -520,8 +536,41 @@ def test_a_killed_sweeps_workers_exit(tmp_path):
     while time.monotonic() < deadline and any(Path(f"/proc/{w}").exists() for w in workers):
         time.sleep(0.1)
     alive = [w for w in workers if Path(f"/proc/{w}").exists()
-             and "LokyProcess" in Path(f"/proc/{w}/cmdline").read_bytes().decode(errors="replace")]
+             and "offshore_crane" in Path(f"/proc/{w}/cmdline").read_bytes().decode(errors="replace")]
     assert not alive, f"workers {alive} outlived the sweep by 5 s"
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="reads /proc (Linux)")
+def test_ctrl_c_stops_a_sweep_and_its_workers_in_one_line(tmp_path):
+    """SIGINT to the process group (what a terminal's Ctrl-C sends): the sweep says so in
+    one line and exits 130, its forked workers (which ignore it) are terminated, and the
+    rows it finished stay readable."""
+    seeds = ", ".join(str(s) for s in range(400))
+    grid = _grid(tmp_path, f"hs = [1.0, 2.0]\nseed = [{seeds}]\n")
+    out = tmp_path / "res"
+    cmd = [sys.executable, "-m", "offshore_crane", "sweep", "--scene", str(_scene(tmp_path)),
+           "--grid", str(grid), "--out", str(out), "--workers", "2", "--no-progress"]
+    proc = subprocess.Popen(cmd, env={**os.environ, "PYTHONPATH": str(SRC)},
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    workers: set = set()
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and len(workers) < 2 and proc.poll() is None:
+        workers = _children(proc.pid, "offshore_crane")
+        time.sleep(0.05)
+    time.sleep(0.5)
+    assert proc.poll() is None and len(workers) == 2
+    os.killpg(proc.pid, signal.SIGINT)
+    err = proc.communicate(timeout=30)[1]
+    assert proc.returncode == 130, err
+    assert err.splitlines() == ["offshore-crane: interrupted (SIGINT); nothing half-written "
+                                "was left"], err
+    deadline = time.monotonic() + 5.0
+    while time.monotonic() < deadline and any(Path(f"/proc/{w}").exists() for w in workers):
+        time.sleep(0.1)
+    assert not [w for w in workers if Path(f"/proc/{w}").exists()]
+    assert 0 < len(sweep.read_results(out)) < 800
 
 
 def test_out_of_another_scene_is_refused(tmp_path, capsys):

@@ -107,8 +107,9 @@ def run(args) -> int:
           f"({stats['skipped']} already in {args.out}, " if args.out else
           f"offshore-crane sweep: scene {scene.name} ({args.scene}), {len(df)} cases (",
           end="")
-    print(f"{stats['ran']} run in {stats.get('seconds', 0.0):.2f} s, "
-          f"{int((df['status'] != 'ok').sum())} failed)")
+    print(f"{stats['ran']} run in {stats.get('seconds', 0.0):.2f} s"
+          + (f" {stats['backend']}" if stats["ran"] else "")
+          + f", {int((df['status'] != 'ok').sum())} failed)")
     exposure = args.exposure * 3600.0
     v = sweep.verdicts(df, scene, exposure)
     keys = sweep.group_keys(df)

@@ -10,8 +10,8 @@ import time
 
 from offshore_crane import progress as shown
 from offshore_crane.errors import SchedulerError
-from offshore_crane.studies.sweep.backends import (check_scheduler, connect, handshake,
-                                                   run_in_process,
+from offshore_crane.studies.sweep.backends import (can_fork, check_scheduler, connect,
+                                                   handshake, run_in_process, run_on_forks,
                                                    run_on_dask, run_on_joblib, warm_up_scene,
                                                    warm_up_workers)
 from offshore_crane.studies.sweep.cases import row_schema
@@ -34,14 +34,17 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
     Args:
         scene: A :class:`~offshore_crane.scenes.Scene` (or a scene file path).
         grid: ``{key: list}`` (:func:`load_grid`), a grid file path, or a :class:`Grid`.
-        workers: Parallel processes: 1 (serially, in this process), N > 1 (joblib loky
-            workers), or with ``scheduler = "local"`` the cluster's size (default 2).
+        workers: Parallel processes: 1 (serially, in this process), N > 1 (worker
+            processes forked from this one on Linux, a few cases a task; joblib's loky
+            workers elsewhere), or with ``scheduler = "local"`` the cluster's size
+            (default 2).
         scheduler: None (joblib or serial), ``"local"`` (a Dask ``LocalCluster``) or a
             Dask scheduler address ``tcp://HOST:PORT``.
         out: A results directory (resumable: finished cases are skipped), or None to
             keep the rows in memory only.
         progress: Show a progress bar (tqdm) on standard error.
-        stats: A dict filled with ``cases``, ``skipped``, ``ran``, ``failed``,
+        stats: A dict filled with ``cases``, ``skipped``, ``ran``, ``failed``, ``backend``
+            (where the cases ran, in words),
             ``seconds`` (wall time from the dispatch to the last row written),
             ``case_seconds`` (each case's run time in its worker, :func:`run_case` whole)
             and ``compute_seconds`` (each case's own computation: trajectory and
@@ -86,7 +89,7 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
     client = cluster = None
     held: list = []                     # this run's rows: Arrow tables of HELD_ROWS, and
     rows: list = []                     # the dicts since the last one
-    info = {"cases": 0, "skipped": 0, "ran": 0, "failed": 0,
+    info = {"cases": 0, "skipped": 0, "ran": 0, "failed": 0, "backend": "in this process",
             "case_seconds": [], "compute_seconds": []}
     order: dict = {}                    # case id -> its first index in the grid
     earlier: dict = {}                  # case id -> values, of cases found in the store
@@ -121,8 +124,13 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
         t0 = time.perf_counter()
         if client is not None:
             results = run_on_dask(pending, client)
+            info["backend"] = "on the Dask cluster"
+        elif (workers or 1) > 1 and len(pending) > 1 and can_fork():
+            results = run_on_forks(pending, min(workers, len(pending)))
+            info["backend"] = f"on {min(workers, len(pending))} forked workers"
         elif (workers or 1) > 1 and len(pending) > 1:
             results = run_on_joblib(pending, min(workers, len(pending)))
+            info["backend"] = f"on {min(workers, len(pending))} joblib workers"
         else:
             results = run_in_process(pending)
         bar = shown.bar(len(pending), "case", "sweep", enabled=bool(progress))
