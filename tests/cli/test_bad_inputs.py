@@ -606,7 +606,7 @@ CASES = [
          cli=lambda tmp: ["animate", "--fps", "0.001", "--out", str(tmp / "out" / "a.gif")]),
     Case("animate-speed-memory", "animate --speed 1e-9 (once 6.9 TiB allocated before the "
          "pixel guard)", oc.InputError,
-         r"942300000001 frames of 31\.4\d* s .* of memory, more than the limit .*raise --speed",
+         r"314100000001 frames of 31\.4\d* s at --fps 10 .* of memory, more than the limit .*raise --speed",
          cli=lambda tmp: ["animate", "--speed", "1e-9", "--out", str(tmp / "out" / "a.gif")]),
     Case("animate-out-no-type", "animate --out a (was worded 'the file type '.'')",
          oc.InputError, r"--out: cannot write .*/a: the name has no file type: end it in "

@@ -2,6 +2,7 @@
 command line's bad inputs (offshore_crane.outputs.visual, offshore-crane animate / show)."""
 
 import subprocess
+from pathlib import Path
 import sys
 
 import numpy as np
@@ -14,6 +15,8 @@ from offshore_crane.outputs.visual import motion as mo
 from offshore_crane.outputs.visual import poses, render
 
 from PIL import Image as PIL
+
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
 
 #: The URDF's arm colour (material "orange", rgba 0.95 0.50 0.10) after flat shading
 #: (intensity 0.45..1): red well above green well above blue.
@@ -228,3 +231,58 @@ def test_the_hanging_load_swings_in_the_pictures(tmp_path):
     imgs = [next(iter(frames(robot, mo.at(m, times), width=160, height=120)[1]))
             for m in (a, b)]
     assert (np.asarray(imgs[0]) != np.asarray(imgs[1])).any()
+
+
+def _lab(rgb) -> np.ndarray:
+    """sRGB 0..255 ``(..., 3)`` to CIE L*a*b* (D65), for colour distances."""
+    c = np.asarray(rgb, dtype=float) / 255.0
+    c = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    M = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722],
+                  [0.0193, 0.1192, 0.9505]])
+    xyz = c @ M.T / np.array([0.95047, 1.0, 1.08883])
+    f = np.where(xyz > (6 / 29) ** 3, np.cbrt(xyz), xyz / (3 * (6 / 29) ** 2) + 4 / 29)
+    return np.stack([116 * f[..., 1] - 16, 500 * (f[..., 0] - f[..., 1]),
+                     200 * (f[..., 1] - f[..., 2])], axis=-1)
+
+
+def test_a_force_gif_shows_the_scales_ends_in_every_frame(tmp_path):
+    """The README's headline picture, short: one palette for every frame, and in every
+    frame the colour bar's pull end (blue) and push end (red) within ΔE (CIE76) ≤ 10 of
+    their definitions (render.diverging(∓1)); a pushing leg's red hue is kept. Each frame
+    once had its own 64-colour palette, where pull came out grey or near-black."""
+    out = tmp_path / "run.gif"
+    assert main(["animate", "--scene", str(SCENES / "sea_state_crane.toml"),
+                 "--color-by", "force", "--duration", "3", "--out", str(out)]) == 0
+    blue, red = render.diverging(np.array([-1.0, 1.0])) * 255.0
+    gif = PIL.open(out)
+    assert gif.n_frames == 31                             # 10 fps, the GIF default
+    W, w = 640, 120
+    x0, y0 = W - w - 14, 22                               # the legend's bar (animate._legend)
+    palettes = set()
+    for k in range(gif.n_frames):
+        gif.seek(k)
+        palettes.add(bytes(gif.getpalette() or b""))
+        frame = np.asarray(gif.convert("RGB"), dtype=float)
+        left = frame[y0 + 3:y0 + 8, x0 + 1:x0 + 3].reshape(-1, 3)
+        right = frame[y0 + 3:y0 + 8, x0 + w - 3:x0 + w - 1].reshape(-1, 3)
+        assert np.linalg.norm(_lab(left) - _lab(blue), axis=1).max() <= 10.0, k
+        assert np.linalg.norm(_lab(right) - _lab(red), axis=1).max() <= 10.0, k
+    assert len(palettes - {b""}) == 1          # the global palette; no frame has its own
+
+
+def test_the_gif_palette_holds_the_scale_and_the_bodies(robot):
+    """gif_palette: every step of the colour scale and every body colour at full shade is
+    in the palette exactly; 256 entries at most."""
+    traj = oc.motion.trajectories.load("table1", duration=1.0, rate=50.0)
+    motion = mo.forces(robot, mo.from_trajectory(traj), oc.conventions.GRAVITY, "full")
+    times = np.linspace(0.0, 1.0, 5)
+    r, _, _ = an.frames(robot, mo.at(motion, times), width=160, height=120,
+                        color_by="force")
+    palette = np.array(an.gif_palette(r, len(times)).getpalette()[:768]).reshape(-1, 3)
+    have = {tuple(c) for c in palette.tolist()}
+    ramp = render.diverging(np.linspace(-1.0, 1.0, an.GIF_SCALE_STEPS)) * 255.0
+    assert {tuple(c) for c in np.clip(ramp, 0, 255).astype(np.uint8).tolist()} <= have
+    bodies = np.unique(np.round(r.geo.rgb, 6), axis=0)
+    full = np.clip(bodies * (render.AMBIENT + render.DIFFUSE) * 255, 0, 255).astype(np.uint8)
+    assert {tuple(c) for c in full.tolist()} <= have
+    assert len(palette) == 256

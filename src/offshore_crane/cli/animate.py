@@ -11,7 +11,7 @@ from __future__ import annotations
 from offshore_crane.errors import InputError
 
 #: Default picture size [pixels] and frame rate [1/s].
-SIZE, FPS = "640x480", 30.0
+SIZE = "640x480"
 
 
 def add_source_options(p) -> None:
@@ -88,8 +88,8 @@ def add_parser(sub) -> None:
     add_source_options(p)
     p.add_argument("--out", required=True, help="the animation: .gif (Pillow) or .mp4 "
                    "(imageio-ffmpeg)")
-    p.add_argument("--fps", type=float, default=FPS, help=f"frames per second (default "
-                   f"{FPS:g})")
+    p.add_argument("--fps", type=float, default=None, help="frames per second (default "
+                   "10 for a GIF: exact in GIF's centiseconds, and small; 30 for an MP4)")
     p.add_argument("--speed", type=float, default=1.0, help="motion seconds per second of "
                    "the animation (default 1: real time)")
     p.add_argument("--color-by", choices=("force", "utilisation"),
@@ -110,7 +110,7 @@ def run(args) -> int:
     from offshore_crane.outputs.visual.render import parse_camera
 
     for name, value in (("--fps", args.fps), ("--speed", args.speed)):
-        if not value > 0 or value == float("inf"):
+        if value is not None and (not value > 0 or value == float("inf")):
             raise InputError(f"{name} {value:g} must be a finite number > 0", name=name)
     width, height = parse_size(args.size)
     camera = parse_camera(args.camera)
@@ -130,7 +130,7 @@ def run(args) -> int:
     say = print if target.kind != "stdout" else (lambda *a: None)
     say(f"offshore-crane animate: {motion.name}, {done.frames} frames {width} x {height} at "
         f"{done.fps:g} fps (speed {args.speed:g}), "
-        f"t = {motion.t[0]:.2f}..{mo.frame_times(motion, args.fps, args.speed, args.duration)[-1]:.2f} s"
+        f"t = {motion.t[0]:.2f}..{mo.frame_times(motion, done.fps, args.speed, args.duration)[-1]:.2f} s"
         + (f", legs by {args.color_by} (scale {done.scale:.4g}"
            f"{' N' if args.color_by == 'force' else ''})" if args.color_by else "")
         + f", {done.seconds:.1f} s")

@@ -4,8 +4,9 @@ robot, headless.
 :func:`animate` draws a :class:`~offshore_crane.outputs.visual.motion.Motion` frame by frame
 with :class:`~offshore_crane.outputs.visual.render.Renderer` (one camera for the whole run) and
 streams the frames to the encoder: MP4 frames go to ffmpeg as they are drawn (memory
-stays bounded), GIF frames are reduced to a palette of :data:`GIF_COLOURS` each and kept until
-Pillow writes the file. The output is written atomically through
+stays bounded), GIF frames are reduced to one palette for the whole animation
+(:func:`gif_palette`: the legs' colour scale held exactly, the rest from frames sampled over
+the run) and kept until Pillow writes the file. The output is written atomically through
 :mod:`offshore_crane.io`.
 
 GIF stores frame durations in hundredths of a second: at 30 fps a frame lasts 30 ms
@@ -27,14 +28,30 @@ from offshore_crane.errors import InputError
 
 #: Output formats by file suffix.
 FORMATS = ("gif", "mp4")
+#: Frames per second by format when none is given [Hz]: a GIF at 10 (its frames last
+#: whole centiseconds: 10 fps is exact; the README's 60 s animation at 640 x 480 is 6.8 MB,
+#: 19.8 MB at 30 fps), an MP4 at 30 (4.3 MB for the same 60 s at 30 fps: the format for
+#: long or smooth runs; a GIF for a page that shows it without a player).
+DEFAULT_FPS = {"gif": 10.0, "mp4": 30.0}
 #: GIF frames are kept in memory (one byte a pixel) until written: refuse beyond this.
 GIF_MAX_PIXELS = 1_000_000_000
 #: The longest frame a GIF can hold [s]: its delay is two bytes of centiseconds.
 GIF_LONGEST_FRAME = 65535 / 100.0
 #: The lowest frame rate a GIF can play [Hz] (a frame of :data:`GIF_LONGEST_FRAME`).
 GIF_MIN_FPS = 1.0 / GIF_LONGEST_FRAME
-#: Colours of each GIF frame's palette (flat shading needs few; fewer keep files small).
-GIF_COLOURS = 64
+#: Colours of a GIF's palette: one palette for every frame (GIF's most), so that a colour
+#: reads the same in every frame and unchanged pixels stay unchanged between frames.
+GIF_COLOURS = 256
+#: Steps of the legs' colour scale held exactly in the palette, at each of
+#: :data:`GIF_SCALE_SHADES` (the legend's full colour first, then the shades the flat
+#: shading gives the legs' faces).
+GIF_SCALE_STEPS = 24
+GIF_SCALE_SHADES = (1.0, 0.88, 0.74, 0.6, 0.45)
+#: Shades of each body colour of the robot held in the palette, between the flat
+#: shading's darkest (ambient) and brightest.
+GIF_BODY_SHADES = 6
+#: Frames sampled, evenly over the run, for the rest of the palette (median cut).
+GIF_SAMPLE_FRAMES = 6
 #: The still's frames, drawn as axis triads (x red, y green, z blue) with their names.
 LABELLED_FRAMES = ("base", "platform", "arm_link1", "arm_link2", "arm_tip", "payload")
 
@@ -124,26 +141,72 @@ def frames(robot, shown, *, width: int = 640, height: int = 480, camera=None,
         overlay = _legend(color_by, scale)
     cmap = diverging if color_by == "force" else sequential
 
+    def picture(k: int):
+        rgb = None if values is None else leg_face_colours(r.geo, cmap(values[k]))
+        return r.frame(k, rgb, text=f"t = {shown.t[k]:.2f} s{caption}", overlay=overlay)
+
     def pictures():
         with progress.bar(len(P), "frame", "animate") as drawn:
             for k in range(len(P)):
-                rgb = None if values is None else leg_face_colours(r.geo, cmap(values[k]))
-                yield r.frame(k, rgb, text=f"t = {shown.t[k]:.2f} s{caption}",
-                              overlay=overlay)
+                yield picture(k)
                 drawn.update()
+    r.picture = picture
+    r.scale_colours = None if color_by is None else cmap
     return r, pictures(), scale
 
 
-def write_gif(target, images, fps: float) -> int:
-    """Write the images as a looping GIF (Pillow); returns the number of frames."""
+def gif_palette(renderer, n_frames: int):
+    """One palette for a whole GIF (a ``PIL.Image`` in mode "P"): the legs' colour scale
+    (:data:`GIF_SCALE_STEPS` steps at each of :data:`GIF_SCALE_SHADES`) exactly, when the
+    legs are coloured, each body colour of the robot at :data:`GIF_BODY_SHADES` shades, and
+    the rest by median cut of :data:`GIF_SAMPLE_FRAMES` frames spread over the run
+    (background, text, edges)."""
+    from PIL import Image
+
+    fixed = []
+    if renderer.scale_colours is not None:
+        lo = -1.0 if renderer.scale_colours.__name__ == "diverging" else 0.0
+        ramp = renderer.scale_colours(np.linspace(lo, 1.0, GIF_SCALE_STEPS))
+        for shade in GIF_SCALE_SHADES:
+            fixed += [tuple(int(v) for v in c)
+                      for c in np.clip(ramp * shade * 255.0, 0, 255).astype(np.uint8)]
+    from offshore_crane.outputs.visual.render import AMBIENT, DIFFUSE
+
+    bodies = np.unique(np.round(renderer.geo.rgb, 6), axis=0)
+    for shade in np.linspace(AMBIENT, AMBIENT + DIFFUSE, GIF_BODY_SHADES):
+        fixed += [tuple(int(v) for v in c)
+                  for c in np.clip(bodies * shade * 255.0, 0, 255).astype(np.uint8)]
+    fixed = list(dict.fromkeys(fixed))[:GIF_COLOURS - 32]   # leave room for the rest
+    picks = np.unique(np.linspace(0, n_frames - 1, min(GIF_SAMPLE_FRAMES, n_frames))
+                      .round().astype(int))
+    samples = [renderer.picture(int(k)) for k in picks]
+    w, h = samples[0].size
+    mosaic = Image.new("RGB", (w, h * len(samples)))
+    for i, im in enumerate(samples):
+        mosaic.paste(im, (0, h * i))
+    rest = mosaic.quantize(GIF_COLOURS - len(fixed), method=Image.Quantize.MEDIANCUT,
+                           dither=Image.Dither.NONE)
+    colours = fixed + [tuple(c) for c in
+                       np.array(rest.getpalette()[:3 * (GIF_COLOURS - len(fixed))])
+                       .reshape(-1, 3).tolist()]
+    palette = Image.new("P", (1, 1))
+    palette.putpalette([v for c in colours for v in c] + [0] * (768 - 3 * len(colours)))
+    return palette
+
+
+def write_gif(target, images, fps: float, palette=None) -> int:
+    """Write the images as a looping GIF (Pillow) on one ``palette`` (:func:`gif_palette`;
+    None: the first frame's median cut); returns the number of frames."""
     from offshore_crane.errors import require
     from offshore_crane.io import open_output
 
     Image = require("PIL.Image", "pillow", "Writing a GIF")
     kept = []
     for im in images:
-        kept.append(im.quantize(GIF_COLOURS, method=Image.Quantize.MEDIANCUT,
-                                dither=Image.Dither.NONE))
+        if palette is None:
+            palette = im.quantize(GIF_COLOURS, method=Image.Quantize.MEDIANCUT,
+                                  dither=Image.Dither.NONE)
+        kept.append(im.quantize(palette=palette, dither=Image.Dither.NONE))
     duration = max(20, int(round(1000.0 / fps / 10.0)) * 10)    # [ms], whole centiseconds
     with open_output(target, "wb") as fh:
         kept[0].save(fh, format="GIF", save_all=True, append_images=kept[1:],
@@ -172,7 +235,7 @@ def write_mp4(target, images, fps: float, size: tuple) -> int:
     return n
 
 
-def animate(robot, motion, target, *, fps: float = 30.0, speed: float = 1.0,
+def animate(robot, motion, target, *, fps: float | None = None, speed: float = 1.0,
             duration: float | None = None, color_by: str | None = None,
             gravity=GRAVITY, leg_model: str = "full", width: int = 640,
             height: int = 480, camera=None, fmt: str | None = None,
@@ -185,7 +248,8 @@ def animate(robot, motion, target, *, fps: float = 30.0, speed: float = 1.0,
             run's CSV).
         target: Output path or :class:`offshore_crane.io.Target`; its suffix (``.gif``,
             ``.mp4``) chooses the format unless ``fmt`` is given.
-        fps: Frames per second of the file (> 0).
+        fps: Frames per second of the file (> 0; default :data:`DEFAULT_FPS` of the
+            format).
         speed: Motion seconds per second of the file (> 0).
         duration: Motion time drawn from its start [s] (default: all).
         color_by: None, ``"force"`` or ``"utilisation"``: the legs coloured by their
@@ -206,6 +270,7 @@ def animate(robot, motion, target, *, fps: float = 30.0, speed: float = 1.0,
     from offshore_crane.outputs.visual import motion as mo
 
     fmt = fmt or output_format(getattr(target, "given", target))
+    fps = DEFAULT_FPS[fmt] if fps is None else fps
     times = mo.frame_times(motion, fps, speed, duration)
     if fmt == "mp4" and (width % 2 or height % 2):
         raise InputError(f"an MP4 needs an even width and height, got {width} x {height}",
@@ -224,10 +289,10 @@ def animate(robot, motion, target, *, fps: float = 30.0, speed: float = 1.0,
     if color_by is not None:
         motion = mo.forces(robot, motion, gravity, leg_model)
     shown = mo.at(motion, times)
-    _, images, scale = frames(robot, shown, width=width, height=height, camera=camera,
+    r, images, scale = frames(robot, shown, width=width, height=height, camera=camera,
                               color_by=color_by)
     if fmt == "gif":
-        n = write_gif(target, images, fps)
+        n = write_gif(target, images, fps, gif_palette(r, len(shown.t)))
     else:
         n = write_mp4(target, images, fps, (width, height))
     return Written(n, fps, (width, height), time.perf_counter() - start, scale)
