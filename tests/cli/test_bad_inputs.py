@@ -672,6 +672,19 @@ CASES = [
          cli=lambda tmp: ["sweep", "--scene", str(_SCENES / "sweep_crane.toml"), "--grid",
                           str(_bytes(tmp, "grid.toml", b"hs = [1.0]\n")), "--scheduler",
                           "tcp://127.0.0.1:-5", "--out", str(tmp / "out" / "res")]),
+    # ---- the hanging load's limits (issue 22, item 4)
+    Case("load-limit-sway-over-90", "a sway limit beyond the horizontal", oc.ModelError,
+         r"payload\.limits\.sway_max_deg: 100° must be in \(0, 90\]",
+         lib=lambda tmp: oc.load_robot(overrides={"payload.limits.sway_max_deg": 100.0}),
+         cli=lambda tmp: ["size", "--set", "payload.limits.sway_max_deg=100"]),
+    Case("load-limit-ratio-one", "a slack criterion of the whole static tension",
+         oc.ModelError, r"payload\.limits\.tension_ratio_min: 1 must be in \[0, 1\)",
+         lib=lambda tmp: oc.load_robot(overrides={"payload.limits.tension_ratio_min": 1.0})),
+    Case("load-limits-not-a-table", "[payload] limits = 3 in a scene", oc.SceneError,
+         r"\[payload\] limits.*must be a table of sway_max_deg, tension_ratio_min, "
+         r"tension_max",
+         lib=lambda tmp: scenes.load_scene(_bytes(tmp, "s.toml", b'name = "s"\n[payload]\n'
+                                                 b"mass = 2.0\nlimits = 3\n"))),
     # ---- values a cast would silently change (issue 21, item 6)
     Case("complex-sea-times", "complex times for a ship's motion", oc.SeaStateError,
          r"t has complex values: give real numbers \[s\]",

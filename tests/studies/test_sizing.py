@@ -280,3 +280,72 @@ def test_zero_capacity_is_no_headroom_not_no_limit():
     table = sizing.format_verdict(sizing.verdict([env]), robot.hybrid.actuators).splitlines()
     assert table[2 + k].split()[:2] == ["T2", "100.0"]      # not "—" (no capacity)
     assert table[-1] == "worst: T2 push at 100.0 % (within capacity)"
+
+
+# --------------------------------------------------------------------------- the hanging load
+def test_size_judges_the_hanging_load_over_3_hours(tmp_path, capsys):
+    """scenes/hanging_load.toml, 5 seeds: the sway and tension verdict rests on the same
+    Gumbel extrapolation to 3 h as the forces, each value beside its limit, degrees for
+    angles; a sway limit below the sway makes the verdict fail (exit 1, and in --json)."""
+    from pathlib import Path
+
+    scene = Path(__file__).resolve().parents[2] / "scenes" / "hanging_load.toml"
+    assert main(["size", "--scene", str(scene), "--seeds", "5"]) == 0
+    out = capsys.readouterr().out
+    assert "most probable maximum over 3 h full scale (Gumbel" in out
+    assert "limit 45°:" in out and "limit ≥ 0.1:" in out
+    assert "hanging load: max sway" in out and "°" in out.split("hanging load: max sway")[1]
+    tight = tmp_path / "tight.toml"
+    tight.write_text(scene.read_text().replace("sway_max_deg = 45.0", "sway_max_deg = 20.0"))
+    status, doc = _size_json(["--scene", str(tight), "--seeds", "5"], capsys)
+    load = doc["verdict"]["load"]
+    assert status == 1 and load["exceeded"] and doc["verdict"]["exceeded"]
+    assert load["limits"]["sway_max_deg"] == pytest.approx(20.0)
+    assert load["utilisation"]["sway"] == pytest.approx(load["sway_max_deg"] / 20.0)
+    assert load["sway_max_deg"] > 20.0 and load["tension_ratio_min"] > 0.1
+    assert main(["size", "--scene", str(tight), "--seeds", "5"]) == 1
+    assert "the hanging load EXCEEDS its limits: sway" in capsys.readouterr().out
+
+
+def test_load_verdict_extremes_and_the_slack_criterion():
+    """The load verdict from envelopes alone: the most probable maximum of the maxima,
+    the most probable minimum of the minima (the negated maxima's fit), the slack
+    utilisation = limit ratio / ratio, inf once the cable goes slack (ratio <= 0)."""
+    from offshore_crane.robot.description import LoadLimits
+    from offshore_crane.studies.sizing.envelopes import Envelope
+    from offshore_crane.studies.sizing.extremes import most_probable_maximum
+    from offshore_crane.studies.sizing.verdicts import load_verdict
+
+    rng = np.random.default_rng(21)
+    sway = 0.3 + 0.02 * rng.random(6)
+    t_min = 8.0 + rng.random(6)
+    t_max = 30.0 + rng.random(6)
+    nan9 = np.full(9, np.nan)
+
+    def env(k, limits):
+        return Envelope(duration=60.0, samples=10, peak_push=nan9, t_push=nan9,
+                        peak_pull=nan9, t_pull=nan9, rms=nan9, peak_speed=nan9,
+                        peak_power=nan9, mean_abs_power=nan9, stroke_min=nan9,
+                        stroke_max=nan9, stroke_range=np.full((9, 2), np.nan),
+                        capacities={}, utilisation=np.full((9, 5), np.nan),
+                        sway_max=sway[k], tension_min=t_min[k], tension_max=t_max[k],
+                        static_tension=19.62, load_limits=limits)
+
+    limits = LoadLimits(sway_max=math.radians(20.0), tension_ratio_min=0.1, tension_max=40.0)
+    v = load_verdict([env(k, limits) for k in range(6)], 268.0, 10800.0, True)
+    assert v.sway == pytest.approx(most_probable_maximum(sway, 268.0, 10800.0), rel=1e-12)
+    assert v.tension_min == pytest.approx(-most_probable_maximum(-t_min, 268.0, 10800.0),
+                                          rel=1e-12)
+    assert v.tension_max == pytest.approx(most_probable_maximum(t_max, 268.0, 10800.0),
+                                          rel=1e-12)
+    assert v.tension_min < t_min.min()
+    assert v.utilisation["slack"] == pytest.approx(0.1 / (v.tension_min / 19.62))
+    assert v.utilisation["sway"] == pytest.approx(v.sway / math.radians(20.0))
+    assert v.utilisation["tension"] == pytest.approx(v.tension_max / 40.0)
+    observed = load_verdict([env(k, limits) for k in range(6)], 268.0, 10800.0, False)
+    assert observed.sway == sway.max() and observed.tension_min == t_min.min()
+    t_min[:] = -1.0                                      # the cable goes slack
+    slack = load_verdict([env(k, limits) for k in range(6)], 268.0, 10800.0, False)
+    assert math.isinf(slack.utilisation["slack"]) and slack.exceeded
+    none = load_verdict([env(k, LoadLimits()) for k in range(6)], 268.0, 10800.0, False)
+    assert all(math.isnan(x) for x in none.utilisation.values()) and not none.exceeded

@@ -122,7 +122,21 @@ def run(args) -> int:
                                            if env.present[k]},
                            "worst": {"utilisation": worst, "actuator": who,
                                      "capacity": cap},
-                           "exceeded": v.exceeded},
+                           "exceeded": v.exceeded,
+                           "load": None if v.load is None else {
+                               "sway_max_rad": v.load.sway, "sway_max_deg":
+                               math.degrees(v.load.sway),
+                               "tension_min_N": v.load.tension_min,
+                               "tension_max_N": v.load.tension_max,
+                               "static_tension_N": v.load.static,
+                               "tension_ratio_min": v.load.ratio_min,
+                               "observed": v.load.observed,
+                               "limits": {"sway_max_deg": math.degrees(
+                                   v.load.limits.sway_max),
+                                   "tension_ratio_min": v.load.limits.tension_ratio_min,
+                                   "tension_max_N": v.load.limits.tension_max},
+                               "utilisation": v.load.utilisation,
+                               "exceeded": v.load.exceeded}},
                "comparison": compared}
         print(json.dumps(_clean(doc), indent=1, ensure_ascii=False))
     else:

@@ -83,6 +83,14 @@ class Robot:
         return legacy_parameters(self.spec.values, self.spec.has_arm)
 
     @property
+    def load_limits(self):
+        """The hanging load's limits (:class:`~offshore_crane.robot.description.LoadLimits`;
+        none judged when the description gives none)."""
+        from offshore_crane.robot.description import LoadLimits
+
+        return LoadLimits() if self.spec is None else self.spec.load_limits
+
+    @property
     def capacities(self):
         """The actuators' capacities (:class:`~offshore_crane.robot.description.Capacities`,
         in the order of X; ``inf`` where the description gives none)."""

@@ -13,7 +13,9 @@ SECTIONS = ("robot", "subsystems", "payload", "cable", "actuators", "trajectory"
             "operation", "control")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
-PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length", "sway_damping")
+PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length", "sway_damping", "limits")
+#: [payload.limits] keys: the hanging load's limits judged by ``size``.
+LOAD_LIMIT_KEYS = ("sway_max_deg", "tension_ratio_min", "tension_max")
 CABLE_KEYS = ("initial", "initial_rate", "substeps", "slack")
 INERTIA_KEYS = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
 TRAJECTORY_KEYS = ("source", "duration", "rate", "fd_order")

@@ -15,6 +15,7 @@ from offshore_crane.io import toml_value
 from offshore_crane.validation import not_a_number
 from offshore_crane.scenes.keys import (CABLE_KEYS, CONTROLLER_KEYS, CONTROL_KEYS, INERTIA_KEYS,
                                         OPERATION_KEYS, PAYLOAD_KEYS, SEA_KEYS, SECTIONS,
+                                        LOAD_LIMIT_KEYS,
                                         SUBSYSTEM_KEYS, TOP_KEYS, TRAJECTORY_KEYS, normalised,
                                         same_value, scene_field)
 from offshore_crane.scenes.scene import Scene
@@ -140,6 +141,13 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
         r.fail("inertia", f"must be a table of {', '.join(INERTIA_KEYS)} [kg·m²]")
     if "inertia" in r.table:
         _Reader(where, "payload.inertia", r.get("inertia"), INERTIA_KEYS)  # known keys
+    if "limits" in r.table:
+        if not isinstance(r.get("limits"), dict):
+            r.fail("limits", f"must be a table of {', '.join(LOAD_LIMIT_KEYS)}")
+        limits = _Reader(where, "payload.limits", r.get("limits"), LOAD_LIMIT_KEYS)
+        for key in LOAD_LIMIT_KEYS:
+            if key in limits.table:
+                payload[f"payload.limits.{key}"] = limits.get(key)
     for key, name in (("mass", "payload.mass"), ("offset", "payload.com"),
                       ("inertia", "payload.inertia"), ("cable_length", "payload.cable_length"),
                       ("sway_damping", "payload.sway_damping")):

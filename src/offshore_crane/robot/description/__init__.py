@@ -119,6 +119,11 @@ Format (every key; ``*`` required)::
     cable_length = 0.0          # [m]; 0: welded. > 0 is read by the hanging-load model
                                 # (issue 12); the URDF always welds the payload.
 
+    [payload.limits]            # a hanging load's limits, judged by size (none: none)
+    sway_max_deg = 45.0         # largest sway from the tip's vertical [deg], in (0, 90]
+    tension_ratio_min = 0.1     # smallest tension / static tension m·g, in [0, 1)
+    tension_max = 100.0         # largest cable tension [N]
+
     [actuators.Fl]              # capacities of the six leg actuators (Fl1..Fl6 for one);
                                 # also T1, T2 (arm motors [N·m], [rad/s]) and Fs (slider)
     push_max = 5000             # largest force along + (extension) [N] (torque [N·m])
@@ -166,7 +171,8 @@ from offshore_crane.robot.description.schema import (FORMAT, DESCRIPTION_DIR, DE
                                                      LEG, ACTUATOR, PLACEMENT, JOINT_BODY, SCHEMA,
                                                      leaf_components, field_names, schema_lookup)
 from offshore_crane.robot.description.values import as_boolean
-from offshore_crane.robot.description.results import Capacities, Body, ArmJoint, Description
+from offshore_crane.robot.description.results import (Capacities, Body, ArmJoint, Description,
+                                                     LoadLimits)
 from offshore_crane.robot.description.loading import resolve, frozen, resolve_data
 from offshore_crane.robot.description.files import (description_dir, default_description, read_description,
                                                     read_toml, label)

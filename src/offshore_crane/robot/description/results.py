@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, fields, is_dataclass
 
 import numpy as np
@@ -35,6 +36,24 @@ class Capacities:
     def effort(self) -> np.ndarray:
         """``(9,)`` URDF effort limits: ``max(push_max, pull_max)``."""
         return np.maximum(self.push_max, self.pull_max)
+
+
+@dataclass(frozen=True)
+class LoadLimits:
+    """Limits of a hanging load (``payload.limits``), judged by ``size`` like the
+    actuators' capacities.
+
+    Attributes:
+        sway_max: Largest angle of the cable from the tip's vertical [rad] (inf: none).
+        tension_ratio_min: Smallest cable tension over the static tension m·|g| [-]
+            (the slack criterion of offshore lifting rules, commonly 0.1; NaN: not
+            judged).
+        tension_max: Largest cable tension [N] (inf: none).
+    """
+
+    sway_max: float = math.inf
+    tension_ratio_min: float = math.nan
+    tension_max: float = math.inf
 
 
 @dataclass(frozen=True)
@@ -97,6 +116,7 @@ class Description:
         cable_length: [m].
         sway_damping: [N·m·s/rad].
         capacities: :class:`Capacities`.
+        load_limits: :class:`LoadLimits` of a hanging load.
         values: ``{dotted name: value}`` of every numeric field given (after overrides
             and expressions).
     """
@@ -124,6 +144,7 @@ class Description:
     sway_damping: float
     capacities: Capacities
     values: dict = field(repr=False)
+    load_limits: LoadLimits = field(default_factory=LoadLimits)
 
     @property
     def has_arm(self) -> bool:

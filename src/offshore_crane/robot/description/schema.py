@@ -157,7 +157,14 @@ SCHEMA = {
                 "inertia": Leaf("inertia", "kg·m²", "about its centre of mass, arm_tip axes"),
                 "cable_length": _num("m", "cable length (0: welded)"),
                 "sway_damping": _num("N·m·s/rad", "viscous damping of each sway angle "
-                                     "(hanging payload; 0: none)")},
+                                     "(hanging payload; 0: none)"),
+                "limits": {
+                    "sway_max_deg": _num("deg", "largest angle of the cable from the "
+                                         "tip's vertical (hanging load; none: no limit)"),
+                    "tension_ratio_min": _num("", "smallest cable tension over the static "
+                                              "tension m·g (slack criterion, e.g. 0.1; "
+                                              "none: not judged)"),
+                    "tension_max": _num("N", "largest cable tension (none: no limit)")}},
     "actuators": {g: ACTUATOR for g in ACTUATOR_GROUPS},
 }
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from offshore_crane.robot.kinematics import actuator_motion
-from offshore_crane.conventions import ACTUATORS
+from offshore_crane.conventions import ACTUATORS, GRAVITY
 from offshore_crane.errors import InputError
 
 
@@ -53,6 +53,9 @@ class Envelope:
         t_kappa: ``{kind: its time [s]}``.
         sway_max: Largest angle of the cable from the tip's vertical [rad] (NaN: no cable).
         tension_min, tension_max: The cable's tension range [N] (NaN: no cable).
+        static_tension: The cable's tension at rest, m·|g| [N] (NaN: no cable).
+        load_limits: The robot's :class:`~offshore_crane.robot.description.LoadLimits`
+            (None: no cable).
     """
 
     duration: float
@@ -75,6 +78,8 @@ class Envelope:
     sway_max: float = math.nan
     tension_min: float = math.nan
     tension_max: float = math.nan
+    static_tension: float = math.nan
+    load_limits: object = None
 
     @property
     def present(self) -> np.ndarray:
@@ -174,7 +179,7 @@ def _peak(x: np.ndarray, t: np.ndarray):
 
 
 def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
-             legs: bool | None = None, cable=None) -> Envelope:
+             legs: bool | None = None, cable=None, gravity=GRAVITY) -> Envelope:
     """The envelope of one run against ``robot.capacities``.
 
     Args:
@@ -188,6 +193,7 @@ def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
             not all NaN).
         cable: The run's :class:`~offshore_crane.dynamics.cable.CableResult` (a payload on a
             cable), or None.
+        gravity: ``(3,)`` the run's gravity [m/s²] (the static tension m·|g| of a cable).
 
     Returns:
         :class:`Envelope`.
@@ -258,7 +264,9 @@ def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
             kappa[kind], t_kappa[kind] = float(c[k]), float(t[k])
     hanging = {} if cable is None else dict(
         sway_max=float(cable.sway_angle.max()), tension_min=float(cable.tension.min()),
-        tension_max=float(cable.tension.max()))
+        tension_max=float(cable.tension.max()),
+        static_tension=float(cable.mass * np.linalg.norm(np.asarray(gravity, float))),
+        load_limits=robot.load_limits)
     return Envelope(duration=float(t[-1] - t[0]), samples=N, peak_push=peak_push,
                     t_push=t_push, peak_pull=peak_pull, t_pull=t_pull, rms=rms,
                     peak_speed=peak_speed, peak_power=peak_power,

@@ -41,15 +41,17 @@ def format_envelope(env: Envelope) -> str:
             lines.append(f"worst {kind} condition number: {env.kappa[kind]:.4g} at "
                          f"t = {env.t_kappa[kind]:.2f} s")
     if not math.isnan(env.sway_max):
-        lines.append(f"hanging load: max sway {env.sway_max:.4g} rad from the tip's "
-                     f"vertical, cable tension {env.tension_min:.4g}..{env.tension_max:.4g} N")
+        lines.append(f"hanging load: max sway {math.degrees(env.sway_max):.3g}° from the "
+                     f"tip's vertical, cable tension {env.tension_min:.4g}.."
+                     f"{env.tension_max:.4g} N (static {env.static_tension:.4g} N)")
     return "\n".join(lines)
 
 
 def format_verdict(v: Verdict, present) -> str:
     """The utilisation table of a verdict, in percent ('—': no capacity given)."""
     lines = [f"utilisation [%]: {v.describe()}",
-             f"{'actuator':<9}" + "".join(f"{c:>9}" for c in CAPACITIES) + f"{'worst':>9}"]
+             f"{'actuator':<9}" + "".join(f"{c:>9}" for c in CAPACITIES) + f"{'worst':>9}"
+             + "  judged: value / capacity"]
     for k, name in enumerate(ACTUATORS):
         if not present[k]:
             continue
@@ -57,11 +59,59 @@ def format_verdict(v: Verdict, present) -> str:
         worst = math.nan if np.isnan(u).all() else float(np.nanmax(u))
         flag = "  EXCEEDED" if worst > 1.0 else ""
         lines.append(f"{name:<9}" + "".join(f"{_pct(x):>9}" for x in u)
-                     + f"{_pct(worst):>9}{flag}")
+                     + f"{_pct(worst):>9}" + _judged(v, k, u) + flag)
+    if v.load is not None:
+        lines += format_load(v.load)
     worst, who, cap = v.worst()
     if who is None:
         lines.append("no capacity is given for these actuators: nothing to judge")
     else:
         lines.append(f"worst: {who} {cap} at {100 * worst:.1f} % "
                      f"({'EXCEEDS its capacity' if worst > 1.0 else 'within capacity'})")
+    if v.load is not None and v.load.exceeded:
+        over = [k for k, x in v.load.utilisation.items() if x > 1.0]
+        lines.append(f"the hanging load EXCEEDS its limits: {', '.join(over)}")
     return "\n".join(lines)
+
+
+#: Units of each capacity column, per actuator kind (arm joints 0-1 revolute, the rest
+#: prismatic).
+_UNITS = {"push": ACTUATOR_UNITS, "pull": ACTUATOR_UNITS, "speed": SPEED_UNITS,
+          "power": ("W",) * 9, "stroke": POSITION_UNITS}
+_PEAK = {"push": "push", "pull": "pull", "speed": "speed", "power": "power",
+         "stroke": "stroke"}
+
+
+def _judged(v: Verdict, k: int, u) -> str:
+    """The worst column's value beside its capacity (``speed 0.43 / 0.46 m/s``)."""
+    if v.limits is None or np.isnan(u).all():
+        return ""
+    c = CAPACITIES[int(np.nanargmax(u))]
+    return (f"  {c} {v.peaks[_PEAK[c]][k]:.3g} / {v.limits[c][k]:.3g} "
+            f"{_UNITS[c][k]}")
+
+
+def format_load(load) -> list[str]:
+    """The hanging load's verdict lines: each value beside the limit it is judged against
+    (angles in degrees)."""
+    lim, u = load.limits, load.utilisation
+
+    def judged(key: str, limit_text: str) -> str:
+        x = u[key]
+        if math.isnan(x):
+            return "no limit given"
+        verdict = "EXCEEDED" if x > 1.0 else "within"
+        return f"limit {limit_text}: {_pct(x)} % {verdict}"
+
+    sway_limit = "—" if math.isinf(lim.sway_max) else f"{math.degrees(lim.sway_max):.3g}°"
+    ratio_limit = ("—" if math.isnan(lim.tension_ratio_min)
+                   else f"≥ {lim.tension_ratio_min:.3g}")
+    t_limit = "—" if math.isinf(lim.tension_max) else f"{lim.tension_max:.4g} N"
+    return ["hanging load (on the same basis as the utilisation above):",
+            f"  sway max {math.degrees(load.sway):.3g}° (observed "
+            f"{math.degrees(load.observed['sway']):.3g}°); {judged('sway', sway_limit)}",
+            f"  tension min {load.tension_min:.4g} N = {load.ratio_min:.3g} × static "
+            f"{load.static:.4g} N (observed {load.observed['tension_min']:.4g} N); "
+            f"{judged('slack', ratio_limit)}",
+            f"  tension max {load.tension_max:.4g} N (observed "
+            f"{load.observed['tension_max']:.4g} N); {judged('tension', t_limit)}"]

@@ -29,6 +29,9 @@ class Verdict:
             excursion the verdict uses (MPM or observed) [N·m, N, rad/s, m/s, W, rad, m].
         observed: The same, the largest observed over the seeds.
         utilisation: ``(9, 5)`` over :data:`CAPACITIES` (NaN: no capacity, no actuator).
+        load: The hanging load's verdict (:class:`LoadVerdict`), or None without a cable.
+        limits: ``{capacity: (9,)}`` what each column of ``utilisation`` is judged
+            against: the capacities, and half the stroke range for ``stroke`` (inf: none).
     """
 
     seeds: int
@@ -38,6 +41,8 @@ class Verdict:
     peaks: dict
     observed: dict
     utilisation: np.ndarray
+    load: "LoadVerdict | None" = None
+    limits: dict | None = None
 
     def worst(self):
         """``(utilisation, actuator, capacity)`` (see :meth:`Envelope.worst`)."""
@@ -45,8 +50,9 @@ class Verdict:
 
     @property
     def exceeded(self) -> bool:
-        """True when some utilisation exceeds 1 (100 %)."""
-        return bool(np.nan_to_num(self.utilisation, nan=0.0).max(initial=0.0) > 1.0)
+        """True when some utilisation exceeds 1 (100 %), the hanging load's included."""
+        return bool(np.nan_to_num(self.utilisation, nan=0.0).max(initial=0.0) > 1.0
+                    or (self.load is not None and self.load.exceeded))
 
     def describe(self) -> str:
         """One line: what the verdict rests on."""
@@ -59,6 +65,71 @@ class Verdict:
         return (f"largest observed peak of {self.seeds} seed{'s' * (self.seeds != 1)} "
                 f"({self.record:.4g} s full scale each): fewer than {MIN_SEEDS} seeds, no "
                 "Gumbel fit; the extreme over a longer exposure is likely higher")
+
+
+@dataclass(frozen=True)
+class LoadVerdict:
+    """The hanging load judged against its limits (``payload.limits``), on the same basis
+    as the actuators (most probable extreme over the exposure, or the observed one).
+
+    Attributes:
+        sway: Largest sway angle [rad]. tension_max: Largest tension [N].
+        tension_min: Smallest tension [N] (the most probable minimum: the Gumbel fit of
+            the negated minima).
+        static: The static tension m·|g| [N]; ``ratio_min = tension_min / static``.
+        observed: ``{"sway", "tension_min", "tension_max"}`` observed over the seeds.
+        limits: The :class:`~offshore_crane.robot.description.LoadLimits`.
+        utilisation: ``{"sway": sway / limit, "slack": limit ratio / ratio_min,
+            "tension": tension_max / limit}`` (NaN: no limit given; inf: the cable goes
+            slack, ratio ≤ 0, against a slack limit).
+    """
+
+    sway: float
+    tension_min: float
+    tension_max: float
+    static: float
+    observed: dict
+    limits: object
+    utilisation: dict
+
+    @property
+    def ratio_min(self) -> float:
+        """Smallest tension over the static tension [-]."""
+        return self.tension_min / self.static if self.static > 0 else math.nan
+
+    @property
+    def exceeded(self) -> bool:
+        """True when a limit is exceeded (utilisation above 1)."""
+        return any(u > 1.0 for u in self.utilisation.values() if not math.isnan(u))
+
+
+def load_verdict(envelopes, record: float, exposure: float, gumbel: bool):
+    """:class:`LoadVerdict` of envelopes with a cable (None without)."""
+    first = envelopes[0]
+    if math.isnan(first.sway_max) or first.load_limits is None:
+        return None
+
+    def extreme(values, sign: float) -> float:
+        values = sign * np.array(values, dtype=float)
+        if gumbel and np.isfinite(values).all():
+            return sign * most_probable_maximum(values, record, exposure)
+        return sign * float(values.max())
+
+    observed = {"sway": max(e.sway_max for e in envelopes),
+                "tension_min": min(e.tension_min for e in envelopes),
+                "tension_max": max(e.tension_max for e in envelopes)}
+    sway = extreme([e.sway_max for e in envelopes], 1.0)
+    t_max = extreme([e.tension_max for e in envelopes], 1.0)
+    t_min = extreme([e.tension_min for e in envelopes], -1.0)
+    lim, static = first.load_limits, first.static_tension
+    ratio = t_min / static if static > 0 else math.nan
+    slack = (math.nan if math.isnan(lim.tension_ratio_min) else
+             math.inf if not ratio > 0 else lim.tension_ratio_min / ratio)
+    util = {"sway": float(utilisation(np.array([sway]), np.array([lim.sway_max]))[0]),
+            "slack": slack,
+            "tension": float(utilisation(np.array([t_max]), np.array([lim.tension_max]))[0])}
+    return LoadVerdict(sway=sway, tension_min=t_min, tension_max=t_max, static=static,
+                       observed=observed, limits=lim, utilisation=util)
 
 
 #: Quantities the verdict extrapolates, with the envelope attribute and the capacity.
@@ -110,4 +181,8 @@ def verdict(envelopes, scale: float | None = None, exposure: float = EXPOSURE) -
     util[~first.present] = np.nan
     return Verdict(seeds=len(envelopes), basis="gumbel" if gumbel else "observed",
                    exposure=exposure if gumbel else math.nan, record=record, peaks=peaks,
-                   observed=observed, utilisation=util)
+                   observed=observed, utilisation=util,
+                   load=load_verdict(envelopes, record, exposure, gumbel),
+                   limits={"push": caps["push_max"], "pull": caps["pull_max"],
+                           "speed": caps["speed_max"], "power": caps["power_max"],
+                           "stroke": half})

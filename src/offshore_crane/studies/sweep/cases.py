@@ -102,7 +102,7 @@ def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads
     Xw = np.where([n in wanted for n in ("T1", "T2", "Fs", "Fl1", "Fl2", "Fl3", "Fl4",
                                          "Fl5", "Fl6")], X, np.nan)
     env = envelope(robot, t, q, qd, Xw, conditions(result), arm=arm, legs=legs,
-                   cable=getattr(result, "cable", None))
+                   cable=getattr(result, "cable", None), gravity=scene.gravity)
     return CaseRun(scene, robot, traj, kind, t, q, qd, Xw, result, simulation, env, seconds)
 
 
