@@ -189,9 +189,9 @@ def main() -> None:
 
     heavy = replace(scene, duration=1700.0, rate=100.0, operation=None,
                     origin="benchmark: 1700 s at 100 Hz")
-    shipped = sweep.load_grid(ROOT / "scenes" / "sweep_grid.toml")
+    shipped = sweep.load_grid(ROOT / "scenes" / "grids" / "sweep_grid.toml")
     for label, case_scene, grid, target, better in (
-            ("shipped sweep (scenes/sweep_grid.toml, 300 cases)", scene, shipped, 1.4, True),
+            ("shipped sweep (scenes/grids/sweep_grid.toml, 300 cases)", scene, shipped, 1.4, True),
             ("40 cases of the shipped scene", scene, _grid(40), 1.0 / 1.05, True),
             (f"{args.heavy} cases of 170 001 samples (~0.5 s each)", heavy,
              {"hs": [1.0, 2.0], "seed": list(range(max(1, args.heavy // 2)))}, 1.8, True)):

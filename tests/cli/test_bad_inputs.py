@@ -685,6 +685,27 @@ CASES = [
          r"tension_max",
          lib=lambda tmp: scenes.load_scene(_bytes(tmp, "s.toml", b'name = "s"\n[payload]\n'
                                                  b"mass = 2.0\nlimits = 3\n"))),
+    # ---- the consistency pass (issue 22, item 5)
+    Case("show-pose-outside-workspace", "show --pose with the legs detached (once drawn, "
+         "exit 0, where export refused it)", oc.WorkspaceError,
+         r"--pose: leg1 length = 2\.45\d* m is outside \[0\.4, 0\.82\] m: give a pose "
+         r"inside the workspace",
+         cli=lambda tmp: ["show", "--pose", "0,0,2.5,0,0,0,0,0,0", "--out",
+                          str(tmp / "out" / "p.png")]),
+    Case("show-arm-outside-limits", "show --pose with q8 beyond its limit", oc.WorkspaceError,
+         r"--pose: arm_joint2 = 3 rad is outside \[-2, 2\] rad",
+         cli=lambda tmp: ["show", "--pose", "0,0,0.6,0,0,0,0,3,0", "--out",
+                          str(tmp / "out" / "p.png")]),
+    Case("motion-without-a-sea", "motion with no arguments (once answered in scene-file "
+         "words: '[trajectory] source = \"sea\" needs [sea] hs')", oc.InputError,
+         r"a sea state needs --hs --tp --heading --scale .*e\.g\. offshore-crane motion "
+         r"--hs 2\.5",
+         cli=lambda tmp: ["motion"]),
+    Case("set-misspelt-suggests-once", "a misspelt --set name (once 'did you mean' twice)",
+         oc.ModelError, r"payload has no 'mas'; did you mean 'payload\.mass'\? \(known "
+         r"parameters",
+         lib=lambda tmp: oc.load_robot(overrides={"payload.mas": 2.0}),
+         cli=lambda tmp: ["id", "--duration", "0.1", "--set", "payload.mas=2"]),
     # ---- values a cast would silently change (issue 21, item 6)
     Case("complex-sea-times", "complex times for a ship's motion", oc.SeaStateError,
          r"t has complex values: give real numbers \[s\]",
@@ -809,7 +830,7 @@ def _checksums(tmp: Path, out: Path) -> dict:
     import hashlib
 
     files = [p for p in tmp.rglob("*") if out not in p.parents and p.is_file()]
-    files += list(_SCENES.iterdir())
+    files += [p for p in _SCENES.rglob("*") if p.is_file()]
     return {str(p): hashlib.sha256(p.read_bytes()).hexdigest() for p in files}
 
 

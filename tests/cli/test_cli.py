@@ -41,6 +41,27 @@ def test_id_to_standard_output(capsys):
     assert len(lines) == 12 and "offshore-crane id:" in captured.err
 
 
+def test_negative_pose_lists_and_a_wrote_line_for_every_file(tmp_path, capsys):
+    """A comma list starting with a minus (``--pose -0.01,...``) is a value, not an
+    option; every command that writes a file says so ("wrote ...")."""
+    png, yaml, xml = tmp_path / "p.png", tmp_path / "d.yaml", tmp_path / "m.xml"
+    assert main(["show", "--pose", "-0.01,0,0.6,0,0,0,0,0,0", "--out", str(png)]) == 0
+    assert main(["describe", "--out", str(yaml)]) == 0
+    assert main(["export", "--pose", "-0.01,0,0.6,0,0,0,0,0,0", "--mjcf", str(xml)]) == 0
+    out = capsys.readouterr().out
+    for path in (png, yaml, xml):
+        assert path.is_file() and f"wrote {path}" in out
+
+
+def test_method_comparison_names_the_actuator(capsys):
+    assert main(["id", "--method", "both", "--duration", "1", "--rate", "50"]) == 0
+    out = capsys.readouterr().out
+    line = next(ln for ln in out.splitlines() if ln.startswith("Kane vs RNEA"))
+    assert "column" not in line
+    assert any(f", {name})" in line for name in ("T1", "T2", "Fs", "Fl1", "Fl2", "Fl3",
+                                                   "Fl4", "Fl5", "Fl6"))
+
+
 def test_id_from_csv(tmp_path, capsys):
     from offshore_crane.motion import trajectories
 

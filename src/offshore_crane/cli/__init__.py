@@ -125,13 +125,15 @@ def _quiet_stdout() -> None:
 
 
 def _negative_numbers(argv):
-    """argparse takes ``-9.81e0`` for an option (its negative-number test misses the
-    exponent form): join such values to their option with ``=`` is not possible for
-    ``nargs=3``, so mark them with a leading space, which ``float()`` ignores."""
+    """argparse takes ``-9.81e0`` (its negative-number test misses the exponent form) and
+    ``-0.01,0,0.6,...`` (a comma-separated list) for options: joining such values to
+    their option with ``=`` is not possible for ``nargs=3``, so mark them with a leading
+    space, which ``float()`` and the comma-list readers ignore."""
     import re
 
     argv = list(sys.argv[1:] if argv is None else argv)
-    number = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+    value = r"-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+    number = re.compile(rf"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(,\s*{value})*$")
     return [f" {a}" if number.match(a) else a for a in argv]
 
 

@@ -31,4 +31,6 @@ def run(args) -> int:
     outputs = plan_outputs({"--out": args.out or "-"}, [args.robot])
     text = description_yaml(resolve(args.robot, parse_set(args.set)).xacro_data())
     write_text(outputs["--out"], text)
+    if outputs["--out"].kind != "stdout":
+        print(f"wrote {args.out}")
     return 0

@@ -123,7 +123,7 @@ def run(args) -> int:
     for m, diff, scale, rel, i, j in scenes.compare_methods(done):
         ok = rel <= RELATIVE_LIMIT
         say(f"{first} vs {_METHOD_LABELS[m]}: max |ΔX| = {diff:.3e} (sample {i}, "
-            f"t = {t[i]:.2f} s, column {j + 1}); relative to max |X| = {scale:.4g}: "
+            f"t = {t[i]:.2f} s, {ACTUATORS[j]}); relative to max |X| = {scale:.4g}: "
             f"{rel:.3e} "
             f"({'OK' if ok else 'FAIL'}, limit {RELATIVE_LIMIT:g})")
         status = status if ok else 1

@@ -15,8 +15,8 @@ def add_parser(sub) -> None:
     p = sub.add_parser("show", help="a still picture of one pose, frames labelled",
                        description=doc[0].split(": ", 1)[1] + " " + " ".join(
                            line.strip() for line in doc[2:5]))
-    p.add_argument("--pose", metavar="Q1,...,Q9", help="q1..q9 [m, rad], comma-separated; "
-                   "a negative first value needs --pose=-0.01,...")
+    p.add_argument("--pose", metavar="Q1,...,Q9", help="q1..q9 [m, rad], comma-separated "
+                   "(inside the workspace, as export --pose)")
     p.add_argument("--sway", metavar="PHI1,PHI2", help="sway angles [rad] of a hanging "
                    "load (default 0,0)")
     add_robot_options(p)
@@ -54,6 +54,18 @@ def run(args) -> int:
     robot = scenes.load_robot(scene)
     if q is None:
         q = [0.0, 0.0, robot.home_height or 0.0] + [0.0] * 6
+    else:                               # as export --pose: no picture of a broken robot
+        from offshore_crane.errors import WorkspaceError
+        from offshore_crane.robot.kinematics import check_workspace
+
+        try:
+            check_workspace(robot, np.array(q))
+        except WorkspaceError as exc:
+            import re
+
+            what = re.sub(r" at sample \d+( \(t = [^)]*\))?", "", str(exc)).split(";")[0]
+            raise WorkspaceError(f"--pose: {what}: give a pose inside the workspace",
+                                 joint=exc.joint, index=None, value=exc.value) from None
     sway = None
     if has_cable(robot.description) or args.sway is not None:
         sway = np.array(comma_numbers(args.sway or "0,0", 2, "--sway"))

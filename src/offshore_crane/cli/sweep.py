@@ -28,7 +28,7 @@ def add_parser(sub) -> None:
                    "scale, seed)")
     p.add_argument("--grid", metavar="GRID.toml", required=True,
                    help="lists of values: hs, tp, heading, scale, seed and robot fields by "
-                   "their dotted names (see scenes/sweep_grid.toml)")
+                   "their dotted names (see scenes/grids/sweep_grid.toml)")
     p.add_argument("--max-cases", type=int, metavar="N",
                    help="the most cases the grid may make (default 1000000)")
     p.add_argument("--workers", type=int, metavar="N",

@@ -124,10 +124,11 @@ def canonical(name: str, source: str = "override") -> str:
     try:
         schema_lookup(name)
     except KeyError as exc:
+        detail = exc.args[0] if "." in name else f"unknown robot parameter '{name}'"
         known = list(ALIASES) + [n for n, _ in field_names()]
         close = difflib.get_close_matches(name, known, n=3)
-        hint = f"; did you mean {', '.join(close)}?" if close else ""
-        detail = exc.args[0] if "." in name else f"unknown robot parameter '{name}'"
+        hint = (f"; did you mean {', '.join(close)}?"
+                if close and "did you mean" not in detail else "")   # suggested once
         _fail(source, name, f"{detail}{hint} (known parameters: base_radius, ..., "
               "the dotted names of docs/robot-description.md and their aliases)")
     return name
