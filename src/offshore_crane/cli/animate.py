@@ -96,8 +96,8 @@ def add_parser(sub) -> None:
                    help="colour the legs by their actuator force (blue pull, red push) or "
                    "by force / capacity (the robot description's actuators)")
     p.add_argument("--camera", metavar="AZ,EL[,DIST]", help="view from azimuth AZ and "
-                   "elevation EL [deg] (default 35,25), at DIST [m] (default: fitted); a "
-                   "negative first value needs --camera=-30,20")
+                   "elevation EL [deg] (default 35,25), at DIST [m] (default: fitted), "
+                   "e.g. --camera -30,20")
     p.add_argument("--size", default=SIZE, metavar="WxH", help=f"picture size [pixels] "
                    f"(default {SIZE})")
     p.set_defaults(run=run)
