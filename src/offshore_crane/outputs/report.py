@@ -69,9 +69,9 @@ def cable_summary(cable) -> str:
     lo, hi = int(np.argmin(cable.tension)), int(np.argmax(cable.tension))
     peaks = np.abs(cable.sway).max(axis=0)
     lines = [f"hanging load: {cable.mass:g} kg on a {cable.length:g} m cable "
-             f"({cable.method}, RK4 step {cable.step:g} s): max sway {angle[k]:.4g} rad "
-             f"from the tip's vertical at t = {t[k]:.2f} s (max |phi1| {peaks[0]:.4g}, "
-             f"|phi2| {peaks[1]:.4g} rad)",
+             f"({cable.method}, RK4 step {cable.step:g} s): max sway "
+             f"{np.degrees(angle[k]):.4g}° from the tip's vertical at t = {t[k]:.2f} s "
+             f"(max |phi1| {np.degrees(peaks[0]):.4g}°, |phi2| {np.degrees(peaks[1]):.4g}°)",
              f"cable tension: min {cable.tension[lo]:.4g} N at t = {t[lo]:.2f} s, max "
              f"{cable.tension[hi]:.4g} N at t = {t[hi]:.2f} s (m g = "
              f"{cable.mass * 9.81:.4g} N at 9.81 m/s²)"]
