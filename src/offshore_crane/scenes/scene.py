@@ -204,7 +204,10 @@ def _resolve(scene: "Scene", robot: dict):
     try:
         return resolve(scene.robot_description, robot)
     except DescriptionError as exc:
-        raise SceneError(f"{scene.where()}: {exc}", path=scene.path, name=exc.field) from None
+        # the description's error names its file and the overrides involved; a scene
+        # read from a file adds where it is, the default scene nothing
+        prefix = f"{scene.where()}: " if scene.path else ""
+        raise SceneError(f"{prefix}{exc}", path=scene.path, name=exc.field) from None
 
 
 def _payload_of(spec) -> Payload:
