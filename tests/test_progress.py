@@ -181,3 +181,11 @@ def test_a_methods_time_excludes_loading_and_compiling_its_kernels(monkeypatch):
     assert "kernels loaded in 0.5" in _kernel_time(done)
     done.compiled = 3
     assert _kernel_time(done).startswith("; first compiled 3 kernels in 0.5")
+
+
+def test_bars_are_suspended_inside_a_unit_of_another_bar(bars):
+    """A sweep's case (or a size seed) draws no bar of its own inside the outer one."""
+    with progress.suspended():
+        assert not progress.is_enabled()
+        assert type(progress.bar(3, "x", "inner")).__name__ == "_Silent"
+    assert progress.is_enabled()

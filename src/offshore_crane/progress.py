@@ -15,6 +15,7 @@ line prints it on standard error): the kernels' compile notice
 
 from __future__ import annotations
 
+import contextlib
 import sys
 import threading
 
@@ -33,6 +34,17 @@ def configure(enabled: bool | None) -> None:
     if enabled is None:
         enabled = bool(getattr(sys.stderr, "isatty", lambda: False)())
     _state["enabled"] = bool(enabled)
+
+
+@contextlib.contextmanager
+def suspended():
+    """No bars inside (a job that is one unit of another's bar: a sweep's case)."""
+    before = _state["enabled"]
+    _state["enabled"] = False
+    try:
+        yield
+    finally:
+        _state["enabled"] = before
 
 
 def is_enabled() -> bool:

@@ -90,7 +90,8 @@ def run(args) -> int:
     with progress.bar(args.seeds, "seed", "size") as shown:
         for s in range(args.seeds):
             case = sweep.case_scene(scene, {"seed": first + s}) if sea else scene
-            runs.append(sweep.record(case, robot, **options))
+            with progress.suspended():          # the bar counts the seeds
+                runs.append(sweep.record(case, robot, **options))
             shown.update()
     exposure = args.exposure * 3600.0
     v = verdict([r.envelope for r in runs], scale=scene.sea["scale"] if sea else None,

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from offshore_crane.errors import OffshoreCraneError
+from offshore_crane import progress
 from offshore_crane.studies.sweep.grid import Grid, case_id, case_scene, install_hint
 
 
@@ -149,7 +150,8 @@ def run_case(scene, params: dict, backend: str = "auto", timing: dict | None = N
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            done = record(case_scene(scene, params), backend=backend, threads=1)
+            with progress.suspended():          # the sweep's bar counts the cases
+                done = record(case_scene(scene, params), backend=backend, threads=1)
         except OffshoreCraneError as exc:
             row.update(status="failed", error_type=type(exc).__name__, error=str(exc),
                        **_failed_row())
