@@ -8,7 +8,10 @@ legs coloured by force, and splits one run into its stages. The machine's other 
 read from ``/proc/stat`` (every process's CPU time minus this process's and its
 children's), since the load average would count the benchmark itself.
 
-    PYTHONPATH=src python benchmarks/animate.py [--repeat 3] [--out DIR]
+    PYTHONPATH=src python benchmarks/animate.py [--repeat 3] [--out DIR] [--save]
+
+``--save`` writes the figures to ``benchmarks/results/animate.json``, from which
+``python scripts/figures.py`` regenerates the tables of README.md and docs/visual.md.
 """
 
 from __future__ import annotations
@@ -76,7 +79,10 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--out", help="keep the MP4s in this directory")
+    parser.add_argument("--save", action="store_true",
+                        help="write the figures to benchmarks/results/animate.json")
     args = parser.parse_args()
+    saved: dict = {"date": time.strftime("%Y-%m-%d"), "runs": args.repeat}
     scene = scenes.load_scene(ROOT / "scenes" / "sea_state_crane.toml")
     robot = scenes.load_robot(scene)
     motion = mo.from_trajectory(scenes.load_trajectory(scene, robot))
@@ -99,13 +105,25 @@ def main() -> int:
             size = os.path.getsize(target)
             if not args.out:
                 os.remove(target)
+        saved[color_by or "plain"] = {"median_s": statistics.median(walls),
+                                       "min_s": min(walls), "max_s": max(walls),
+                                       "mb": size / 1e6, "others_core": float(np.mean(others)),
+                                       "frames": done.frames}
         print(f"--color-by {color_by or '(none)':<6}: {done.frames} frames in "
               f"median {statistics.median(walls):.1f} s (min {min(walls):.1f}, max "
               f"{max(walls):.1f}; {args.repeat} runs), {size / 1e6:.1f} MB; "
               f"{'MET' if max(walls) <= TARGET_S else 'NOT MET'} (target {TARGET_S:g} s); "
               f"other processes used {np.mean(others):.2f} core meanwhile")
-    for name, seconds in stages(robot, motion, scene.gravity).items():
+    saved["stages"] = stages(robot, motion, scene.gravity)
+    for name, seconds in saved["stages"].items():
         print(f"  {name}: {seconds:.2f} s")
+    if args.save:
+        import json
+
+        path = ROOT / "benchmarks" / "results" / "animate.json"
+        path.parent.mkdir(exist_ok=True)
+        path.write_text(json.dumps(saved, indent=1) + "\n")
+        print(f"wrote {path.relative_to(ROOT)}")
     return 0
 
 

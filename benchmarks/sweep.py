@@ -1,7 +1,10 @@
 """Benchmark of ``offshore_crane.studies.sweep``: per-case overhead, the speed-up of 2 workers,
 the results store.
 
-    PYTHONPATH=src python benchmarks/sweep.py [--cases 240] [--heavy 8] [--repeat 3]
+    PYTHONPATH=src python benchmarks/sweep.py [--cases 240] [--heavy 8] [--repeat 3] [--save]
+
+``--save`` writes the figures to ``benchmarks/results/sweep.json``, from which
+``python scripts/figures.py`` regenerates the tables of README.md and docs/sizing.md.
 
 1. **Per-case overhead** (target ≤ 20 ms): everything a sweep spends on a case but the
    case's own computation (its trajectory and dynamics, timed inside the case): building
@@ -164,22 +167,28 @@ def main() -> None:
     p.add_argument("--heavy", type=int, default=8)
     p.add_argument("--repeat", type=int, default=3)
     p.add_argument("--store-cases", type=int, default=10_000)
+    p.add_argument("--save", action="store_true",
+                   help="write the figures to benchmarks/results/sweep.json")
     args = p.parse_args()
+    saved: dict = {"date": time.strftime("%Y-%m-%d"), "repeat": args.repeat}
     scene = scenes.load_scene(SCENE)
     print(f"machine: {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f} "
           f"(1 min) at start; python {sys.version.split()[0]}")
     sweep.run(scene, {"hs": [1.0]})                          # kernels, robot, RAOs loaded
     first = cold_pool(scene)
+    saved["first_case_s"] = first
     print(f"2 fresh workers: slowest first case {first:.2f} s (forked with the kernels "
           "loaded; compiling them takes ~1-1.5 min)")
     for workers in (1, 2):
         r = overhead(scene, args.cases, workers)
+        saved[f"overhead_{workers}"] = r
         print(f"overhead, {workers} worker{'s' * (workers > 1)}: {r['cases']} cases "
               f"({SCENE.name}, 1001 samples), wall {r['wall']:.2f} s, own computation "
               f"{r['compute'] * 1e3:.2f} ms a case, run_case {r['case'] * 1e3:.2f} ms "
               f"(median) -> overhead {r['overhead'] * 1e3:.2f} ms a case "
               f"(target <= 20 ms: {'met' if r['overhead'] <= 0.020 else 'NOT met'})")
     r = store(scene, args.store_cases)
+    saved["store"] = {k: v for k, v in r.items() if k != "names"}
     met = r["files"] <= 20 and r["per_row"] <= 1024 and r["read"] <= 1.0
     print(f"store: {r['cases']} cases (11 samples each) in {r['wall']:.1f} s -> "
           f"{r['files']} files ({', '.join(r['names'])}), {r['per_row']:.0f} B a row "
@@ -190,18 +199,27 @@ def main() -> None:
     heavy = replace(scene, duration=1700.0, rate=100.0, operation=None,
                     origin="benchmark: 1700 s at 100 Hz")
     shipped = sweep.load_grid(ROOT / "scenes" / "grids" / "sweep_grid.toml")
-    for label, case_scene, grid, target, better in (
-            ("shipped sweep (scenes/grids/sweep_grid.toml, 300 cases)", scene, shipped, 1.4, True),
-            ("40 cases of the shipped scene", scene, _grid(40), 1.0 / 1.05, True),
-            (f"{args.heavy} cases of 170 001 samples (~0.5 s each)", heavy,
-             {"hs": [1.0, 2.0], "seed": list(range(max(1, args.heavy // 2)))}, 1.8, True)):
+    for key, label, case_scene, grid, target in (
+            ("shipped", "shipped sweep (scenes/grids/sweep_grid.toml, 300 cases)", scene,
+             shipped, 1.4),
+            ("forty", "40 cases of the shipped scene", scene, _grid(40), 1.0 / 1.05),
+            ("heavy", f"{args.heavy} cases of 170 001 samples (~0.5 s each)", heavy,
+             {"hs": [1.0, 2.0], "seed": list(range(max(1, args.heavy // 2)))}, 1.8)):
         r = speedup(case_scene, grid, args.repeat)
+        saved[key] = {k: v for k, v in r.items()}
         verdict = ("met" if r["speedup"] >= target else "NOT met") if r["others"] < 0.5 \
             else "not measurable: the machine was busy"
         print(f"2 workers over 1, {label}: 1 worker {r['one']:.2f} s (cases {r['run_one']:.2f}"
               f" s), 2 workers {r['two']:.2f} s (cases {r['run_two']:.2f} s, "
               f"{r['backend']}) -> {r['speedup']:.2f} x (target >= {target:.2f}: {verdict}); "
               f"other processes {r['others']:.2f} core; rows identical: {r['identical']}")
+    if args.save:
+        import json
+
+        path = ROOT / "benchmarks" / "results" / "sweep.json"
+        path.parent.mkdir(exist_ok=True)
+        path.write_text(json.dumps(saved, indent=1, default=float) + "\n")
+        print(f"wrote {path.relative_to(ROOT)}")
 
 if __name__ == "__main__":
     main()

@@ -189,3 +189,24 @@ def test_bars_are_suspended_inside_a_unit_of_another_bar(bars):
         assert not progress.is_enabled()
         assert type(progress.bar(3, "x", "inner")).__name__ == "_Silent"
     assert progress.is_enabled()
+
+
+@pytest.mark.slow
+def test_a_cold_id_reports_its_compile_apart_from_kanes_time(tmp_path):
+    """id with an empty Numba cache (NUMBA_CACHE_DIR) and the compiled backend: the notice
+    comes first, the summary says how many kernels were compiled and how long that took,
+    and Kane's own time is the run's (under a second), not the compile's (seconds)."""
+    import re
+
+    env = {**os.environ, "PYTHONPATH": str(SRC), "NUMBA_CACHE_DIR": str(tmp_path / "nb")}
+    proc = subprocess.run([sys.executable, "-m", "offshore_crane", "id", "--duration", "1",
+                           "--backend", "numba"], env=env, cwd=tmp_path, capture_output=True,
+                          text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr.startswith("offshore-crane: compiling the Numba kernels")
+    line = next(ln for ln in proc.stdout.splitlines() if ln.startswith("offshore-crane id:"))
+    m = re.search(r"\(kane ([\d.]+) ms; first compiled (\d+) kernels in ([\d.]+) s", line)
+    assert m, line
+    kane_ms, compiled, seconds = float(m[1]), int(m[2]), float(m[3])
+    assert compiled > 0 and seconds > 1.0 and kane_ms < 1000.0, line
+    print(line)
