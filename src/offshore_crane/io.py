@@ -190,9 +190,8 @@ def refuse_inside(outputs: dict, directory, owner: str) -> None:
             continue
         where = os.path.realpath(os.fspath(given))
         if os.path.commonpath([home, where]) == home:
-            _fail(name, os.fspath(given), f"is inside {owner} {os.fspath(directory)}, whose "
-                  "files only the run may write (they would be taken for its results or "
-                  "replace them): write it elsewhere")
+            _fail(name, os.fspath(given), f"is inside {owner} {os.fspath(directory)}, "
+                  "whose files are the run's alone: write it elsewhere")
 
 
 def _probe(name: str, given: str, directory: str) -> None:

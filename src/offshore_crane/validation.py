@@ -135,8 +135,8 @@ def uniform_step(t: np.ndarray, what: str = "the motion") -> float:
     if uneven.any():
         k = int(np.argmax(uneven))
         raise TrajectoryError(
-            f"the time axis is not uniform: step {k} (t[{k + 1}] - t[{k}] = {float(d[k])!r} "
-            f"s) differs from the mean step {float(h)!r} s by more than "
+            f"the time axis is not uniform: step {k} (t[{k + 1}] - t[{k}] = {float(d[k]):.6g} "
+            f"s) differs from the mean step {float(h):.6g} s by more than "
             f"{UNIFORM_STEP_RTOL:g} relative: resample {what} on a uniform grid.",
             name="t", index=k)
     return float(h)
@@ -205,7 +205,7 @@ def memory_limit() -> tuple[float, str]:
             available = float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
         except (OSError, ValueError, AttributeError):
             return float("inf"), "unknown memory"
-    return MEMORY_SHARE * available, f"{MEMORY_SHARE:.0%} of the {_human(available)} available"
+    return MEMORY_SHARE * available, f"{MEMORY_SHARE:.0%} of {_human(available)} free"
 
 
 def check_memory(n_bytes: float, what: str, fix: str, name: str | None = None) -> None:
@@ -222,7 +222,7 @@ def check_memory(n_bytes: float, what: str, fix: str, name: str | None = None) -
     """
     limit, how = memory_limit()
     if n_bytes > limit:
-        raise InputError(f"{what} needs {_human(n_bytes)} of memory, more than the limit "
+        raise InputError(f"{what} needs {_human(n_bytes)} of memory, over the limit "
                          f"{_human(limit)} ({how}): {fix}", name=name)
 
 

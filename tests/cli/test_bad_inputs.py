@@ -31,6 +31,8 @@ from offshore_crane.robot.kinematics.workspace import Thresholds
 from offshore_crane.dynamics import solve
 
 PREFIX = "offshore-crane: error: "
+#: The longest message a case may print (issue 22: the rest goes to --help and the docs).
+MESSAGE_MAX = 200
 
 
 @dataclass(frozen=True)
@@ -270,7 +272,7 @@ CASES = [
          r"line 9: time t_s = 0\.06 s does not increase after 0\.06 s on line 8",
          cli=_argv(_csv("dup.csv", _cell(GOOD, 8, "t_s", "0.06")))),
     Case("csv-time-uneven", "CSV with non-uniform time steps", oc.TrajectoryError,
-         r"the time axis is not uniform: step 8 \(t\[9\] - t\[8\] = 0\.0129+\d* s\)",
+         r"the time axis is not uniform: step 8 \(t\[9\] - t\[8\] = 0\.013 s\)",
          lib=_load(_csv("uneven.csv", _cell(GOOD, 10, "t_s", "0.093"))),
          cli=_argv(_csv("uneven.csv", _cell(GOOD, 10, "t_s", "0.093")))),
     Case("csv-too-short", "CSV too short for the finite differences", oc.TrajectoryError,
@@ -357,11 +359,11 @@ CASES = [
          r"robot parameter link1_mass \(arm\.link1\.mass\)=nan is not finite",
          cli=_set("link1_mass=nan")),
     Case("mass-negative", "negative mass", oc.ModelError,
-         r"lab\.toml \(the default description\) with override platform\.mass = -5: "
+         r"lab\.toml \(default\) with platform\.mass = -5: "
          r"platform\.mass: -5 kg is negative; give a mass >= 0",
          lib=lambda tmp: oc.load_robot(platform_mass=-5), cli=_set("platform_mass=-5")),
     Case("leg-mass-negative", "negative leg mass", oc.ModelError,
-         r"with override legs\.upper\.mass = -0\.8: legs\.upper\.mass: -0\.8 kg is negative",
+         r"with legs\.upper\.mass = -0\.8: legs\.upper\.mass: -0\.8 kg is negative",
          cli=_set("leg_upper_mass=-0.8")),
     Case("inertia-not-pd", "inertia with a negative principal moment (URDF)", oc.ModelError,
          r"link 'platform': inertia is not positive definite, principal moments "
@@ -372,7 +374,7 @@ CASES = [
          r"kg·m² violate the triangle inequality \(1 > 0\.001 \+ 0\.001\)",
          lib=_validate("arm_link1", ixx="0.001", iyy="0.001", izz="1")),
     Case("payload-inertia-not-pd", "payload inertia with a negative moment", oc.ModelError,
-         r"with override payload\.mass = 10, payload\.inertia\.ixx = -1: payload\.inertia: "
+         r"with payload\.mass = 10, payload\.inertia\.ixx = -1: payload\.inertia: "
          r"not positive definite: principal moments \(-1, 0, 0\) kg·m² include a negative "
          r"one",
          lib=lambda tmp: oc.load_robot(payload_mass=10, payload_ixx=-1),
@@ -382,12 +384,12 @@ CASES = [
          r"triangle inequality",
          cli=_set("payload_mass=10", "payload_ixx=0.1", "payload_iyy=0.1", "payload_izz=1")),
     Case("payload-mass-negative", "negative payload mass (which the xacro would drop)",
-         oc.ModelError, r"override payload\.mass = -3: payload\.mass: -3 kg is negative",
+         oc.ModelError, r"with payload\.mass = -3: payload\.mass: -3 kg is negative",
          cli=_set("payload_mass=-3")),
     Case("inertia-nan", "NaN in an inertia (URDF)", oc.ModelError,
          r"link 'arm_slider': inertia is not finite", lib=_validate("arm_slider", iyy="nan")),
     Case("link-zero-length", "zero-length arm link", oc.ModelError,
-         r"override arm\.link1\.shape\.size\.x = 0: arm\.link2\.origin: arm_joint2 lies on "
+         r"with arm\.link1\.shape\.size\.x = 0: arm\.link2\.origin: arm_joint2 lies on "
          r"arm_joint1's axis: link 'arm_link1' would have zero length",
          lib=lambda tmp: oc.load_robot(link1_length=0),
          cli=_set("link1_length=0")),
@@ -398,7 +400,7 @@ CASES = [
          r"arm\.column\.shape\.radius: -0\.05 m must not be negative",
          cli=_set("column_radius=-0.05")),
     Case("stroke-empty", "leg stroke with lower >= upper", oc.ModelError,
-         r"with override legs\.stroke\.min = 0\.9: legs\.stroke: the stroke \[0\.9, 0\.82\] m "
+         r"with legs\.stroke\.min = 0\.9: legs\.stroke: the stroke \[0\.9, 0\.82\] m "
          r"of leg 1 is empty \(need min < max\)",
          lib=lambda tmp: oc.load_robot(leg_min_length=0.9), cli=_set("leg_min_length=0.9")),
     Case("ujoint-limit-zero", "U-joint range of zero width", oc.ModelError,
@@ -409,16 +411,16 @@ CASES = [
          r"the stroke \[0\.4, 0\.45\] m",
          lib=lambda tmp: oc.load_robot(leg_max_length=0.45), cli=_set("leg_max_length=0.45")),
     Case("home-below-base", "home pose with the platform below the U-joints", oc.ModelError,
-         r"with override home\.height = 0\.03: home\.height: at the home pose sphere centre S1 "
+         r"with home\.height = 0\.03: home\.height: at the home pose sphere centre S1 "
          r"is 0\.04 m below its U-joint \(platform below the base\)",
          cli=_set("home_height=0.03")),
     Case("anchors-coincide", "base anchors on a circle of radius zero", oc.ModelError,
-         r"with override base\.joints\.radius = 0: base\.joints: P1 and P2 coincide",
+         r"with base\.joints\.radius = 0: base\.joints: P1 and P2 coincide",
          cli=_set("base_radius=0")),
     Case("design-singular", "anchors making every leg vertical (singular design)",
-         oc.ModelError, r"with override base\.joints\.radius = 0\.35, "
-         r"base\.joints\.half_angle_deg = 45: platform\.joints: the legs are singular at the "
-         r"home pose \(Stewart matrix condition number inf\): move the anchors",
+         oc.ModelError, r"with base\.joints\.radius = 0\.35, "
+         r"base\.joints\.half_angle_deg = 45: platform\.joints: singular legs at the home "
+         r"pose \(Stewart matrix condition inf\): move the anchors",
          lib=lambda tmp: oc.load_robot(base_radius=0.35, base_half_angle_deg=45),
          cli=_set("base_radius=0.35", "base_half_angle_deg=45")),
     # ---- one override path (issue 10, family 7): scene fields and --set
@@ -606,7 +608,7 @@ CASES = [
          cli=lambda tmp: ["animate", "--fps", "0.001", "--out", str(tmp / "out" / "a.gif")]),
     Case("animate-speed-memory", "animate --speed 1e-9 (once 6.9 TiB allocated before the "
          "pixel guard)", oc.InputError,
-         r"314100000001 frames of 31\.4\d* s at --fps 10 .* of memory, more than the limit .*raise --speed",
+         r"314100000001 frames of 31\.4\d* s at --fps 10 .* of memory, over the limit .*raise --speed",
          cli=lambda tmp: ["animate", "--speed", "1e-9", "--out", str(tmp / "out" / "a.gif")]),
     Case("animate-out-no-type", "animate --out a (was worded 'the file type '.'')",
          oc.InputError, r"--out: cannot write .*/a: the name has no file type: end it in "
@@ -630,7 +632,7 @@ CASES = [
     # ---- a sweep's outputs inside its own results directory (issue 21, item 1)
     Case("sweep-csv-in-new-results", "sweep --csv inside the --out directory it creates",
          oc.OutputError, r"--csv: cannot write .*/out/res/rows\.csv: is inside --out "
-         r".*/out/res, whose files only the run may write",
+         r".*/out/res, whose files are the run's alone",
          cli=lambda tmp: ["sweep", "--scene", str(_SCENES / "sweep_crane.toml"), "--grid",
                           str(_bytes(tmp, "grid.toml", b"hs = [1.0]\n")), "--out",
                           str(tmp / "out" / "res"), "--csv",
@@ -662,7 +664,7 @@ CASES = [
     # ---- sizes and addresses checked by our code first (issue 21, items 4 and 5)
     Case("cable-substeps-memory", "--substeps 1e8 on a hanging load (once 298 GiB "
          "allocated)", oc.InputError,
-         r"substeps \(\d+ rows\) needs .* of memory, more than the limit .*lower substeps "
+         r"substeps\) needs .* of memory, over the limit .*lower substeps "
          r"\(--substeps\)",
          cli=lambda tmp: ["id", "--duration", "10", "--set", "payload.mass=2", "--set",
                           "payload.cable_length=0.5", "--substeps", "100000000"]),
@@ -698,12 +700,11 @@ CASES = [
                           str(tmp / "out" / "p.png")]),
     Case("motion-without-a-sea", "motion with no arguments (once answered in scene-file "
          "words: '[trajectory] source = \"sea\" needs [sea] hs')", oc.InputError,
-         r"a sea state needs --hs --tp --heading --scale .*e\.g\. offshore-crane motion "
-         r"--hs 2\.5",
+         r"a sea state needs --hs --tp --heading --scale .*e\.g\. motion --hs 2\.5",
          cli=lambda tmp: ["motion"]),
     Case("set-misspelt-suggests-once", "a misspelt --set name (once 'did you mean' twice)",
-         oc.ModelError, r"payload has no 'mas'; did you mean 'payload\.mass'\? \(known "
-         r"parameters",
+         oc.ModelError, r"payload has no 'mas'; did you mean 'payload\.mass'\? \(all "
+         r"names: docs/robot-description\.md\)",
          lib=lambda tmp: oc.load_robot(overrides={"payload.mas": 2.0}),
          cli=lambda tmp: ["id", "--duration", "0.1", "--set", "payload.mas=2"]),
     # ---- values a cast would silently change (issue 21, item 6)
@@ -730,8 +731,8 @@ CASES = [
          cli=lambda tmp: ["simulate", "--duration", "0.1", "--step", "0"]),
     Case("sea-spectrum-below-band", "a peak period of 1e300 s: every wave below the RAO "
          "band (once an all-zero record, exit 0)", oc.SeaStateError,
-         r"tp = 1e\+300 s .* 0 % of its energy inside the vessel's RAO band "
-         r"0\.1047\.\.3\.142 rad/s .*give tp between 2 and 60 s",
+         r"tp = 1e\+300 s .* 0 % of its energy in the vessel's RAO band "
+         r"0\.1047\.\.3\.142 rad/s: give tp between 2 and 60 s",
          lib=lambda tmp: oc.motion.sea.sea_state(2.0, 1e300, 30.0, 10.0, 10.0),
          cli=lambda tmp: ["motion", "--hs", "2", "--tp", "1e300", "--heading", "30",
                           "--scale", "20", "--duration", "10"]),
@@ -841,6 +842,10 @@ def test_cli(case, tmp_path):
     assert len(lines) == 1 and lines[0].startswith(PREFIX), lines
     assert re.search(case.cli_match or case.match, lines[0]), lines[0]
     assert left == [], f"files left behind: {left}"
+    # at most 200 characters of message (the rest belongs in --help and the docs); a path
+    # counts by its file name: the user's own path is as long as it is
+    shown = re.sub(r"/[^\s:,']*/", "", lines[0][len(PREFIX):])
+    assert len(shown) <= MESSAGE_MAX, f"{len(shown)} characters: {shown}"
 
 
 def test_cli_process_has_no_traceback(tmp_path):

@@ -277,7 +277,7 @@ def test_fidelity_report(capsys):
 # --------------------------------------------------------------------------- bad scenes
 BAD = [
     ("[payload]\nmass = -1\n", "payload.mass",
-     "override payload.mass = -1: payload.mass: -1 kg is negative"),
+     "with payload.mass = -1: payload.mass: -1 kg is negative"),
     ("[payload]\nmass = 1\ninertia = { ixx = 1, iyy = 1, izz = -1 }\n", "payload.inertia",
      "payload.inertia: not positive definite"),
     ("[payload]\nmass = 1\ninertia = { ixx = 1, iyy = 1, izz = 3 }\n", "payload.inertia",

@@ -73,9 +73,8 @@ def _scene(args):
         from offshore_crane.errors import InputError
 
         raise InputError(f"a sea state needs {' '.join('--' + k for k in missing)} "
-                         "(full-scale Hs [m], Tp [s], heading [deg], Froude scale), or "
-                         "--scene with a [sea]: e.g. offshore-crane motion --hs 2.5 --tp 8 "
-                         "--heading 90 --scale 20", name="--" + missing[0])
+                         "(full scale) or a --scene with a [sea], e.g. motion --hs 2.5 "
+                         "--tp 8 --heading 90 --scale 20", name="--" + missing[0])
     where = f"{args.scene} with the command-line options" if args.scene else "command line"
     changes = dict(trajectory="sea", sea=sea, duration=args.duration, rate=args.rate)
     if scene.trajectory == "sea":        # keep the scene's record unless the flags say

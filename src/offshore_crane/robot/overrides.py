@@ -129,8 +129,7 @@ def canonical(name: str, source: str = "override") -> str:
         close = difflib.get_close_matches(name, known, n=3)
         hint = (f"; did you mean {', '.join(close)}?"
                 if close and "did you mean" not in detail else "")   # suggested once
-        _fail(source, name, f"{detail}{hint} (known parameters: base_radius, ..., "
-              "the dotted names of docs/robot-description.md and their aliases)")
+        _fail(source, name, f"{detail}{hint} (all names: docs/robot-description.md)")
     return name
 
 

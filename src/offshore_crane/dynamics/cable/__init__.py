@@ -202,8 +202,8 @@ def stage_grid(t, q, qd, qdd, reference, substeps: int):
     are the given ``q, qd, qdd``, only the points between them are evaluated."""
     N = len(t)
     rows = 2 * substeps * (N - 1) + 1
-    check_memory(8.0 * 28 * rows, f"the swing's stage grid of {N} samples × {substeps} "
-                 f"substeps ({rows} rows)", "lower substeps (--substeps) or the sample count",
+    check_memory(8.0 * 28 * rows, f"the swing's stage grid ({N} samples × {substeps} "
+                 "substeps)", "lower substeps (--substeps) or the sample count",
                  "substeps")
     h = (t[-1] - t[0]) / (N - 1) / substeps
     tt = t[0] + np.arange(2 * substeps * (N - 1) + 1) * (0.5 * h)
@@ -295,9 +295,9 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
     c2 = np.cos(phi0[1]) ** 2
     if not c2 * thresholds.error > 1.0:
         raise InputError(f"initial sway phi2 = {phi0[1]:.6g} rad lies on the singular set "
-                         "cos(phi2) = 0 (the cable along the tip frame's x axis, where phi1 "
-                         f"is undefined; 1/cos^2 = {1 / max(c2, 1e-300):.3g} > "
-                         f"{thresholds.error:.3g}): start from another sway", name="initial")
+                         "cos(phi2) = 0 (cable along the tip's x axis, phi1 undefined; "
+                         f"1/cos^2 = {1 / max(c2, 1e-300):.3g} > {thresholds.error:.3g}): "
+                         "start from another sway", name="initial")
     tt, Q, Qd, Qdd = stage_grid(t, q, qd, qdd, reference, int(substeps))
     h = dt / substeps
     y0 = np.concatenate([phi0, rate0])
@@ -422,9 +422,8 @@ def _slack(res: CableResult, policy: str) -> None:
     if policy == "error":
         raise SlackCableError(
             f"the cable goes slack at {where}: the tension would be {res.tension[k]:.4g} N "
-            "(a cable cannot push; the payload would fall freely there and the pendulum "
-            "model no longer holds); the samples before it are in error.result; pass "
-            "slack='warn' (CLI --slack warn) to mark such samples and go on",
+            "(a cable cannot push; docs/cable.md); slack='warn' (CLI --slack warn) marks "
+            "such samples and goes on",
             index=k, time=float(res.t[k]), tension=float(res.tension[k]),
             result=res.truncated(k))
     res.slack = slack

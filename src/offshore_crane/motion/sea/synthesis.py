@@ -321,9 +321,8 @@ def sea_state(hs, tp, heading_deg, duration, rate, *, vessel="supply", seed=0,
     if not inside >= BAND_SHARE_MIN:
         raise SeaStateError(
             f"the {kind} spectrum of tp = {tp:g} s (peak {2.0 * math.pi / tp:.4g} rad/s) has "
-            f"{100.0 * inside:.2g} % of its energy inside the vessel's RAO band "
-            f"{table.omega[0]:.4g}..{table.omega[-1]:.4g} rad/s (the table says nothing "
-            "outside it; the record would be nearly still): give tp between "
+            f"{100.0 * inside:.2g} % of its energy in the vessel's RAO band "
+            f"{table.omega[0]:.4g}..{table.omega[-1]:.4g} rad/s: give tp between "
             f"{2.0 * math.pi / table.omega[-1]:.3g} and {2.0 * math.pi / table.omega[0]:.3g} s",
             name="tp")
     keep = S > 0.0

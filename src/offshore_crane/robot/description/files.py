@@ -81,7 +81,7 @@ def label(path: str) -> str:
     """How messages name a description file: as given, the default one by its name."""
     try:
         if Path(path).resolve() == default_description().resolve():
-            return f"{Path(path).name} (the default description)"
+            return f"{Path(path).name} (default)"
     except DescriptionError:
         pass
     return path

@@ -39,7 +39,9 @@ class Resolver:
         fields = self.n.depends(fields) | {name, *involved}
         over = [f"{k} = {toml_value(v)}" for k, v in self.overrides.items()
                 if any(overlap(k, p) for p in fields)]
-        where = self.v.path + (f" with override {', '.join(over)}" if over else "")
+        if len(over) > 3:                                   # the first, and how many more
+            over = over[:2] + [f"{len(over) - 2} more"]
+        where = self.v.path + (f" with {', '.join(over)}" if over else "")
         raise DescriptionError(f"{where}: {name}: {message}", path=self.path, field=name)
 
     # ------------------------------------------------------------------ build
@@ -194,11 +196,10 @@ class Resolver:
         shown = ", ".join(f"{x:.6g}" for x in lam)
         if lam[0] < -tol:
             self.fail(name, f"not positive definite: principal moments ({shown}) kg·m² "
-                      "include a negative one; no body has them", *involved)
+                      "include a negative one", *involved)
         if lam[2] > lam[0] + lam[1] + tol:
             self.fail(name, f"principal moments ({shown}) kg·m² break the triangle "
-                      f"inequality ({lam[2]:.6g} > {lam[0]:.6g} + {lam[1]:.6g}); no rigid "
-                      "body has them", *involved)
+                      f"inequality ({lam[2]:.6g} > {lam[0]:.6g} + {lam[1]:.6g})", *involved)
         if m == 0.0 and lam[2] > 0.0:
             self.fail(name, "an inertia without mass: give the mass too", *involved)
 
@@ -354,8 +355,8 @@ class Resolver:
         with np.errstate(all="ignore"):
             kappa = float(np.linalg.cond(A, 1)) if np.all(np.isfinite(A)) else np.inf
         if not kappa < HOME_CONDITION_LIMIT:
-            self.fail("platform.joints", f"the legs are singular at the home pose (Stewart "
-                      f"matrix condition number {kappa:.3g}): move the anchors",
+            self.fail("platform.joints", f"singular legs at the home pose (Stewart matrix "
+                      f"condition {kappa:.3g}): move the anchors",
                       "base.joints", "home.height")
 
     # ------------------------------------------------------------------ arm
@@ -417,7 +418,7 @@ class Resolver:
             self.fail("payload.mass", f"{m:g} kg is negative; give a mass >= 0")
         if m > 0.0 and not has_arm:
             self.fail("payload.mass", f"{m:g} kg: the payload hangs from the arm tip, but "
-                      "the robot has no arm (arm.enabled = false)", "arm.enabled")
+                      "the robot has no arm", "arm.enabled")
         com = self.n.vector("payload.com", (0.0, 0.0, 0.0))
         I = self._inertia("payload.inertia", zero_default=True)
         I = np.zeros((3, 3)) if I is None else I

@@ -222,8 +222,8 @@ def check_limits(health: np.ndarray, limits: Limits, q: np.ndarray, t=None) -> N
             lo, hi = limits.ujoint[leg, axis]
         raise WorkspaceError(
             f"{what} = {value:.6g} {unit} at {_when(k, t)} is outside [{lo:.6g}, {hi:.6g}] "
-            f"{unit}; change the trajectory or the robot parameters, or pass limits=False "
-            "(CLI --no-limits) to study it anyway", joint=joint, index=k, value=value)
+            f"{unit}; change the trajectory or the robot, or study it with --no-limits "
+            "(limits=False)", joint=joint, index=k, value=value)
 
 
 def check_singularities(health: np.ndarray, kappa: dict, thresholds: Thresholds, t=None,
@@ -242,8 +242,8 @@ def check_singularities(health: np.ndarray, kappa: dict, thresholds: Thresholds,
             value = float(kappa[kind][k])
             raise SingularConfigurationError(
                 f"{KINDS[kind]} singularity: condition number {value:.3g} at {_when(k, t)} "
-                f"exceeds {thresholds.error:.3g}; the forces there are unreliable (move the "
-                "trajectory away from the singularity or raise the error threshold)",
+                f"exceeds {thresholds.error:.3g}: the forces there are unreliable; move the "
+                "trajectory away or raise the error threshold",
                 index=k, time=None if t is None else float(t[k]), condition=value,
                 kind=KINDS[kind])
     for kind in range(len(KINDS)):
