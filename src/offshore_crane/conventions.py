@@ -14,6 +14,27 @@ N_COORDINATES = 9
 COORDINATES = tuple(f"q{i}" for i in range(1, N_COORDINATES + 1))
 COORDINATE_UNITS = ("m", "m", "m", "rad", "rad", "rad", "rad", "rad", "m")
 
+
+def coordinate_column(k: int, order: int = 0, tag: str = "") -> str:
+    """The CSV column of coordinate ``k`` (0-based), its unit in the name: ``q1_m``,
+    ``qd4_rad_s``, ``qdd9_m_s2`` for ``order`` 0, 1, 2; ``tag`` before the unit
+    (``q1_ref_m``). The one rule every CSV writer and reader follows."""
+    return (f"{'q' + 'd' * order}{k + 1}{tag}_{COORDINATE_UNITS[k]}"
+            + ("", "_s", "_s2")[order])
+
+
+#: ``q1_m .. q9_m``, their rates and accelerations, as CSV columns.
+Q_COLUMNS = tuple(coordinate_column(k) for k in range(N_COORDINATES))
+QD_COLUMNS = tuple(coordinate_column(k, 1) for k in range(N_COORDINATES))
+QDD_COLUMNS = tuple(coordinate_column(k, 2) for k in range(N_COORDINATES))
+#: Column names CSV files had before units were in them (``q1``, ``qd1``, ``qdd1``,
+#: ``q1_ref``), each with today's name: files written then are still read.
+LEGACY_COLUMNS = {**{f"q{k + 1}": Q_COLUMNS[k] for k in range(N_COORDINATES)},
+                  **{f"qd{k + 1}": QD_COLUMNS[k] for k in range(N_COORDINATES)},
+                  **{f"qdd{k + 1}": QDD_COLUMNS[k] for k in range(N_COORDINATES)},
+                  **{f"q{k + 1}_ref": coordinate_column(k, tag="_ref")
+                     for k in range(N_COORDINATES)}}
+
 #: Order of the actuator vector X (paper Eq. 40).
 ACTUATORS = ("T1", "T2", "Fs", "Fl1", "Fl2", "Fl3", "Fl4", "Fl5", "Fl6")
 ACTUATOR_UNITS = ("N·m", "N·m", "N", "N", "N", "N", "N", "N", "N")

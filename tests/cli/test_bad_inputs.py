@@ -25,6 +25,7 @@ import pytest
 
 import offshore_crane as oc
 from offshore_crane import scenes
+from offshore_crane.conventions import LEGACY_COLUMNS
 from offshore_crane.motion import trajectories
 from offshore_crane.__main__ import main
 from offshore_crane.robot.kinematics.workspace import Thresholds
@@ -108,7 +109,7 @@ def _cell(rows, line, column, value):
     """``rows`` with data line ``line`` (1-based after the header), ``column`` replaced."""
     rows = list(rows)
     cells = rows[line].split(",")
-    cells[trajectories.CSV_COLUMNS.index(column)] = value
+    cells[trajectories.CSV_COLUMNS.index(LEGACY_COLUMNS.get(column, column))] = value
     rows[line] = ",".join(cells)
     return rows
 
@@ -197,11 +198,11 @@ CASES = [
     Case("ninf-qdd", "-inf in qdd", oc.InputError, r"qdd\[4, 8\] is -inf \(sample 4, column 9\)",
          lib=lambda tmp: _id(*_with((4, 8), -np.inf, which=2))),
     Case("nan-csv", "NaN in a CSV cell", oc.TrajectoryError,
-         r"line 4, column q5: 'nan' is not finite",
+         r"line 4, column q5_rad: 'nan' is not finite",
          lib=_load(_csv("nan.csv", _cell(GOOD, 3, "q5", "nan"))),
          cli=_argv(_csv("nan.csv", _cell(GOOD, 3, "q5", "nan")))),
     Case("inf-csv", "inf in a CSV cell", oc.TrajectoryError,
-         r"line 6, column q1: '-inf' is not finite",
+         r"line 6, column q1_m: '-inf' is not finite",
          lib=_load(_csv("inf.csv", _cell(GOOD, 5, "q1", "-inf"))),
          cli=_argv(_csv("inf.csv", _cell(GOOD, 5, "q1", "-inf")))),
     Case("nan-time-csv", "NaN time in a CSV", oc.TrajectoryError,
@@ -254,14 +255,14 @@ CASES = [
          lib=_load(_csv("extra.csv", [GOOD[0] + ",q10"] + [r + ",0" for r in GOOD[1:]])),
          cli=_argv(_csv("extra.csv", [GOOD[0] + ",q10"] + [r + ",0" for r in GOOD[1:]]))),
     Case("csv-column-order", "CSV with q1 and q2 swapped in the header", oc.TrajectoryError,
-         r"columns are in the order t_s,q2,q1,",
-         cli=_argv(_csv("order.csv", [GOOD[0].replace("q1,q2", "q2,q1")] + GOOD[1:]))),
+         r"columns are in the order t_s,q2_m,q1_m,",
+         cli=_argv(_csv("order.csv", [GOOD[0].replace("q1_m,q2_m", "q2_m,q1_m")] + GOOD[1:]))),
     Case("csv-short-row", "CSV row with a missing cell", oc.TrajectoryError,
          r"line 5: 9 cells, expected 10",
          lib=_load(_csv("short.csv", GOOD[:4] + [GOOD[4].rsplit(",", 1)[0]] + GOOD[5:])),
          cli=_argv(_csv("short.csv", GOOD[:4] + [GOOD[4].rsplit(",", 1)[0]] + GOOD[5:]))),
     Case("csv-non-numeric", "CSV with a non-numeric cell", oc.TrajectoryError,
-         r"line 3, column q3: 'abc' is not a number",
+         r"line 3, column q3_m: 'abc' is not a number",
          lib=_load(_csv("text.csv", _cell(GOOD, 2, "q3", "abc"))),
          cli=_argv(_csv("text.csv", _cell(GOOD, 2, "q3", "abc")))),
     Case("csv-time-decreasing", "CSV whose time goes backwards", oc.TrajectoryError,
@@ -873,7 +874,7 @@ def test_errors_carry_their_data(tmp_path):
     assert info.value.path.endswith("lab.toml")
     with pytest.raises(oc.TrajectoryError) as info:
         trajectories.load(_csv("text.csv", _cell(GOOD, 2, "q3", "abc"))(tmp_path))
-    assert (info.value.name, info.value.index) == ("q3", 1)
+    assert (info.value.name, info.value.index) == ("q3_m", 1)
 
 
 def test_no_limits_allows_study_outside_limits(tmp_path):

@@ -80,7 +80,7 @@ def test_motion_plot_and_stdout(tmp_path, capsys):
     plot = tmp_path / "m.png"
     status, out, err = _run(["motion", *SEA, "--duration", "30", "--out", "-", "--plot", plot],
                             capsys)
-    assert status == 0 and out.startswith("t_s,q1,") and "coordinate unit" in err
+    assert status == 0 and out.startswith("t_s,q1_m,") and "coordinate unit" in err
     assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 

@@ -24,7 +24,8 @@ from offshore_crane.motion.trajectories import (
 )
 
 PI = math.pi
-HEADER = "t_s,q1,q2,q3,q4,q5,q6,q7,q8,q9"
+HEADER = "t_s,q1,q2,q3,q4,q5,q6,q7,q8,q9"          # the bare names of earlier versions: read
+UNITS_HEADER = "t_s,q1_m,q2_m,q3_m,q4_rad,q5_rad,q6_rad,q7_rad,q8_rad,q9_m"   # written
 
 
 # --------------------------------------------------------------------------- time_grid
@@ -32,7 +33,7 @@ HEADER = "t_s,q1,q2,q3,q4,q5,q6,q7,q8,q9"
 def test_constants():
     assert TABLE1_PERIOD == 10 * PI
     assert DEFAULT_RATE == 100.0
-    assert ",".join(CSV_COLUMNS) == HEADER
+    assert ",".join(CSV_COLUMNS) == UNITS_HEADER
 
 
 def test_time_grid_default():
@@ -316,7 +317,7 @@ def test_csv_round_trip_is_exact(tmp_path):
     q[1, 1] = -1.7976931348623157e308
     path = tmp_path / "round.csv"
     write_csv(path, t, q)
-    assert path.read_text().splitlines()[0] == HEADER
+    assert path.read_text().splitlines()[0] == UNITS_HEADER
     t2, q2 = read_csv(path)
     np.testing.assert_array_equal(t2, t)  # %.17g round-trips float64 exactly
     np.testing.assert_array_equal(q2, q)
@@ -334,19 +335,20 @@ def test_csv_tolerates_whitespace_and_blank_lines(tmp_path):
 @pytest.mark.parametrize("text, match, name, index", [
     ("", "is empty", None, None),
     ("\n\n", "is empty", None, None),
-    ("t_s,q1,q2,q3,q4,q5,q6,q7\n" + _rows(), r"missing column\(s\) q8, q9", "q8,q9", None),
+    ("t_s,q1,q2,q3,q4,q5,q6,q7\n" + _rows(), r"missing column\(s\) q8_rad, q9_m", "q8_rad,q9_m",
+     None),
     (HEADER + ",q10\n" + _rows(), r"unknown column\(s\) 'q10'", "q10", None),
     ("t_s,q1,q2,q3,q4,q5,q6,q7,q9,q8\n" + _rows(), "order", None, None),
-    ("t_s,q1,q1,q2,q3,q4,q5,q6,q7,q8,q9\n" + _rows(), r"repeated column\(s\) q1", "q1", None),
+    ("t_s,q1,q1,q2,q3,q4,q5,q6,q7,q8,q9\n" + _rows(), r"repeated column\(s\) q1_m", "q1_m", None),
     (HEADER + "\n0,1,2,3,4,5,6,7,8,9\n0.1,1,2,3\n", r"line 3: 4 cells, expected 10", None, 1),
     (HEADER + "\n0,1,2,3,4,5,6,7,8,9\n0.1,1,2,abc,4,5,6,7,8,9\n",
-     r"line 3, column q3: 'abc' is not a number", "q3", 1),
+     r"line 3, column q3_m: 'abc' is not a number", "q3_m", 1),
     (HEADER + "\n0,1,2,3,4,5,6,7,8,9\n0.1,1,2,3,4,5,6,7,8,\n",
-     r"line 3, column q9: '' is not a number", "q9", 1),
+     r"line 3, column q9_m: '' is not a number", "q9_m", 1),
     (HEADER + "\n0,1,2,3,4,5,6,7,8,9\n0.1,1,2,3,4,nan,6,7,8,9\n",
-     r"line 3, column q5: 'nan' is not finite", "q5", 1),
+     r"line 3, column q5_rad: 'nan' is not finite", "q5_rad", 1),
     (HEADER + "\n0,1,2,3,4,5,6,7,8,9\n0.1,1,2,3,4,5,6,7,-inf,9\n",
-     r"line 3, column q8: '-inf' is not finite", "q8", 1),
+     r"line 3, column q8_rad: '-inf' is not finite", "q8_rad", 1),
     (HEADER + "\n0,1,2,3,4,5,6,7,8,9\n0.2,1,2,3,4,5,6,7,8,9\n0.1,1,2,3,4,5,6,7,8,9\n",
      r"line 4: time t_s = 0.1 s does not increase", "t_s", 2),
     (HEADER + "\n0,1,2,3,4,5,6,7,8,9\n0,1,2,3,4,5,6,7,8,9\n", "does not increase", "t_s", 1),
@@ -442,3 +444,25 @@ def test_load_unknown_spec(tmp_path):
         load(str(tmp_path / "missing.csv"))
     with pytest.raises(TrajectoryError, match="unknown trajectory"):
         load("Table1")
+
+
+def test_a_csv_with_the_bare_names_of_earlier_versions_reads_the_same(tmp_path):
+    """Files written before the units went into the column names (q1..q9, qd1.., qdd1..)
+    read to the same arrays as today's (q1_m.., qd1_m_s.., qdd1_m_s2..)."""
+    from offshore_crane.motion import trajectories
+
+    t = np.arange(30) / 100.0
+    q, qd, qdd = trajectories.table1(t)
+    new = tmp_path / "new.csv"
+    trajectories.write_csv(new, t, q, qd, qdd)
+    lines = new.read_text().splitlines()
+    old_header = ",".join(["t_s", *(f"q{i}" for i in range(1, 10)),
+                           *(f"qd{i}" for i in range(1, 10)),
+                           *(f"qdd{i}" for i in range(1, 10))])
+    assert lines[0].startswith("t_s,q1_m,") and "qd4_rad_s" in lines[0]
+    old = tmp_path / "old.csv"
+    old.write_text("\n".join([old_header, *lines[1:]]) + "\n")
+    a, b = trajectories.read_csv(new, derivatives=True), trajectories.read_csv(
+        old, derivatives=True)
+    for x, y in zip(a, b):
+        np.testing.assert_array_equal(x, y)

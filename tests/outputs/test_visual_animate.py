@@ -148,7 +148,7 @@ def test_run_csv_errors(tmp_path):
         mo.read_run(bad)
     bad.write_text("t_s,q1,q2,q3,q4,q5,q6,q7,q8,q9\n0,0,0,0.5,0,0,0,0,0,0\n"
                    "0.1,0,0,nan,0,0,0,0,0,0\n")
-    with pytest.raises(oc.TrajectoryError, match="data row 2, column q3: 'nan' is not finite"):
+    with pytest.raises(oc.TrajectoryError, match="data row 2, column q3_m: 'nan' is not finite"):
         mo.read_run(bad)
 
 

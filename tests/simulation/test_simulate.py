@@ -170,7 +170,7 @@ def test_cli_scene_with_control_section(tmp_path, capsys):
     data = np.loadtxt(out, delimiter=",", skiprows=1)
     assert data.shape == (201, 28)
     header = out.read_text().splitlines()[0].split(",")
-    assert header[:2] == ["t_s", "q1"] and header[10] == "q1_ref" and header[-1] == "Fl6_N"
+    assert header[:2] == ["t_s", "q1_m"] and header[10] == "q1_ref_m" and header[-1] == "Fl6_N"
     # started 1 cm off in q1, the error decays (model error and hold keep it small)
     err = data[:, 1] - data[:, 10]
     assert err[0] == pytest.approx(0.01) and abs(err[-1]) < 1e-3

@@ -8,10 +8,11 @@ every sample computed up to the stop, and the command exits with status 2 and on
 
 from __future__ import annotations
 
-from offshore_crane.conventions import ACTUATOR_UNITS, ACTUATORS, COORDINATE_UNITS, COORDINATES
+from offshore_crane.conventions import (ACTUATOR_UNITS, ACTUATORS, COORDINATE_UNITS, COORDINATES,
+                                        Q_COLUMNS, coordinate_column)
 from offshore_crane.errors import InputError
 
-CSV_HEADER = ",".join(["t_s", *COORDINATES, *(f"{c}_ref" for c in COORDINATES),
+CSV_HEADER = ",".join(["t_s", *Q_COLUMNS, *(coordinate_column(k, tag="_ref") for k in range(9)),
                        *(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS,
                                                                        ACTUATOR_UNITS))])
 

@@ -1,5 +1,5 @@
-"""Trajectory CSV files: ``t_s,q1..q9`` (optionally with ``qd1..qd9, qdd1..qdd9``), read with
-every bad line named and written atomically.
+"""Trajectory CSV files: ``t_s,q1_m..q9_m`` (units in the names; optionally with the rates
+and accelerations), read with every bad line named and written atomically.
 """
 
 from __future__ import annotations
@@ -10,21 +10,25 @@ from pathlib import Path
 
 import numpy as np
 
+from offshore_crane.conventions import LEGACY_COLUMNS, Q_COLUMNS, QD_COLUMNS, QDD_COLUMNS
 from offshore_crane.errors import TrajectoryError
 
 
-#: Header of a trajectory CSV file: time [s] then q1..q9 [m or rad].
-CSV_COLUMNS = ("t_s",) + tuple(f"q{i}" for i in range(1, 10))
+#: Header of a trajectory CSV file: time [s] then q1..q9, each with its unit
+#: (``q1_m .. q3_m, q4_rad .. q8_rad, q9_m``; :func:`offshore_crane.conventions.
+#: coordinate_column`). Files with the bare names of earlier versions (``q1..q9``) are read
+#: too.
+CSV_COLUMNS = ("t_s",) + Q_COLUMNS
 #: The same with the rates and accelerations (written by ``offshore-crane motion``):
-#: ``qd1..qd9`` [m/s or rad/s] and ``qdd1..qdd9`` [m/s² or rad/s²], used instead of finite
-#: differences when present.
-CSV_COLUMNS_DERIVATIVES = CSV_COLUMNS + tuple(f"qd{i}" for i in range(1, 10)) + tuple(
-    f"qdd{i}" for i in range(1, 10))
+#: ``qd1_m_s .. qd9_m_s`` [m/s or rad/s] and ``qdd1_m_s2 ..`` [m/s² or rad/s²], used
+#: instead of finite differences when present.
+CSV_COLUMNS_DERIVATIVES = CSV_COLUMNS + QD_COLUMNS + QDD_COLUMNS
 
 
 def read_csv(path, derivatives: bool = False):
-    """Read a trajectory CSV file with header ``t_s,q1,q2,q3,q4,q5,q6,q7,q8,q9``, optionally
-    followed by ``qd1..qd9,qdd1..qdd9``.
+    """Read a trajectory CSV file with header ``t_s,q1_m,q2_m,q3_m,q4_rad,..,q8_rad,q9_m``,
+    optionally followed by ``qd1_m_s..qd9_m_s,qdd1_m_s2..qdd9_m_s2`` (or the bare names of
+    earlier versions, ``q1..q9``, ``qd1..``, ``qdd1..``).
 
     Whitespace around column names and numbers is ignored, blank lines are skipped. The
     columns must appear in that order.
@@ -74,7 +78,7 @@ def read_csv(path, derivatives: bool = False):
             f"trajectory file '{path}' is empty: it needs the header line '{expected}' and "
             "at least 2 data rows.", path=str(path))
 
-    header = [cell.strip() for cell in rows[0]]
+    header = [LEGACY_COLUMNS.get(cell.strip(), cell.strip()) for cell in rows[0]]
     hline = lines[0]
     columns = CSV_COLUMNS_DERIVATIVES if len(header) > len(CSV_COLUMNS) and any(
         c.startswith("qd") for c in header) else CSV_COLUMNS

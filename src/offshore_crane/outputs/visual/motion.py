@@ -31,16 +31,17 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from offshore_crane.conventions import ACTUATOR_UNITS, ACTUATORS, COORDINATES
+from offshore_crane.conventions import (ACTUATOR_UNITS, ACTUATORS, LEGACY_COLUMNS, Q_COLUMNS,
+                                        QD_COLUMNS, QDD_COLUMNS, coordinate_column)
 from offshore_crane.errors import InputError, TrajectoryError
 from offshore_crane.validation import check_memory
 
 #: Columns of a run's CSV that :func:`read_run` reads (others are ignored if known).
 FORCE_COLUMNS = tuple(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS, ACTUATOR_UNITS))
 SWAY_COLUMNS = ("phi1_rad", "phi2_rad")
-KNOWN_COLUMNS = (("t_s",) + COORDINATES + tuple(f"{c}_ref" for c in COORDINATES)
-                 + tuple(f"qd{i}" for i in range(1, 10)) + tuple(f"qdd{i}" for i in range(1, 10))
-                 + FORCE_COLUMNS + SWAY_COLUMNS + ("tension_N",))
+KNOWN_COLUMNS = (("t_s",) + Q_COLUMNS
+                 + tuple(coordinate_column(k, tag="_ref") for k in range(9))
+                 + QD_COLUMNS + QDD_COLUMNS + FORCE_COLUMNS + SWAY_COLUMNS + ("tension_N",))
 
 
 @dataclass(frozen=True)
@@ -94,16 +95,16 @@ def read_run(path) -> Motion:
         raise TrajectoryError(str(exc), path=where) from None
     if not rows:
         raise TrajectoryError(f"{where}: the file is empty: it needs a header line with "
-                              "t_s,q1..q9 and at least 2 rows", path=where)
-    header = [c.strip() for c in rows[0]]
-    if "t_s" in header and "q1" not in header and "T1_Nm" in header:
+                              "t_s,q1_m..q9_m and at least 2 rows", path=where)
+    header = [LEGACY_COLUMNS.get(c.strip(), c.strip()) for c in rows[0]]
+    if "t_s" in header and Q_COLUMNS[0] not in header and "T1_Nm" in header:
         raise TrajectoryError(f"{where}: holds actuator forces only (the CSV of "
                               "offshore-crane id): give the trajectory it was computed on "
                               "with --trajectory (the forces are recomputed)", path=where)
-    missing = [c for c in ("t_s",) + COORDINATES if c not in header]
+    missing = [c for c in ("t_s",) + Q_COLUMNS if c not in header]
     if missing:
         raise TrajectoryError(f"{where}, line 1: missing column(s) {', '.join(missing)}: "
-                              "a run's CSV needs t_s,q1..q9", name=",".join(missing),
+                              "a run's CSV needs t_s,q1_m..q9_m", name=",".join(missing),
                               path=where)
     unknown = [c for c in header if c not in KNOWN_COLUMNS]
     repeated = sorted({c for c in header if header.count(c) > 1})
@@ -156,11 +157,11 @@ def read_run(path) -> Motion:
             return None
         return np.ascontiguousarray(values[:, [col[n] for n in names]])
 
-    qd = block([f"qd{i}" for i in range(1, 10)])
-    qdd = block([f"qdd{i}" for i in range(1, 10)])
+    qd = block(list(QD_COLUMNS))
+    qdd = block(list(QDD_COLUMNS))
     X = block(list(FORCE_COLUMNS))
     return Motion(os.path.splitext(os.path.basename(where))[0], np.ascontiguousarray(t),
-                  block(list(COORDINATES)), qd, qdd, X, block(list(SWAY_COLUMNS)))
+                  block(list(Q_COLUMNS)), qd, qdd, X, block(list(SWAY_COLUMNS)))
 
 
 #: Numbers held per frame: its time, and q, q̇, q̈, X and the sway (35 columns)
