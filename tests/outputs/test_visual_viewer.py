@@ -177,3 +177,31 @@ def test_quaternions_against_rotation_matrices():
                      [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
                      [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
     assert np.abs(np.moveaxis(back, 2, 0) - R).max() < 1e-14
+
+
+def test_the_viewer_colours_the_legs_as_animate_does(robot):
+    """--color-by in the viewer: at each shown frame every leg's meshes take animate's
+    colour for that frame (render.diverging of the leg's force over the run's scale)."""
+    from offshore_crane.outputs.visual.render import diverging
+    from offshore_crane.outputs.visual.viewer import Viewer
+
+    traj = oc.motion.trajectories.load("table1", duration=2.0, rate=50.0)
+    m = mo.forces(robot, mo.from_trajectory(traj), oc.conventions.GRAVITY, "full")
+    shown = mo.at(m, mo.frame_times(m, 10.0))
+    v = Viewer(robot, shown, port=0, play=False, color_by="force")
+    try:
+        assert sorted(v.legs) == list(range(6)) and all(len(x) == 2 for x in v.legs.values())
+        values, _ = mo.leg_values(robot, shown.X, "force")
+        for k in (0, 7, len(shown.t) - 1):
+            assert v.show(float(shown.t[k])) == k
+            want = np.clip(np.round(diverging(values[k]) * 255.0), 0, 255).astype(int)
+            for leg, meshes in v.legs.items():
+                for mesh in meshes:
+                    assert tuple(mesh.color) == tuple(want[leg]), (k, leg)
+    finally:
+        v.close()
+    plain = Viewer(robot, shown, port=0, play=False)
+    try:
+        assert plain.leg_rgb is None
+    finally:
+        plain.close()

@@ -25,6 +25,9 @@ def add_parser(sub) -> None:
                    "127.0.0.1: this machine only; 0.0.0.0 opens it to the network)")
     p.add_argument("--speed", type=float, default=1.0, help="playback speed (default 1)")
     p.add_argument("--paused", action="store_true", help="start paused")
+    p.add_argument("--color-by", choices=("force", "utilisation"),
+                   help="colour the legs by their actuator force (blue pull, red push) or "
+                   "by force / capacity, as animate does")
     p.set_defaults(run=run)
 
 
@@ -42,9 +45,12 @@ def run(args) -> int:
     scene = scene_of(args)
     robot, motion = load_motion(args, scene)
     motion = mo.hanging_load(robot, motion, scene.gravity, scene.cable)
+    if args.color_by is not None:
+        motion = mo.forces(robot, motion, scene.gravity, scene.leg_model)
     shown = mo.at(motion, mo.frame_times(motion, VIEW_RATE, 1.0, args.duration))
     viewer = Viewer(robot, shown, host=args.host, port=args.port, speed=args.speed,
-                    play=not args.paused, title=f"offshore-crane: {motion.name}")
+                    play=not args.paused, title=f"offshore-crane: {motion.name}",
+                    color_by=args.color_by)
     print(f"offshore-crane view: {motion.name}, t = {shown.t[0]:.2f}..{shown.t[-1]:.2f} s, "
           f"{len(shown.t)} frames; open {viewer.url} (Ctrl-C stops)", flush=True)
     try:

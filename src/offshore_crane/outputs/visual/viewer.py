@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from offshore_crane.errors import ViewerError
+from offshore_crane.errors import InputError, ViewerError
 
 #: Rate [1/s] at which the motion is sampled for the viewer (motion time).
 VIEW_RATE = 30.0
@@ -99,7 +99,8 @@ class Viewer:
     """
 
     def __init__(self, robot, shown, host: str = "127.0.0.1", port: int = 8080,
-                 speed: float = 1.0, play: bool = True, title: str = "offshore-crane"):
+                 speed: float = 1.0, play: bool = True, title: str = "offshore-crane",
+                 color_by: str | None = None):
         from offshore_crane.errors import require
         from offshore_crane.outputs.visual.poses import link_poses
         from offshore_crane.outputs.visual.render import geometry
@@ -131,6 +132,8 @@ class Viewer:
         server.initial_camera.position = tuple(eye)
         server.initial_camera.look_at = tuple(target)
         self.frames = {}
+        self.legs: dict = {}                    # leg index -> its links' mesh handles
+        self.leg_rgb = self._leg_colours(robot, shown, color_by)
         for col, link in enumerate(P.links):
             faces = np.flatnonzero(geo.flink == col)
             if not len(faces):
@@ -144,10 +147,13 @@ class Viewer:
                         for fc in [geo.faces[f]] for i in range(1, len(fc) - 1)]
                 used = np.unique(np.array(tris).ravel())
                 remap = {v: i for i, v in enumerate(used)}
-                server.scene.add_mesh_simple(
+                mesh = server.scene.add_mesh_simple(
                     f"/robot/{link}/mesh{c}", geo.V[used].astype(np.float32),
                     np.array([[remap[v] for v in tri] for tri in tris], dtype=np.uint32),
                     color=tuple(int(255 * x) for x in rgb), flat_shading=True)
+                leg = _leg_of(link)
+                if leg is not None:
+                    self.legs.setdefault(leg, []).append(mesh)
         self.cable = None
         if geo.cable is not None:
             self.cable = (geo.cable, None)
@@ -165,6 +171,20 @@ class Viewer:
         self._thread = threading.Thread(target=self._play, daemon=True, name="viewer-play")
         self._thread.start()
 
+    @staticmethod
+    def _leg_colours(robot, shown, color_by):
+        """``(F, 6, 3)`` leg colours 0..255 per frame (animate's scale), or None."""
+        if color_by is None:
+            return None
+        from offshore_crane.outputs.visual import motion as mo
+        from offshore_crane.outputs.visual.render import diverging, sequential
+
+        if shown.X is None:
+            raise InputError("--color-by needs the actuator forces", name="--color-by")
+        values, _ = mo.leg_values(robot, shown.X, color_by)
+        cmap = diverging if color_by == "force" else sequential
+        return np.clip(np.round(cmap(values) * 255.0), 0, 255).astype(np.uint8)
+
     def index(self, time_s: float) -> int:
         """The frame shown at motion time ``time_s`` [s] (the last one at or before it)."""
         return int(np.clip(np.searchsorted(self.t, time_s + 1e-9, side="right") - 1, 0,
@@ -178,6 +198,11 @@ class Viewer:
             for col, handle in self.frames.items():
                 handle.position = p[col]
                 handle.wxyz = wxyz[col]
+            if self.leg_rgb is not None:                 # as animate paints them
+                for leg, meshes in self.legs.items():
+                    colour = tuple(int(v) for v in self.leg_rgb[k, leg])
+                    for mesh in meshes:
+                        mesh.color = colour
             if self.cable is not None:
                 (a, b), line = self.cable
                 pts = np.array([[p[a], p[b]]], dtype=np.float32)
@@ -205,3 +230,11 @@ class Viewer:
         self._stop.set()
         self._thread.join(timeout=2.0)
         self.server.stop()
+
+
+def _leg_of(link: str) -> int | None:
+    """0..5 for ``leg{i}_lower`` / ``leg{i}_upper``, else None."""
+    import re
+
+    m = re.fullmatch(r"leg([1-6])_(lower|upper)", link)
+    return None if m is None else int(m[1]) - 1
