@@ -286,3 +286,22 @@ def test_the_gif_palette_holds_the_scale_and_the_bodies(robot):
     full = np.clip(bodies * (render.AMBIENT + render.DIFFUSE) * 255, 0, 255).astype(np.uint8)
     assert {tuple(c) for c in full.tolist()} <= have
     assert len(palette) == 256
+
+
+def test_the_floor_is_drawn_under_the_base_unless_seen_from_below(robot):
+    """The lab's floor (with its grid) is painted into the static background: from the
+    default camera it changes a good part of the plain gradient; from a camera below the
+    floor it is not drawn (it would hide the robot)."""
+    m = mo.from_trajectory(oc.motion.trajectories.load("table1", duration=1.0, rate=10.0))
+    P = poses.link_poses(robot, mo.at(m, np.array([0.0])).q)
+
+    def floor_share(camera):
+        r = render.Renderer(robot, P, 160, 120, camera)
+        plain = np.asarray(r._gradient(160, 120), dtype=int)
+        painted = np.asarray(r._background, dtype=int)
+        return float((np.abs(painted - plain).sum(axis=2) > 0).mean()), r
+
+    share, r = floor_share(render.Camera())
+    assert share > 0.05 and r.eye[2] > 0                 # the floor seen from above
+    share, r = floor_share(render.Camera(elevation=-70.0))
+    assert r.eye[2] < 0 and share == 0.0                 # from below: not drawn

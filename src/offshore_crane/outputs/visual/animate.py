@@ -29,8 +29,8 @@ from offshore_crane.errors import InputError
 #: Output formats by file suffix.
 FORMATS = ("gif", "mp4")
 #: Frames per second by format when none is given [Hz]: a GIF at 10 (its frames last
-#: whole centiseconds: 10 fps is exact; the README's 60 s animation at 640 x 480 is 6.8 MB,
-#: 19.8 MB at 30 fps), an MP4 at 30 (4.3 MB for the same 60 s at 30 fps: the format for
+#: whole centiseconds: 10 fps is exact; the README's 60 s animation at 640 x 480 is 7.2 MB,
+#: 20.9 MB at 30 fps), an MP4 at 30 (4.5 MB for the same 60 s at 30 fps: the format for
 #: long or smooth runs; a GIF for a page that shows it without a player).
 DEFAULT_FPS = {"gif": 10.0, "mp4": 30.0}
 #: GIF frames are kept in memory (one byte a pixel) until written: refuse beyond this.

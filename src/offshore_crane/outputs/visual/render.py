@@ -44,6 +44,10 @@ CYLINDER_SEGMENTS = 16
 SPHERE_BANDS = (6, 10)
 CAP_SECTOR_RADIUS = 0.1
 BACKGROUND_TOP, BACKGROUND_BOTTOM = (235, 240, 246), (200, 208, 218)
+#: The floor under the base (the lab's, fixed: a reference the platform moves against):
+#: a square of GROUND_EXTENT times the base's radius, its grid every quarter of it.
+GROUND_RGB, GROUND_LINE_RGB = (214, 219, 226), (188, 195, 205)
+GROUND_EXTENT = 1.6
 
 
 @dataclass(frozen=True)
@@ -312,6 +316,34 @@ class Renderer:
         self.root = g.flink == 0
         self._faces = [list(f) for f in g.faces]
         self._background = self._gradient(W, H)
+        self._floor()
+
+    def _floor(self) -> None:
+        """Paint the floor into the (static) background: a square at the base's lowest
+        point, GROUND_EXTENT times its radius, with a grid; skipped where the camera is
+        below it (it would hide the robot)."""
+        g, P = self.geo, self.poses
+        base = g.vlink == 0
+        if not base.any():
+            return
+        V = g.V[base] @ P.R[0, 0].T + P.p[0, 0]                 # the base is fixed
+        z = float(V[:, 2].min())
+        if self.eye[2] <= z:
+            return
+        r = GROUND_EXTENT * float(np.linalg.norm(V[:, :2], axis=1).max())
+        if not r > 0:
+            return
+        draw = self._draw.Draw(self._background)
+        corners = np.array([[-r, -r, z], [r, -r, z], [r, r, z], [-r, r, z]])
+        xy, depth = self.project(corners)
+        if (depth <= 1e-6).any():
+            return
+        draw.polygon([tuple(p) for p in xy.tolist()], fill=GROUND_RGB)
+        for u in np.linspace(-r, r, 9):
+            for a, b in (([u, -r, z], [u, r, z]), ([-r, u, z], [r, u, z])):
+                lxy, _ = self.project(np.array([a, b]))
+                draw.line([tuple(p) for p in lxy.tolist()], fill=GROUND_LINE_RGB,
+                          width=max(1, self.ss))
 
     def _gradient(self, W: int, H: int):
         top, bottom = np.array(BACKGROUND_TOP, float), np.array(BACKGROUND_BOTTOM, float)
