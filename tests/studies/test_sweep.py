@@ -808,3 +808,31 @@ def test_two_sweeps_of_different_scenes_on_one_directory(tmp_path):
     assert len(manifest["grids"]) == 1
     assert len(sweep.read_results(out)) == 3
     assert manifest["grids"][0]["payload.mass"][0] == (0.5, 1.5)[winner]
+
+
+def test_a_refused_run_waits_for_the_holder_to_say_who_it_is(tmp_path):
+    """The holder writes its name just after taking the lock: a run refused in between
+    waits for it (up to store.HOLDER_WAIT) and names the process, not 'another process'
+    (a race two sweeps started together met in CI)."""
+    import threading
+
+    import filelock
+
+    from offshore_crane.studies.sweep import store as st
+
+    out = tmp_path / "res"
+    out.mkdir()
+    lock = filelock.FileLock(str(out / st.LOCK), timeout=0)
+    lock.acquire()
+    try:
+        late = threading.Timer(0.2, lambda: (out / st.LOCK_INFO).write_text(
+            json.dumps({"pid": 4321, "since": "2026-11-25 17:00:00"})))
+        late.start()
+        scene = scenes.load_scene(_scene(tmp_path))
+        store = sweep.ResultsStore.open(out, scene)
+        with pytest.raises(ResultsDirectoryError,
+                           match=r"in use by process 4321 since 2026-11-25 17:00:00"):
+            store.lock(scene)
+        late.join()
+    finally:
+        lock.release()

@@ -122,18 +122,16 @@ class ResultsStore:
         try:
             self._lock.acquire()
         except filelock.Timeout:
-            try:
-                holder = json.loads(Path(self.path, LOCK_INFO).read_text(encoding="utf-8"))
-                who = f"process {holder['pid']} since {holder['since']}"
-            except (OSError, ValueError, KeyError, TypeError):
-                who = "another process"
+            who = _holder(self.path)
             reason = f"in use by {who}"
             raise ResultsDirectoryError(f"--out {self.path}: {reason}: wait for that sweep "
                                         "to end or choose another directory",
                                         path=self.path, reason=reason) from None
+        from offshore_crane.io import write_text
+
         since = datetime.datetime.now().strftime("%Y-%m-%d %H:%M:%S")
-        Path(self.path, LOCK_INFO).write_text(json.dumps({"pid": os.getpid(),
-                                                          "since": since}), encoding="utf-8")
+        write_text(os.path.join(self.path, LOCK_INFO),        # whole, or not at all
+                   json.dumps({"pid": os.getpid(), "since": since}))
         try:
             current = ResultsStore.open(self.path, scene)
         except ResultsDirectoryError:
@@ -257,6 +255,27 @@ class ResultsStore:
         """The rows (``pyarrow.Table``, each case once, unordered) of ``ids`` (default
         all), or None when there are none."""
         return read_rows(self.path, ids=ids)
+
+
+#: How long a refused run waits for the holder's name (written just after it took the
+#: lock) [s].
+HOLDER_WAIT = 1.0
+
+
+def _holder(path: str) -> str:
+    """Who holds the directory's lock ("process 1234 since ..."), waiting up to
+    :data:`HOLDER_WAIT` s for a run that has just taken it to say so."""
+    import time
+
+    deadline = time.monotonic() + HOLDER_WAIT
+    while True:
+        try:
+            holder = json.loads(Path(path, LOCK_INFO).read_text(encoding="utf-8"))
+            return f"process {holder['pid']} since {holder['since']}"
+        except (OSError, ValueError, KeyError, TypeError):
+            if time.monotonic() > deadline:
+                return "another process"
+            time.sleep(0.02)
 
 
 def results_table(rows, schema):
