@@ -166,8 +166,8 @@ def summary(res, controller=None) -> str:
     damping = controller is not None and getattr(controller, "anti_sway", None) is not None
     head, peak = ("RMS departure", "max |depart.|") if damping else ("RMS error",
                                                                       "max |error|")
-    lines = [f"{'coord':<6}{'unit':<5}{head:>{14 if damping else 12}}"
-             f"{peak:>{15 if damping else 13}}"]
+    w1, w2 = (14, 15) if damping else (12, 13)          # column widths
+    lines = [f"{'coord':<6}{'unit':<5}{head:>{w1}}{peak:>{w2}}"]
     if damping:
         lines = [f"anti-sway (zeta = {controller.anti_sway:g}): the law moves the platform "
                  "on purpose to damp the swing, so q1..q6 depart from the reference by its "
@@ -176,8 +176,8 @@ def summary(res, controller=None) -> str:
         col = e[:, j]
         if np.isnan(col).all():
             continue
-        lines.append(f"{name:<6}{unit:<5}{np.sqrt(np.mean(col ** 2)):>{14 if damping else 12}.3e}"
-                     f"{np.abs(col).max():>{15 if damping else 13}.3e}")
+        lines.append(f"{name:<6}{unit:<5}{np.sqrt(np.mean(col ** 2)):>{w1}.3e}"
+                     f"{np.abs(col).max():>{w2}.3e}")
     dt = np.diff(res.t).mean() if len(res.t) > 1 else 0.0
     lines.append(f"{'actuator':<9}{'unit':<5}{'peak |X|':>11}{'saturated [s]':>15}")
     for k, (name, unit) in enumerate(zip(ACTUATORS, ACTUATOR_UNITS)):

@@ -78,8 +78,6 @@ def format_verdict(v: Verdict, present) -> str:
 #: prismatic).
 _UNITS = {"push": ACTUATOR_UNITS, "pull": ACTUATOR_UNITS, "speed": SPEED_UNITS,
           "power": ("W",) * 9, "stroke": POSITION_UNITS}
-_PEAK = {"push": "push", "pull": "pull", "speed": "speed", "power": "power",
-         "stroke": "stroke"}
 
 
 def _judged(v: Verdict, k: int, u) -> str:
@@ -87,7 +85,7 @@ def _judged(v: Verdict, k: int, u) -> str:
     if v.limits is None or np.isnan(u).all():
         return ""
     c = CAPACITIES[int(np.nanargmax(u))]
-    return (f"  {c} {v.peaks[_PEAK[c]][k]:.3g} / {v.limits[c][k]:.3g} "
+    return (f"  {c} {v.peaks[c][k]:.3g} / {v.limits[c][k]:.3g} "
             f"{_UNITS[c][k]}")
 
 

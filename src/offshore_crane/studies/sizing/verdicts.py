@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from offshore_crane.errors import InputError
-from offshore_crane.studies.sizing.envelopes import utilisation, worst_utilisation
+from offshore_crane.studies.sizing.envelopes import CAPACITIES, utilisation, worst_utilisation
 from offshore_crane.studies.sizing.extremes import EXPOSURE, MIN_SEEDS, most_probable_maximum
 
 
@@ -172,17 +172,12 @@ def verdict(envelopes, scale: float | None = None, exposure: float = EXPOSURE) -
         peaks[cap] = out
     gumbel = scale is not None and len(envelopes) >= MIN_SEEDS
     caps = first.capacities
-    half = 0.5 * (first.stroke_range[:, 1] - first.stroke_range[:, 0])
-    util = np.column_stack([utilisation(peaks["push"], caps["push_max"]),
-                            utilisation(peaks["pull"], caps["pull_max"]),
-                            utilisation(peaks["speed"], caps["speed_max"]),
-                            utilisation(peaks["power"], caps["power_max"]),
-                            utilisation(peaks["stroke"], half)])
+    limits = {"push": caps["push_max"], "pull": caps["pull_max"], "speed": caps["speed_max"],
+              "power": caps["power_max"],
+              "stroke": 0.5 * (first.stroke_range[:, 1] - first.stroke_range[:, 0])}
+    util = np.column_stack([utilisation(peaks[c], limits[c]) for c in CAPACITIES])
     util[~first.present] = np.nan
     return Verdict(seeds=len(envelopes), basis="gumbel" if gumbel else "observed",
                    exposure=exposure if gumbel else math.nan, record=record, peaks=peaks,
                    observed=observed, utilisation=util,
-                   load=load_verdict(envelopes, record, exposure, gumbel),
-                   limits={"push": caps["push_max"], "pull": caps["pull_max"],
-                           "speed": caps["speed_max"], "power": caps["power_max"],
-                           "stroke": half})
+                   load=load_verdict(envelopes, record, exposure, gumbel), limits=limits)

@@ -120,21 +120,29 @@ def read_rows(path: str, names=None, ids=None):
     file is null there: rows of grids over other robot fields); ``ids``: only those cases.
     """
     pa = install_hint("pyarrow", "A sweep's results (Parquet)")
-    import numpy as np
     import pyarrow.compute as pc
 
     tables = [read_file(path, n) for n in (row_files(path) if names is None else names)]
     tables = [t for t in tables if t.num_rows]
     if not tables:
         return None
-    table = pa.concat_tables(tables, promote_options="default")
-    _, first = np.unique(np.asarray(table.column("case_id").to_pylist(), dtype=object),
-                         return_index=True)
-    if len(first) < table.num_rows:                       # a case in two files: once
-        table = table.take(pa.array(np.sort(first)))
+    table = each_case_once(pa.concat_tables(tables, promote_options="default"))
     if ids is not None:
         table = table.filter(pc.is_in(table.column("case_id"),
                                       value_set=pa.array(sorted(ids), pa.string())))
+    return table
+
+
+def each_case_once(table):
+    """``table`` with only the first row of each ``case_id`` (a case in two files, or
+    two rows renamed to one id), in their order."""
+    pa = install_hint("pyarrow", "A sweep's results (Parquet)")
+    import numpy as np
+
+    _, first = np.unique(np.asarray(table.column("case_id").to_pylist(), dtype=object),
+                         return_index=True)
+    if len(first) < table.num_rows:
+        table = table.take(pa.array(np.sort(first)))
     return table
 
 

@@ -5,7 +5,6 @@ resume.
 from __future__ import annotations
 
 import os
-import sys
 import time
 
 from offshore_crane import progress as shown
@@ -122,15 +121,16 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             if client is not None and cluster is None:
                 warm_up_workers(client, scene)
         t0 = time.perf_counter()
+        n = min(workers or 1, len(pending))        # processes worth starting
         if client is not None:
             results = run_on_dask(pending, client)
             info["backend"] = "on the Dask cluster"
-        elif (workers or 1) > 1 and len(pending) > 1 and can_fork():
-            results = run_on_forks(pending, min(workers, len(pending)))
-            info["backend"] = f"on {min(workers, len(pending))} forked workers"
-        elif (workers or 1) > 1 and len(pending) > 1:
-            results = run_on_joblib(pending, min(workers, len(pending)))
-            info["backend"] = f"on {min(workers, len(pending))} joblib workers"
+        elif n > 1 and can_fork():
+            results = run_on_forks(pending, n)
+            info["backend"] = f"on {n} forked workers"
+        elif n > 1:
+            results = run_on_joblib(pending, n)
+            info["backend"] = f"on {n} joblib workers"
         else:
             results = run_in_process(pending)
         bar = shown.bar(len(pending), "case", "sweep", enabled=bool(progress))

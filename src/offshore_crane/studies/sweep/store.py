@@ -153,11 +153,10 @@ class ResultsStore:
         new file's ids map to themselves)."""
         from offshore_crane.io import write_bytes, write_text
         from offshore_crane.studies.sweep.grid import CaseIds
-        from offshore_crane.studies.sweep.rowfiles import (new_run_token, parquet_bytes,
-                                                           row_files)
+        from offshore_crane.studies.sweep.rowfiles import (each_case_once, new_run_token,
+                                                           parquet_bytes, row_files)
 
         pa = install_hint("pyarrow", "A sweep's results (Parquet)")
-        import numpy as np
 
         names = row_files(self.path)
         table = read_rows(self.path, names)
@@ -167,10 +166,8 @@ class ResultsStore:
             identify = CaseIds(scene)
             ids = [identify({k: v for k, v in row.items() if v is not None})
                    for row in table.select(keys).to_pylist()]
-            table = table.set_column(table.schema.get_field_index("case_id"), "case_id",
-                                     pa.array(ids, pa.string()))
-            _, first = np.unique(np.asarray(ids, dtype=object), return_index=True)
-            table = table.take(pa.array(np.sort(first)))
+            table = each_case_once(table.set_column(
+                table.schema.get_field_index("case_id"), "case_id", pa.array(ids, pa.string())))
             target = f"rows-{new_run_token()}.parquet"
             write_bytes(os.path.join(self.path, target), parquet_bytes(table))
             for n in names:
