@@ -276,9 +276,10 @@ def test_the_gif_palette_holds_the_scale_and_the_bodies(robot):
     traj = oc.motion.trajectories.load("table1", duration=1.0, rate=50.0)
     motion = mo.forces(robot, mo.from_trajectory(traj), oc.conventions.GRAVITY, "full")
     times = np.linspace(0.0, 1.0, 5)
-    r, _, _ = an.frames(robot, mo.at(motion, times), width=160, height=120,
-                        color_by="force")
-    palette = np.array(an.gif_palette(r, len(times)).getpalette()[:768]).reshape(-1, 3)
+    r, picture, _ = an.painter(robot, mo.at(motion, times), width=160, height=120,
+                               color_by="force")
+    palette = np.array(an.gif_palette(r, picture, len(times), "force").getpalette()[:768]
+                       ).reshape(-1, 3)
     have = {tuple(c) for c in palette.tolist()}
     ramp = render.diverging(np.linspace(-1.0, 1.0, an.GIF_SCALE_STEPS)) * 255.0
     assert {tuple(c) for c in np.clip(ramp, 0, 255).astype(np.uint8).tolist()} <= have

@@ -91,15 +91,15 @@ class Written:
 
 def _legend(color_by: str, scale: float):
     """An overlay drawing the legs' colour bar, top right."""
-    from offshore_crane.outputs.visual.render import diverging, sequential
+    from offshore_crane.outputs.visual.render import colour_scale
 
     def draw(d, r, k):
         ss = r.ss
         W = r.width * ss
         w, h = 120 * ss, 10 * ss
         x0, y0 = W - w - 14 * ss, 22 * ss
-        x = np.linspace(-1.0, 1.0, w) if color_by == "force" else np.linspace(0.0, 1.0, w)
-        rgb = (diverging(x) if color_by == "force" else sequential(x)) * 255
+        cmap, (lo, hi) = colour_scale(color_by)
+        rgb = cmap(np.linspace(lo, hi, w)) * 255
         for i, c in enumerate(rgb.astype(int).tolist()):
             d.line([(x0 + i, y0), (x0 + i, y0 + h)], fill=tuple(c))
         font = r.font(11)
@@ -115,7 +115,28 @@ def _legend(color_by: str, scale: float):
 
 def frames(robot, shown, *, width: int = 640, height: int = 480, camera=None,
            color_by: str | None = None, supersample: int = 1, caption: str = ""):
-    """The pictures of a motion already evaluated at the frames' times.
+    """The pictures of a motion already evaluated at the frames' times (:func:`painter`
+    over every frame, with progress).
+
+    Returns:
+        ``(renderer, iterator of PIL images, scale)``.
+    """
+    r, picture, scale = painter(robot, shown, width=width, height=height, camera=camera,
+                                color_by=color_by, supersample=supersample, caption=caption)
+    return r, _every_frame(r, picture), scale
+
+
+def _every_frame(r, picture):
+    """``picture(k)`` for every frame of the renderer's poses, with progress."""
+    with progress.bar(len(r.poses), "frame", "animate") as drawn:
+        for k in range(len(r.poses)):
+            yield picture(k)
+            drawn.update()
+
+
+def painter(robot, shown, *, width: int = 640, height: int = 480, camera=None,
+            color_by: str | None = None, supersample: int = 1, caption: str = ""):
+    """What draws the motion's frames: ``(renderer, picture(k) -> PIL image, scale)``.
 
     Args:
         robot: From :func:`offshore_crane.load_robot`.
@@ -125,11 +146,11 @@ def frames(robot, shown, *, width: int = 640, height: int = 480, camera=None,
         caption: Printed after the time stamp.
 
     Returns:
-        ``(renderer, iterator of PIL images, scale)``.
+        ``(renderer, picture, scale)``: ``scale`` as :attr:`Written.scale`.
     """
     from offshore_crane.outputs.visual import motion as mo
     from offshore_crane.outputs.visual.poses import link_poses
-    from offshore_crane.outputs.visual.render import Renderer, diverging, leg_face_colours, sequential
+    from offshore_crane.outputs.visual.render import Renderer, colour_scale, leg_face_colours
 
     P = link_poses(robot, shown.q, shown.sway)
     r = Renderer(robot, P, width, height, camera, supersample)
@@ -139,23 +160,15 @@ def frames(robot, shown, *, width: int = 640, height: int = 480, camera=None,
             raise InputError("--color-by needs the actuator forces", name="--color-by")
         values, scale = mo.leg_values(robot, shown.X, color_by)
         overlay = _legend(color_by, scale)
-    cmap = diverging if color_by == "force" else sequential
+    cmap = colour_scale(color_by)[0]
 
     def picture(k: int):
         rgb = None if values is None else leg_face_colours(r.geo, cmap(values[k]))
         return r.frame(k, rgb, text=f"t = {shown.t[k]:.2f} s{caption}", overlay=overlay)
-
-    def pictures():
-        with progress.bar(len(P), "frame", "animate") as drawn:
-            for k in range(len(P)):
-                yield picture(k)
-                drawn.update()
-    r.picture = picture
-    r.scale_colours = None if color_by is None else cmap
-    return r, pictures(), scale
+    return r, picture, scale
 
 
-def gif_palette(renderer, n_frames: int):
+def gif_palette(renderer, picture, n_frames: int, color_by: str | None = None):
     """One palette for a whole GIF (a ``PIL.Image`` in mode "P"): the legs' colour scale
     (:data:`GIF_SCALE_STEPS` steps at each of :data:`GIF_SCALE_SHADES`) exactly, when the
     legs are coloured, each body colour of the robot at :data:`GIF_BODY_SHADES` shades, and
@@ -163,10 +176,12 @@ def gif_palette(renderer, n_frames: int):
     (background, text, edges)."""
     from PIL import Image
 
+    from offshore_crane.outputs.visual.render import colour_scale
+
     fixed = []
-    if renderer.scale_colours is not None:
-        lo = -1.0 if renderer.scale_colours.__name__ == "diverging" else 0.0
-        ramp = renderer.scale_colours(np.linspace(lo, 1.0, GIF_SCALE_STEPS))
+    if color_by is not None:
+        cmap, (lo, hi) = colour_scale(color_by)
+        ramp = cmap(np.linspace(lo, hi, GIF_SCALE_STEPS))
         for shade in GIF_SCALE_SHADES:
             fixed += [tuple(int(v) for v in c)
                       for c in np.clip(ramp * shade * 255.0, 0, 255).astype(np.uint8)]
@@ -179,7 +194,7 @@ def gif_palette(renderer, n_frames: int):
     fixed = list(dict.fromkeys(fixed))[:GIF_COLOURS - 32]   # leave room for the rest
     picks = np.unique(np.linspace(0, n_frames - 1, min(GIF_SAMPLE_FRAMES, n_frames))
                       .round().astype(int))
-    samples = [renderer.picture(int(k)) for k in picks]
+    samples = [picture(int(k)) for k in picks]
     w, h = samples[0].size
     mosaic = Image.new("RGB", (w, h * len(samples)))
     for i, im in enumerate(samples):
@@ -289,10 +304,11 @@ def animate(robot, motion, target, *, fps: float | None = None, speed: float = 1
     if color_by is not None:
         motion = mo.forces(robot, motion, gravity, leg_model)
     shown = mo.at(motion, times)
-    r, images, scale = frames(robot, shown, width=width, height=height, camera=camera,
-                              color_by=color_by)
+    r, picture, scale = painter(robot, shown, width=width, height=height, camera=camera,
+                                color_by=color_by)
+    images = _every_frame(r, picture)
     if fmt == "gif":
-        n = write_gif(target, images, fps, gif_palette(r, len(shown.t)))
+        n = write_gif(target, images, fps, gif_palette(r, picture, len(shown.t), color_by))
     else:
         n = write_mp4(target, images, fps, (width, height))
     return Written(n, fps, (width, height), time.perf_counter() - start, scale)

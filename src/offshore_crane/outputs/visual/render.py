@@ -449,6 +449,17 @@ def sequential(x: np.ndarray) -> np.ndarray:
     return np.where(x > 1.0, np.array([0.45, 0.0, 0.0]), out)
 
 
+def colour_scale(color_by: str):
+    """The legs' colour map and its domain: ``"force"`` → :func:`diverging` on [-1, 1],
+    ``"utilisation"`` → :func:`sequential` on [0, 1] (the one choice animate, its legend,
+    the GIF palette and the viewer share)."""
+    return (diverging, (-1.0, 1.0)) if color_by == "force" else (sequential, (0.0, 1.0))
+
+
+#: Leg index 0..5 of each leg link.
+LEG_OF_LINK = {link: i for i, pair in enumerate(LEG_LINKS) for link in pair}
+
+
 def leg_face_colours(geo: Geometry, leg_rgb: np.ndarray) -> np.ndarray:
     """``(nf, 3)`` face colours with the faces of leg i painted ``leg_rgb[i]`` ``(6, 3)``."""
     out = geo.rgb.copy()

@@ -103,7 +103,7 @@ class Viewer:
                  color_by: str | None = None):
         from offshore_crane.errors import require
         from offshore_crane.outputs.visual.poses import link_poses
-        from offshore_crane.outputs.visual.render import geometry
+        from offshore_crane.outputs.visual.render import LEG_OF_LINK, geometry
 
         viser = require("viser", "offshore-crane[view]", "The browser viewer")
         check_port(host, port)
@@ -151,7 +151,7 @@ class Viewer:
                     f"/robot/{link}/mesh{c}", geo.V[used].astype(np.float32),
                     np.array([[remap[v] for v in tri] for tri in tris], dtype=np.uint32),
                     color=tuple(int(255 * x) for x in rgb), flat_shading=True)
-                leg = _leg_of(link)
+                leg = LEG_OF_LINK.get(link)
                 if leg is not None:
                     self.legs.setdefault(leg, []).append(mesh)
         self.cable = None
@@ -177,12 +177,12 @@ class Viewer:
         if color_by is None:
             return None
         from offshore_crane.outputs.visual import motion as mo
-        from offshore_crane.outputs.visual.render import diverging, sequential
+        from offshore_crane.outputs.visual.render import colour_scale
 
         if shown.X is None:
             raise InputError("--color-by needs the actuator forces", name="--color-by")
         values, _ = mo.leg_values(robot, shown.X, color_by)
-        cmap = diverging if color_by == "force" else sequential
+        cmap = colour_scale(color_by)[0]
         return np.clip(np.round(cmap(values) * 255.0), 0, 255).astype(np.uint8)
 
     def index(self, time_s: float) -> int:
@@ -230,11 +230,3 @@ class Viewer:
         self._stop.set()
         self._thread.join(timeout=2.0)
         self.server.stop()
-
-
-def _leg_of(link: str) -> int | None:
-    """0..5 for ``leg{i}_lower`` / ``leg{i}_upper``, else None."""
-    import re
-
-    m = re.fullmatch(r"leg([1-6])_(lower|upper)", link)
-    return None if m is None else int(m[1]) - 1
