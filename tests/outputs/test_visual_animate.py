@@ -306,3 +306,26 @@ def test_the_floor_is_drawn_under_the_base_unless_seen_from_below(robot):
     assert share > 0.05 and r.eye[2] > 0                 # the floor seen from above
     share, r = floor_share(render.Camera(elevation=-70.0))
     assert r.eye[2] < 0 and share == 0.0                 # from below: not drawn
+
+
+def test_the_still_water_line_is_drawn_at_the_scenes_model_scale_level(robot, tmp_path):
+    """A sea scene's still water line: ``point[2] / scale`` below the home height (the
+    home pose stands for the vessel's ``point``, given from the RAO table's reference point
+    in the calm waterplane); drawn in WATER_RGB into the background, absent without a sea.
+    """
+    scene = oc.scenes.load_scene(SCENES / "sea_state_crane.toml")
+    assert oc.scenes.still_water_level(scene, robot) == robot.home_height
+    raised = oc.scenes.with_overrides(scene, "test", sea={**scene.sea, "point": [0, 0, 4.0]})
+    assert oc.scenes.still_water_level(raised, robot) == pytest.approx(
+        robot.home_height - 4.0 / 20.0, abs=1e-15)
+    assert oc.scenes.still_water_level(oc.scenes.load_scene(SCENES / "full_crane.toml"),
+                                       robot) is None
+    m = mo.from_trajectory(oc.motion.trajectories.load("table1", duration=1.0, rate=10.0))
+    P = poses.link_poses(robot, mo.at(m, np.array([0.0])).q)
+
+    def water_pixels(water):
+        a = np.asarray(render.Renderer(robot, P, 320, 240, water=water)._background, int)
+        return int((np.abs(a - np.array(render.WATER_RGB)).sum(axis=2) < 30).sum())
+
+    assert water_pixels(None) == 0
+    assert water_pixels(robot.home_height) > 300          # four sides of a square, 2 px

@@ -203,5 +203,20 @@ def test_the_viewer_colours_the_legs_as_animate_does(robot):
     plain = Viewer(robot, shown, port=0, play=False)
     try:
         assert plain.leg_rgb is None
+        assert sorted(plain.references) == ["floor"]           # no sea: no water line
     finally:
         plain.close()
+
+
+def test_the_viewer_draws_the_floor_and_the_still_water_line(robot):
+    from dataclasses import replace
+
+    from offshore_crane.outputs.visual.viewer import Viewer
+
+    v = Viewer(robot, replace(shown_motion(robot), water=0.3), port=0, play=False)
+    try:
+        assert sorted(v.references) == ["floor", "still_water"]
+        assert v.references["still_water"].position[2] == pytest.approx(0.3)
+        assert v.references["floor"].position[2] < 0.3
+    finally:
+        v.close()

@@ -61,10 +61,14 @@ def load_motion(args, scene):
     from offshore_crane import scenes
     from offshore_crane.outputs.visual import motion as mo
 
+    from dataclasses import replace
+
     robot = scenes.load_robot(scene)
     if args.run_csv is not None:
-        return robot, mo.read_run(args.run_csv)
-    return robot, mo.from_trajectory(scenes.load_trajectory(scene, robot))
+        motion = mo.read_run(args.run_csv)
+    else:
+        motion = mo.from_trajectory(scenes.load_trajectory(scene, robot))
+    return robot, replace(motion, water=scenes.still_water_level(scene, robot))
 
 
 def parse_size(text: str) -> tuple[int, int]:

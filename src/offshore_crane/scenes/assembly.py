@@ -35,6 +35,22 @@ def deck_pose(scene: Scene, robot) -> np.ndarray:
     return robot.home_pose()[:6]
 
 
+def still_water_level(scene: Scene, robot) -> float | None:
+    """Height of the calm sea surface in the base frame at model scale [m], or None for
+    a scene without a sea.
+
+    The platform's home pose stands for the vessel's ``[sea] point``, given relative to
+    the RAO table's reference point in the calm waterplane: the water is
+    ``point[2] / scale`` below the home height (``point`` defaults to the reference
+    point itself, so the water is then at the home height).
+    """
+    if scene.trajectory != "sea" or not scene.sea:
+        return None
+    args = sea_arguments(scene)
+    point = args.get("point") or (0.0, 0.0, 0.0)
+    return float(robot.home_pose()[2] - float(point[2]) / float(args["scale"]))
+
+
 def sea_trajectory(scene: Scene, robot, check: bool = True):
     """The model-scale record of a ``source = "sea"`` scene
     (:func:`offshore_crane.motion.sea.platform_trajectory`, analytic rates and accelerations;

@@ -153,7 +153,7 @@ def painter(robot, shown, *, width: int = 640, height: int = 480, camera=None,
     from offshore_crane.outputs.visual.render import Renderer, colour_scale, leg_face_colours
 
     P = link_poses(robot, shown.q, shown.sway)
-    r = Renderer(robot, P, width, height, camera, supersample)
+    r = Renderer(robot, P, width, height, camera, supersample, water=shown.water)
     values, scale, overlay = None, None, None
     if color_by is not None:
         if shown.X is None:

@@ -56,6 +56,8 @@ class Motion:
         X: ``(N, 9)`` actuator forces [N·m, N], or None.
         sway: ``(N, 2)`` sway angles (φ1, φ2) [rad] of a hanging load, or None.
         source: ``source(t (n,)) -> (q, qd, qdd)`` exact at any time, or None.
+        water: Height of the still water line in the base frame [m] (model scale), or
+            None (no sea).
     """
 
     name: str
@@ -66,6 +68,7 @@ class Motion:
     X: np.ndarray | None = None
     sway: np.ndarray | None = None
     source: object = None
+    water: float | None = None
 
 
 def from_trajectory(traj) -> Motion:
@@ -222,7 +225,7 @@ def at(motion: Motion, times: np.ndarray) -> Motion:
         qdd = None if motion.qdd is None else _lerp(motion.t, motion.qdd, times)
     X = None if motion.X is None else _lerp(motion.t, motion.X, times)
     sway = None if motion.sway is None else _lerp(motion.t, motion.sway, times)
-    return Motion(motion.name, times, q, qd, qdd, X, sway, motion.source)
+    return Motion(motion.name, times, q, qd, qdd, X, sway, motion.source, motion.water)
 
 
 def with_rates(motion: Motion, order: int = 4) -> Motion:

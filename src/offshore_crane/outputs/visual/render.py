@@ -48,6 +48,9 @@ BACKGROUND_TOP, BACKGROUND_BOTTOM = (235, 240, 246), (200, 208, 218)
 #: a square of GROUND_EXTENT times the base's radius, its grid every quarter of it.
 GROUND_RGB, GROUND_LINE_RGB = (214, 219, 226), (188, 195, 205)
 GROUND_EXTENT = 1.6
+#: The still water line (a scene with a sea): the calm surface at model scale, drawn as
+#: the outline of a square of GROUND_EXTENT times the base's radius.
+WATER_RGB = (70, 130, 200)
 
 
 @dataclass(frozen=True)
@@ -267,6 +270,18 @@ def fit_camera(camera: Camera, points: np.ndarray, aspect: float, fill: float = 
     return target + distance * back, target
 
 
+def floor_square(geo, poses) -> tuple[float, float] | None:
+    """``(height, half side)`` [m] of the floor square under the base (base frame): at
+    the base's lowest vertex, GROUND_EXTENT times its largest radius; None for a robot
+    drawn without a base."""
+    base = geo.vlink == 0
+    if not base.any():
+        return None
+    V = geo.V[base] @ poses.R[0, 0].T + poses.p[0, 0]          # the base is fixed
+    r = GROUND_EXTENT * float(np.linalg.norm(V[:, :2], axis=1).max())
+    return (float(V[:, 2].min()), r) if r > 0 else None
+
+
 class Renderer:
     """Draws the robot at the samples of a :class:`~offshore_crane.outputs.visual.poses.Poses`.
 
@@ -277,6 +292,8 @@ class Renderer:
         camera: :class:`Camera` (default: azimuth 35°, elevation 25°, fitted).
         supersample: Draw at this multiple of the size and reduce (anti-aliasing; 1 is
             fastest, 2 for stills).
+        water: Height of the still water line in the base frame [m] (model scale, a
+            scene with a sea: :func:`offshore_crane.scenes.still_water_level`), or None.
 
     Raises:
         InputError: a size out of range, a bad camera or supersample.
@@ -284,7 +301,8 @@ class Renderer:
     """
 
     def __init__(self, robot, poses, width: int = 640, height: int = 480,
-                 camera: Camera | None = None, supersample: int = 1):
+                 camera: Camera | None = None, supersample: int = 1,
+                 water: float | None = None):
         from offshore_crane.errors import require
 
         self._pil = require("PIL.Image", "pillow", "Drawing the robot")
@@ -316,34 +334,36 @@ class Renderer:
         self.root = g.flink == 0
         self._faces = [list(f) for f in g.faces]
         self._background = self._gradient(W, H)
-        self._floor()
+        self._floor(water)
 
-    def _floor(self) -> None:
-        """Paint the floor into the (static) background: a square at the base's lowest
-        point, GROUND_EXTENT times its radius, with a grid; skipped where the camera is
-        below it (it would hide the robot)."""
-        g, P = self.geo, self.poses
-        base = g.vlink == 0
-        if not base.any():
+    def _floor(self, water: float | None) -> None:
+        """Paint the references into the (static) background: the floor, a square at the
+        base's lowest point, GROUND_EXTENT times its radius, with a grid (skipped where
+        the camera is below it: it would hide the robot); and, given ``water`` [m] (base
+        frame), the still water line: the same square's outline at that height."""
+        found = floor_square(self.geo, self.poses)
+        if found is None:
             return
-        V = g.V[base] @ P.R[0, 0].T + P.p[0, 0]                 # the base is fixed
-        z = float(V[:, 2].min())
-        if self.eye[2] <= z:
-            return
-        r = GROUND_EXTENT * float(np.linalg.norm(V[:, :2], axis=1).max())
-        if not r > 0:
-            return
+        z, r = found
         draw = self._draw.Draw(self._background)
-        corners = np.array([[-r, -r, z], [r, -r, z], [r, r, z], [-r, r, z]])
-        xy, depth = self.project(corners)
-        if (depth <= 1e-6).any():
-            return
-        draw.polygon([tuple(p) for p in xy.tolist()], fill=GROUND_RGB)
-        for u in np.linspace(-r, r, 9):
-            for a, b in (([u, -r, z], [u, r, z]), ([-r, u, z], [r, u, z])):
-                lxy, _ = self.project(np.array([a, b]))
-                draw.line([tuple(p) for p in lxy.tolist()], fill=GROUND_LINE_RGB,
-                          width=max(1, self.ss))
+        width = max(1, self.ss)
+
+        def square(height):
+            xy, depth = self.project(np.array([[-r, -r, height], [r, -r, height],
+                                               [r, r, height], [-r, r, height]]))
+            return None if (depth <= 1e-6).any() else [tuple(p) for p in xy.tolist()]
+
+        floor = square(z) if self.eye[2] > z else None
+        if floor is not None:
+            draw.polygon(floor, fill=GROUND_RGB)
+            for u in np.linspace(-r, r, 9):
+                for a, b in (([u, -r, z], [u, r, z]), ([-r, u, z], [r, u, z])):
+                    lxy, _ = self.project(np.array([a, b]))
+                    draw.line([tuple(p) for p in lxy.tolist()], fill=GROUND_LINE_RGB,
+                              width=width)
+        surface = None if water is None or not np.isfinite(water) else square(water)
+        if surface is not None:
+            draw.line(surface + surface[:1], fill=WATER_RGB, width=2 * width)
 
     def _gradient(self, W: int, H: int):
         top, bottom = np.array(BACKGROUND_TOP, float), np.array(BACKGROUND_BOTTOM, float)

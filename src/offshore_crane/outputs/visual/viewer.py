@@ -131,6 +131,7 @@ class Viewer:
         eye, target = fit_camera(Camera(fov=50.0), pts, 4.0 / 3.0, fill=0.85)
         server.initial_camera.position = tuple(eye)
         server.initial_camera.look_at = tuple(target)
+        self._references(geo, P, shown.water)
         self.frames = {}
         self.legs: dict = {}                    # leg index -> its links' mesh handles
         self.leg_rgb = self._leg_colours(robot, shown, color_by)
@@ -170,6 +171,28 @@ class Viewer:
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._play, daemon=True, name="viewer-play")
         self._thread.start()
+
+    def _references(self, geo, P, water) -> None:
+        """The floor under the base and, with a sea, the still water line (model
+        scale), as the pictures draw them: ``self.references`` holds their handles by
+        name."""
+        from offshore_crane.outputs.visual.render import (GROUND_LINE_RGB, WATER_RGB,
+                                                          floor_square)
+
+        self.references: dict = {}
+        found = floor_square(geo, P)
+        if found is None:
+            return
+        z, r = found
+        add = self.server.scene.add_grid
+        self.references["floor"] = add(
+            "/floor", 2 * r, 2 * r, cell_size=r / 4, section_size=r,
+            cell_color=GROUND_LINE_RGB, position=(0.0, 0.0, z))
+        if water is not None and np.isfinite(water):
+            self.references["still_water"] = add(
+                "/still_water", 2 * r, 2 * r, cell_size=r, section_size=2 * r,
+                cell_color=WATER_RGB, section_color=WATER_RGB, plane_color=WATER_RGB,
+                plane_opacity=0.15, shadow_opacity=0.0, position=(0.0, 0.0, float(water)))
 
     @staticmethod
     def _leg_colours(robot, shown, color_by):
