@@ -29,6 +29,7 @@ sys.path.insert(0, str(ROOT / "src"))
 
 import numpy as np  # noqa: E402
 
+from _saved import add_save_option, save  # noqa: E402  (benchmarks/ is on the path)
 from offshore_crane import scenes  # noqa: E402
 from offshore_crane.outputs.visual import animate as an  # noqa: E402
 from offshore_crane.outputs.visual import motion as mo  # noqa: E402
@@ -79,8 +80,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--out", help="keep the MP4s in this directory")
-    parser.add_argument("--save", action="store_true",
-                        help="write the figures to benchmarks/results/animate.json")
+    add_save_option(parser, "animate")
     args = parser.parse_args()
     saved: dict = {"date": time.strftime("%Y-%m-%d"), "runs": args.repeat}
     scene = scenes.load_scene(ROOT / "scenes" / "sea_state_crane.toml")
@@ -118,12 +118,7 @@ def main() -> int:
     for name, seconds in saved["stages"].items():
         print(f"  {name}: {seconds:.2f} s")
     if args.save:
-        import json
-
-        path = ROOT / "benchmarks" / "results" / "animate.json"
-        path.parent.mkdir(exist_ok=True)
-        path.write_text(json.dumps(saved, indent=1) + "\n")
-        print(f"wrote {path.relative_to(ROOT)}")
+        save("animate", saved)
     return 0
 
 

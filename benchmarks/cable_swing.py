@@ -32,6 +32,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 
+from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+
 
 def _scene(hours: float, rate: float, scale: float, length: float, zeta: float):
     from offshore_crane import scenes
@@ -58,6 +60,7 @@ def main(argv=None) -> int:
     parser.add_argument("--zeta", type=float, default=0.02,
                         help="damping ratio of the swing (0.02)")
     parser.add_argument("--repeats", type=int, default=3, help="timed repeats (3)")
+    add_save_option(parser, "cable_swing")
     args = parser.parse_args(argv)
 
     import offshore_crane as oc
@@ -99,6 +102,10 @@ def main(argv=None) -> int:
           f"the swing costs {s / r:.2f} x it")
     print(f"  max sway {res.sway_angle.max():.4g} rad, tension {res.tension.min():.4g}.."
           f"{res.tension.max():.4g} N")
+    if args.save:
+        save("cable_swing", {**stamp(), "hours": args.hours, "rate": args.rate,
+                             "scale": args.scale, "samples": N, "repeats": args.repeats,
+                             "motion_s": m, "swing_s": s, "rigid_s": r, "load": load})
     return 0
 
 

@@ -18,6 +18,7 @@ Run: ``PYTHONPATH=src python benchmarks/mjcf_agreement.py`` (needs mujoco).
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -26,7 +27,10 @@ from offshore_crane.motion import trajectories
 from offshore_crane.outputs.export import mjcf
 from offshore_crane.robot.kinematics import legs
 
-HARIB = "models/descriptions/harib_srinivasan_2003.toml"
+from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+
+HARIB = str(Path(__file__).resolve().parents[1] / "models" / "descriptions"
+            / "harib_srinivasan_2003.toml")
 
 
 def states(robot, n: int, seed: int):
@@ -55,7 +59,14 @@ def agreement(robot, model, q, qd, qdd):
 
 
 def main() -> None:
+    import argparse
+
     import mujoco
+
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    add_save_option(parser, "mjcf_agreement")
+    args = parser.parse_args()
+    saved = {**stamp(), "mujoco": mujoco.__version__, "agreement": mjcf.AGREEMENT}
 
     print(f"mujoco {mujoco.__version__}; AGREEMENT = {mjcf.AGREEMENT:g}; solimp "
           f"{mjcf.SOLIMP}, solref {mjcf.SOLREF}, timestep {mjcf.TIMESTEP} s")
@@ -71,10 +82,12 @@ def main() -> None:
             model = mjcf.export(robot, pose)
             ratio, loop = agreement(robot, model, q, qd, qdd)
             worst = max(worst, ratio.max())
+            saved.setdefault("ratios", {})[f"{robot.spec.name}, {label}"] = ratio.max()
             print(f"{robot.spec.name:<26} written at {label:<8} {name:<17} N = {len(q)}: "
                   f"max ratio {ratio.max():.3g} (per q: "
                   f"{' '.join(f'{r:.2g}' for r in ratio[:9])}); loops {loop:.1e} m")
     print(f"worst ratio {worst:.3g}: AGREEMENT is {mjcf.AGREEMENT / worst:.1f} x above it")
+    saved["worst"] = worst
 
     robot = oc.load_robot()
     name, (q, qd, qdd) = states(robot, 50, seed=1)
@@ -102,6 +115,8 @@ def main() -> None:
             mujoco.mj_forward(m, d)
         print(f"{robot.spec.name:<26} mj_forward {1e6 * (time.perf_counter() - t0) / n:.1f} "
               "us a call")
+    if args.save:
+        save("mjcf_agreement", saved)
 
 
 if __name__ == "__main__":

@@ -47,6 +47,8 @@ except ImportError:  # run from a checkout without installing
     import offshore_crane as oc
 from offshore_crane.reference import constrained as C
 
+from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+
 #: lcaba's proximal regularisations to try: Pinocchio's docstring suggests 1e-6.
 LCABA_MU = (1e-8, 1e-6, 1e-4, 1e-2)
 
@@ -77,6 +79,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--samples", type=int, default=300, help="states timed (default 300)")
     parser.add_argument("--repeats", type=int, default=5, help="repeats (default 5)")
+    add_save_option(parser, "pinocchio_fd")
     args = parser.parse_args(argv)
     import pinocchio as pin
 
@@ -206,6 +209,12 @@ def main(argv=None) -> int:
              ours_single / base, 1.0)):
         print(f"| {label} | {value:.2f} × | {value <= limit} |")
     print(f"| simulate 60 s at 1 kHz, real-time factor ≥ 10 | {rtf:.1f} | {rtf >= 10} |")
+    if args.save:
+        save("pinocchio_fd", {**stamp(), "pin": pin.__version__, "samples": n,
+                              "repeats": args.repeats, "constraint_call_s": base,
+                              "batch_s": ours_batch, "single_s": ours_single,
+                              "simulate_60s_s": min(walls), "rtf": rtf,
+                              "rtf_python": rtf_python})
     return 0
 
 

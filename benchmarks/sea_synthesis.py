@@ -28,6 +28,8 @@ import numpy as np
 import offshore_crane as oc
 from offshore_crane.motion import sea
 
+from _saved import add_save_option, save, stamp  # benchmarks/ is on the path
+
 HS, TP, HEADING = 2.5, 8.0, 90.0      # [m], [s], [deg]: beam seas
 DURATION, RATE = 3 * 3600.0, 100.0    # full-scale record [s], [Hz]
 SCALE = 20.0                          # Froude scale of the model record
@@ -53,6 +55,7 @@ def line(name: str, times: list[float], extra: str = "") -> None:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeats", type=int, default=5)
+    add_save_option(parser, "sea_synthesis")
     args = parser.parse_args(argv)
 
     t = np.arange(int(DURATION * RATE)) / RATE
@@ -84,6 +87,14 @@ def main(argv=None) -> int:
          f"   {min(ident) / n * 1e6:.2f} us/sample")
     line("reference: inverse_dynamics on Table 1", ref,
          f"   ratio {min(ident) / min(ref):.2f}")
+    if args.save:
+        save("sea_synthesis", {**stamp(), "repeats": args.repeats, "samples": int(t.size),
+                               "components": int(ship.harmonics.size), "scale": SCALE,
+                               "model_samples": n, **{
+                                   f"{k}_{how.__name__}": how(v) for k, v in (
+                                       ("synth", synth), ("irfft", floor), ("build", build),
+                                       ("inverse", ident), ("table1", ref))
+                                   for how in (statistics.median, min)}})
     return 0
 
 

@@ -43,8 +43,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from offshore_crane import scenes
-from offshore_crane.studies import sweep
+from _saved import add_save_option, save  # noqa: E402  (benchmarks/ is on the path)
+from offshore_crane import scenes  # noqa: E402
+from offshore_crane.studies import sweep  # noqa: E402
 
 SCENE = ROOT / "scenes" / "sweep_crane.toml"
 
@@ -167,8 +168,7 @@ def main() -> None:
     p.add_argument("--heavy", type=int, default=8)
     p.add_argument("--repeat", type=int, default=3)
     p.add_argument("--store-cases", type=int, default=10_000)
-    p.add_argument("--save", action="store_true",
-                   help="write the figures to benchmarks/results/sweep.json")
+    add_save_option(p, "sweep")
     args = p.parse_args()
     saved: dict = {"date": time.strftime("%Y-%m-%d"), "repeat": args.repeat}
     scene = scenes.load_scene(SCENE)
@@ -214,12 +214,7 @@ def main() -> None:
               f"{r['backend']}) -> {r['speedup']:.2f} x (target >= {target:.2f}: {verdict}); "
               f"other processes {r['others']:.2f} core; rows identical: {r['identical']}")
     if args.save:
-        import json
-
-        path = ROOT / "benchmarks" / "results" / "sweep.json"
-        path.parent.mkdir(exist_ok=True)
-        path.write_text(json.dumps(saved, indent=1, default=float) + "\n")
-        print(f"wrote {path.relative_to(ROOT)}")
+        save("sweep", saved)
 
 if __name__ == "__main__":
     main()

@@ -1,20 +1,24 @@
 """Regenerate the measured figures of README.md and docs/ from the benchmarks' saved results.
 
-    PYTHONPATH=src python benchmarks/sweep.py --save      # -> benchmarks/results/sweep.json
-    PYTHONPATH=src python benchmarks/animate.py --save    # -> benchmarks/results/animate.json
-    python scripts/figures.py                             # rewrites the rows below
-    python scripts/figures.py --check                     # exit 1 if a row differs
+    python benchmarks/NAME.py --save      # -> benchmarks/results/NAME.json, for NAME in
+                                          #    RENDERERS (sweep needs the sweep extra,
+                                          #    mjcf_agreement the mjcf extra)
+    python scripts/figures.py             # rewrites the figures below
+    python scripts/figures.py --check     # exit 1 if a figure differs
 
 Each figure row of a Markdown table is found by its first cell (a fixed label) and
-replaced whole, so the documents say what the last saved run measured, not what someone
-remembered (``tests/test_docs_figures.py`` runs the check). Rows of benchmarks that save
-no results yet are written by hand.
+replaced whole; a figure inside prose sits between ``<!-- figure KEY -->`` and
+``<!-- /figure -->`` (invisible in the rendered page) and is replaced between them. So the
+documents say what the last saved run measured, not what someone remembered
+(``tests/test_docs_figures.py`` runs the check). ``benchmarks/bench.py`` writes its own
+``docs/bench/summary.md``; the README's copy of its table is still written by hand.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 from pathlib import Path
 
@@ -24,6 +28,17 @@ RESULTS = ROOT / "benchmarks" / "results"
 
 def _met(ok: bool) -> str:
     return "met" if ok else "NOT met"
+
+
+def _sci(x: float) -> str:
+    """``6.4e-5``: two digits, no padded exponent."""
+    mantissa, exponent = f"{x:.1e}".split("e")
+    return f"{mantissa}e{int(exponent)}"
+
+
+def _count(n: int) -> str:
+    """``241 496``: thousands apart by a space."""
+    return f"{n:,}".replace(",", " ")
 
 
 def sweep_rows(r: dict) -> dict:
@@ -103,8 +118,113 @@ def animate_rows(r: dict) -> dict:
     }
 
 
-#: Each saved result and the rows it renders.
-RENDERERS = {"sweep": sweep_rows, "animate": animate_rows}
+def cable_swing_rows(r: dict) -> dict:
+    """benchmarks/cable_swing.py's figures."""
+    m, s, rigid = r["motion_s"], r["swing_s"], r["rigid_s"]
+    total = m + s
+    return {
+        ("README.md", "a 3-hour sea state at 100 Hz"):
+            f"| a 3-hour sea state at 100 Hz (1.08 M samples) with the hanging load's swing "
+            f"| `benchmarks/cable_swing.py` | {total:.1f} s (motion {m:.1f} s, swing "
+            f"{s:.1f} s) | ≤ 10 s ({_met(total <= 10)}) |",
+        ("README.md", "figure cable_swing"): f"**{total:.1f} s**",
+        ("docs/cable.md", "figure cable_swing"):
+            f"the motion {m:.1f} s, the swing {s:.1f} s ({s / r['samples'] * 1e6:.1f} µs a "
+            f"sample: stage motion, RK4, Kane with the pull), **{total:.1f} s in all** "
+            f"(target ≤ 10 s); the rigid robot's inverse dynamics of the same record takes "
+            f"{rigid:.1f} s",
+    }
+
+
+def sea_synthesis_rows(r: dict) -> dict:
+    """benchmarks/sea_synthesis.py's figures."""
+    per = r["inverse_min"] / r["model_samples"] * 1e6
+    sea = "docs/sea.md"
+    return {
+        (sea, "`ship_motion`, 3 h at 100 Hz"):
+            f"| `ship_motion`, 3 h at 100 Hz ({_count(r['samples'])} samples, "
+            f"{r['components']} components, 6 DOFs × position, velocity, acceleration) | "
+            f"{r['synth_median']:.2f} s | {r['synth_min']:.2f} s |",
+        (sea, "reference: bare `irfft`"):
+            f"| reference: bare `irfft` of the same size (18 channels) | "
+            f"{r['irfft_median']:.2f} s | {r['irfft_min']:.2f} s |",
+        (sea, "`platform_trajectory` at λ = 20"):
+            f"| `platform_trajectory` at λ = {r['scale']:g} ({_count(r['model_samples'])} "
+            f"samples, workspace checked) | {r['build_median']:.2f} s | "
+            f"{r['build_min']:.2f} s |",
+        (sea, "`inverse_dynamics` (Kane) on it"):
+            f"| `inverse_dynamics` (Kane) on it | {r['inverse_median']:.2f} s | "
+            f"{r['inverse_min']:.2f} s ({per:.2f} µs/sample; Table 1 at the same size: ratio "
+            f"{r['inverse_min'] / r['table1_min']:.2f}) |",
+        ("README.md", "figure sea_synthesis"):
+            f"a 3-hour record at 100 Hz ({r['samples'] / 1e6:.2f} M samples, "
+            f"{r['components']} wave components) in {r['synth_min']:.2f} s (target 2 s; a "
+            f"bare inverse FFT of the same size takes {r['irfft_min']:.2f} s); the inverse "
+            f"dynamics on the same record at scale {r['scale']:g} "
+            f"({_count(r['model_samples'])} samples) in {r['inverse_min']:.2f} s ({per:.2f} µs "
+            f"a sample, {r['inverse_min'] / r['table1_min']:.2f} × Table 1's)",
+    }
+
+
+def pinocchio_fd_rows(r: dict) -> dict:
+    """benchmarks/pinocchio_fd.py's figures."""
+    call, batch, single = r["constraint_call_s"], r["batch_s"], r["single_s"]
+    return {
+        ("README.md", "forward dynamics, batched N = 10⁴"):
+            f"| forward dynamics, batched N = 10⁴ | {batch * 1e6:.1f} µs a sample | "
+            f"{call * 1e6:.1f} µs | ≤ 0.5 × ({_met(batch / call <= 0.5)}: "
+            f"{batch / call:.2f}) |",
+        ("README.md", "forward dynamics, one sample"):
+            f"| forward dynamics, one sample | {single * 1e6:.1f} µs | {call * 1e6:.1f} µs | "
+            f"≤ 1 × ({_met(single / call <= 1)}: {single / call:.2f}) |",
+        ("README.md", "simulate 60 s at 1 kHz"):
+            f"| simulate 60 s at 1 kHz, RK4, computed torque | {r['simulate_60s_s']:.2f} s: "
+            f"real-time factor {r['rtf']:.0f} | | ≥ 10 ({_met(r['rtf'] >= 10)}) |",
+        ("README.md", "the same law as a Python callable"):
+            f"| the same law as a Python callable (a user's controller, 10 s) | real-time "
+            f"factor {r['rtf_python']:.1f} | | (measured) |",
+        ("README.md", "figure pinocchio_fd"):
+            f"`benchmarks/pinocchio_fd.py`, {r['date']}, Pinocchio {r['pin']}",
+    }
+
+
+def mjcf_agreement_rows(r: dict) -> dict:
+    """benchmarks/mjcf_agreement.py's figures."""
+    ratios, bound = r["ratios"], r["agreement"]
+    home, worst = ratios["lab, home"], r["worst"]
+    labels = {"home": "home", "rotated": "a rotated pose (q4..q6 = 0.04, −0.03, 0.05 rad, "
+              "arm moved)", "sample 0": "Table 1's first sample"}
+    harib = {"home": "home", "rotated": "a rotated pose", "sample 0": "the first state"}
+    out = {
+        ("README.md", "MuJoCo against our forward dynamics"):
+            f"| MuJoCo against our forward dynamics, Table 1 | `benchmarks/mjcf_agreement.py` "
+            f"| {_sci(home)} of the constraint accelerations (worst pose written "
+            f"{_sci(worst)}) | ≤ {_sci(bound)} ({_met(worst <= bound)}) |",
+        ("docs/mjcf.md", "figure mjcf_agreement"):
+            f"The worst, {_sci(worst)}, is {bound / worst:.1f}× below the bound; the model "
+            f"written at home (the default) agrees to {_sci(home)}, {bound / home:.0f}× "
+            "below.",
+    }
+    for key, value in ratios.items():
+        robot, pose = key.split(", ")
+        if robot == "lab":
+            states = "Table 1 over 10π s" if pose == "home" else "Table 1"
+            first = f"| lab | {labels[pose]} | {states}"
+        else:
+            states = ("seeded, within 1 cm, 0.05 rad of home" if pose == "home" else "same")
+            first = (f"| {robot}{' (no arm)' if pose == 'home' else ''} | {harib[pose]} | "
+                     f"{states}")
+        out[("docs/mjcf.md", first[2:])] = f"{first} | 200 | {_sci(value)} |"
+    return out
+
+
+#: Each saved result and the figures it renders.
+RENDERERS = {"sweep": sweep_rows, "animate": animate_rows, "cable_swing": cable_swing_rows,
+             "sea_synthesis": sea_synthesis_rows, "pinocchio_fd": pinocchio_fd_rows,
+             "mjcf_agreement": mjcf_agreement_rows}
+
+#: A figure inside prose: ``<!-- figure KEY -->text<!-- /figure -->``.
+MARKED = re.compile(r"<!-- figure (\S+) -->(.*?)<!-- /figure -->", re.S)
 
 
 def rows() -> dict:
@@ -130,7 +250,22 @@ def apply(write: bool) -> list[str]:
     for name, items in by_file.items():
         path = ROOT / name
         lines = path.read_text(encoding="utf-8").splitlines(keepends=True)
+        text = "".join(lines)
         for label, row in items:
+            if label.startswith("figure "):
+                key = label.split(" ", 1)[1]
+                found = [m for m in MARKED.finditer(text) if m.group(1) == key]
+                if len(found) != 1:
+                    changed.append(f"{name}: '{label}' found {len(found)} times (need 1)")
+                elif found[0].group(2) != row:
+                    changed.append(f"{name}: {label}")
+                    m = found[0]
+                    text = text[:m.start(2)] + row + text[m.end(2):]
+                continue
+        lines = text.splitlines(keepends=True)
+        for label, row in items:
+            if label.startswith("figure "):
+                continue
             hits = [i for i, ln in enumerate(lines) if ln.startswith(f"| {label}")]
             if len(hits) != 1:
                 changed.append(f"{name}: '{label}' found {len(hits)} times (need 1)")

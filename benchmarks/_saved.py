@@ -1,0 +1,35 @@
+"""Where the benchmarks keep their figures: ``--save`` writes ``benchmarks/results/NAME.json``,
+from which ``python scripts/figures.py`` writes the measured figures of README.md and
+docs/ (``tests/test_docs_figures.py`` checks that the documents say what was saved)."""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from pathlib import Path
+
+RESULTS = Path(__file__).resolve().parent / "results"
+
+
+def add_save_option(parser, name: str) -> None:
+    """``--save``: write the figures to ``benchmarks/results/<name>.json``."""
+    parser.add_argument("--save", action="store_true",
+                        help=f"write the figures to benchmarks/results/{name}.json (then "
+                        "python scripts/figures.py rewrites the documents' figures)")
+
+
+def stamp() -> dict:
+    """The date and the machine the figures were measured on."""
+    return {"date": time.strftime("%Y-%m-%d"), "cores": os.cpu_count()}
+
+
+def save(name: str, figures: dict) -> Path:
+    """Write ``figures`` (JSON-able; NumPy scalars as floats) whole, atomically."""
+    RESULTS.mkdir(exist_ok=True)
+    path = RESULTS / f"{name}.json"
+    part = path.with_suffix(".json.part")
+    part.write_text(json.dumps(figures, indent=1, default=float) + "\n")
+    os.replace(part, path)
+    print(f"wrote {path.relative_to(RESULTS.parents[1])}")
+    return path
