@@ -20,13 +20,10 @@ kernel is made.
 from __future__ import annotations
 
 import os
-import threading
 import warnings
 
-from offshore_crane.progress import notice
+from offshore_crane.progress import first_time, notice
 
-_WARNED: set = set()
-_WARNED_LOCK = threading.Lock()
 #: Kernels compiled (not found in the cache) by this process so far.
 COMPILED = [0]
 #: Said once per process before the first kernel compiles (:func:`offshore_crane.
@@ -109,11 +106,8 @@ def remove_entry(cache_file, name: str, exc: Exception) -> None:
         except OSError:
             pass
     reason = (str(exc).splitlines() or [""])[0]
-    key = (cache_file._cache_path, cache_file._index_name)
-    with _WARNED_LOCK:
-        if key in _WARNED:
-            return
-        _WARNED.add(key)
+    if not first_time(("kernel cache entry", cache_file._cache_path, cache_file._index_name)):
+        return
     where = os.path.join(cache_file._cache_path, cache_file._index_name[: -len(".nbi")])
     warnings.warn(KernelCacheWarning(
         f"compiled-kernel cache entry {where}.* could not be loaded ({type(exc).__name__}: "

@@ -131,12 +131,20 @@ def listen(listener) -> None:
     _state["listener"] = listener
 
 
-def notice(key: str, text: str) -> None:
-    """Say ``text`` once per process for ``key`` (e.g. "compile"), to the listener."""
+def first_time(key) -> bool:
+    """True the first time this process asks for ``key`` (any hashable), False after: the
+    one "say it once" of the package (notices, cache warnings); thread-safe."""
     with _lock:
         if key in _noticed:
-            return
+            return False
         _noticed.add(key)
+        return True
+
+
+def notice(key: str, text: str) -> None:
+    """Say ``text`` once per process for ``key`` (e.g. "compile"), to the listener."""
+    if not first_time(("notice", key)):
+        return
     listener = _state["listener"]
     if listener is not None:
         listener(text)

@@ -691,7 +691,7 @@ CASES = [
     # ---- the consistency pass (issue 22, item 5)
     Case("show-pose-outside-workspace", "show --pose with the legs detached (once drawn, "
          "exit 0, where export refused it)", oc.WorkspaceError,
-         r"--pose: leg1 length = 2\.45\d* m is outside \[0\.4, 0\.82\] m: give a pose "
+         r"--pose: leg1 length = 2\.45\d* m is outside \[0\.4, 0\.82\] m; give a pose "
          r"inside the workspace",
          cli=lambda tmp: ["show", "--pose", "0,0,2.5,0,0,0,0,0,0", "--out",
                           str(tmp / "out" / "p.png")]),

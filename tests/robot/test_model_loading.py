@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
+from offshore_crane import progress
 from offshore_crane import robot as model
 from offshore_crane.robot import xacro_cache
 from offshore_crane.robot.description import resolve
@@ -28,7 +29,7 @@ def cache(tmp_path, monkeypatch):
     folder = tmp_path / "cache"
     monkeypatch.setenv("OFFSHORE_CRANE_CACHE", str(folder))
     monkeypatch.setattr(model, "_ROBOTS", {})
-    monkeypatch.setattr(xacro_cache, "_WARNED", set())
+    monkeypatch.setattr(progress, "_noticed", set())
     return folder
 
 

@@ -55,17 +55,9 @@ def run(args) -> int:
     if q is None:
         q = [0.0, 0.0, robot.home_height or 0.0] + [0.0] * 6
     else:                               # as export --pose: no picture of a broken robot
-        from offshore_crane.errors import WorkspaceError
         from offshore_crane.robot.kinematics import check_workspace
 
-        try:
-            check_workspace(robot, np.array(q))
-        except WorkspaceError as exc:
-            import re
-
-            what = re.sub(r" at sample \d+( \(t = [^)]*\))?", "", str(exc)).split(";")[0]
-            raise WorkspaceError(f"--pose: {what}: give a pose inside the workspace",
-                                 joint=exc.joint, index=None, value=exc.value) from None
+        check_workspace(robot, np.array(q), pose="--pose")
     sway = None
     if has_cable(robot.description) or args.sway is not None:
         sway = np.array(comma_numbers(args.sway or "0,0", 2, "--sway"))

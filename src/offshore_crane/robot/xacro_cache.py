@@ -33,13 +33,12 @@ from functools import lru_cache
 from pathlib import Path
 
 from offshore_crane.errors import ModelError, require
+from offshore_crane.progress import first_time
 
 XACRO_FILE = "offshore_crane.urdf.xacro"
 #: Serialises xacro expansions within the process (xacro's state is global).
 _EXPAND_LOCK = threading.Lock()
 _TRAILER = "<!-- offshore-crane-cache sha256="
-_WARNED: set = set()
-_WARNED_LOCK = threading.Lock()
 
 
 class CacheWarning(UserWarning):
@@ -113,10 +112,8 @@ def _digest(text: str) -> str:
 
 
 def _warn_once(path: Path, problem: str) -> None:
-    with _WARNED_LOCK:
-        if path in _WARNED:
-            return
-        _WARNED.add(path)
+    if not first_time(("URDF cache entry", path)):
+        return
     warnings.warn(CacheWarning(f"URDF cache entry {path} {problem}: rebuilt from the xacro"),
                   stacklevel=4)
 

@@ -140,7 +140,7 @@ def leg_positions(robot, q) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.stack(length, axis=1), np.stack(height, axis=1), np.stack(theta, axis=1)
 
 
-def check_workspace(robot, q, t=None) -> None:
+def check_workspace(robot, q, t=None, *, pose: str | None = None) -> None:
     """Raise :class:`~offshore_crane.errors.WorkspaceError` for the first sample of ``q``
     ``(N, 9)`` [m, rad] outside the robot's workspace: arm joints outside their limits,
     a sphere centre not above its U-joint (platform below the base), a leg length outside
@@ -152,6 +152,8 @@ def check_workspace(robot, q, t=None) -> None:
         robot: From :func:`offshore_crane.load_robot`.
         q: ``(N, 9)`` or ``(9,)`` coordinates [m, rad], finite.
         t: ``(N,)`` times [s] for the message, or None.
+        pose: The name of one pose a user gave (``"--pose"``): the message names it, not
+            a sample, and asks for a pose inside the workspace.
 
     Raises:
         InputError: q is not finite or has the wrong shape. WorkspaceError: as above.
@@ -163,7 +165,8 @@ def check_workspace(robot, q, t=None) -> None:
     limits = ws.limits_of(robot.hybrid)
     health = ws.new_health()
     ws.record_limits(health, limits, q, length, height, theta)
-    ws.check_limits(health, limits, q, None if t is None else np.asarray(t, dtype=float))
+    ws.check_limits(health, limits, q, None if t is None else np.asarray(t, dtype=float),
+                    pose)
 
 
 def actuator_motion(robot, q, qd, legs: bool = True):

@@ -190,7 +190,8 @@ def check_inputs(health: np.ndarray, arrays) -> None:
                      f"{j + 1}); every value must be finite", name=name, index=k)
 
 
-def check_limits(health: np.ndarray, limits: Limits, q: np.ndarray, t=None) -> None:
+def check_limits(health: np.ndarray, limits: Limits, q: np.ndarray, t=None,
+                 pose: str | None = None) -> None:
     """Raise :class:`WorkspaceError` for the first limit violation, category by category
     in :data:`CATEGORIES` order (a platform below the base is named before the U-joint
     angles and leg lengths it distorts).
@@ -198,7 +199,20 @@ def check_limits(health: np.ndarray, limits: Limits, q: np.ndarray, t=None) -> N
     Args:
         limits: :class:`Limits` of the robot.
         q: ``(N, 9)`` coordinates (for the arm's messages).
+        t: ``(N,)`` times [s] for the message, or None.
+        pose: For one pose a user gave (e.g. ``"--pose"``): the message starts with this
+            name, names no sample and asks for a pose inside the workspace; None: a
+            motion's samples.
     """
+    if pose is None:
+        head = ""
+        hint = "change the trajectory or the robot, or study it with --no-limits (limits=False)"
+    else:
+        head, hint = f"{pose}: ", "give a pose inside the workspace"
+
+    def when(k: int) -> str:
+        return "" if pose is not None else f" at {_when(k, t)}"
+
     for c, category in enumerate(CATEGORIES):
         s = VIOLATION + 3 * c
         if health[s] < 0:
@@ -206,8 +220,8 @@ def check_limits(health: np.ndarray, limits: Limits, q: np.ndarray, t=None) -> N
         k, code, value = int(health[s]), int(health[s + 1]), float(health[s + 2])
         if category == "height":
             raise WorkspaceError(
-                f"sphere centre S{code + 1} is {-value:.4g} m below its U-joint at "
-                f"{_when(k, t)} (platform below the base); raise q3",
+                f"{head}sphere centre S{code + 1} is {-value:.4g} m below its U-joint"
+                f"{when(k)} (platform below the base); raise q3",
                 joint=f"leg{code + 1}_slide", index=k, value=value)
         if category == "arm":
             joint, what, unit = ARM_JOINTS[code], ARM_JOINTS[code], ("rad", "rad", "m")[code]
@@ -221,9 +235,8 @@ def check_limits(health: np.ndarray, limits: Limits, q: np.ndarray, t=None) -> N
             unit = "rad"
             lo, hi = limits.ujoint[leg, axis]
         raise WorkspaceError(
-            f"{what} = {value:.6g} {unit} at {_when(k, t)} is outside [{lo:.6g}, {hi:.6g}] "
-            f"{unit}; change the trajectory or the robot, or study it with --no-limits "
-            "(limits=False)", joint=joint, index=k, value=value)
+            f"{head}{what} = {value:.6g} {unit}{when(k)} is outside [{lo:.6g}, {hi:.6g}] "
+            f"{unit}; {hint}", joint=joint, index=None if pose else k, value=value)
 
 
 def check_singularities(health: np.ndarray, kappa: dict, thresholds: Thresholds, t=None,
