@@ -1,7 +1,7 @@
 """One text, four backends: how the formulas are run.
 
-The formulas (:mod:`offshore_crane.robot.kinematics.formulas`, :mod:`.formulas`) are written once
-as plain arithmetic on 3-tuples. This module *binds* their code objects to other
+The formulas (:mod:`offshore_crane.robot.kinematics.formulas`, :mod:`.formulas`,
+:mod:`.sway`) are written once as plain arithmetic on 3-tuples. This module *binds* their code objects to other
 namespaces, so that each backend runs exactly the same text:
 
 - ``numpy`` — the modules as they are: every scalar of the text is an ``(n,)`` array
@@ -26,9 +26,10 @@ import types
 
 from offshore_crane.robot.kinematics import formulas as _kinematics
 from offshore_crane.dynamics import formulas as _dynamics
+from offshore_crane.dynamics import sway as _sway
 
 #: The formula modules, in import order.
-MODULES = (_kinematics, _dynamics)
+MODULES = (_kinematics, _dynamics, _sway)
 #: Decimal digits of the extended-precision reference (~133 bits, rounding ~1e-40).
 MP_DPS = 40
 
@@ -87,7 +88,7 @@ def source_stamp() -> str:
 
 
 #: The vectorised backend: the modules themselves.
-NUMPY = types.SimpleNamespace(**{**vars(_kinematics), **vars(_dynamics)})
+NUMPY = types.SimpleNamespace(**{**vars(_kinematics), **vars(_dynamics), **vars(_sway)})
 #: One sample in Python floats.
 PYTHON = bind({"sqrt": math.sqrt, "sin": math.sin, "cos": math.cos, "arctan2": math.atan2})
 

@@ -38,8 +38,6 @@ from __future__ import annotations
 
 from collections import namedtuple
 
-from numpy import cos, sin, sqrt
-
 from offshore_crane.robot.kinematics.formulas import (FULL, MASSLESS, add, arm_child, arm_joint, attitude, axpy,
                                    cross, platform_partials, put, take, dot, leg_frame, leg_geometry, leg_motion,
                                    leg_spin, mat3, mm, mtv, mv, platform_rates,
@@ -222,35 +220,64 @@ def kane_sample(C, q, qd, qdd, g, static, leg_model, want_legs, rows, A, rhs, di
         leg_model: FULL, THIN_ROD or MASSLESS.
         want_legs: False when no leg force is wanted: legs and platform are skipped.
     """
-    R, w4, w5, w6 = attitude(q)
-    p = (q[0], q[1], q[2])
-    zero = scale(p, 0.0)
-    if static:
-        omega = alpha = v = a = zero
-    else:
-        omega, alpha = platform_rates(w4, w5, qd, qdd)
-        v = (qd[0], qd[1], qd[2])
-        a = (qdd[0], qdd[1], qdd[2])
+    R, p, omega, alpha, v, a = base_motion(q, qd, qdd, static)
     arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store, False)
     F, M = arm_backward(C, store, rows)
     if want_legs:
-        Fp, Mp = platform_wrench(C, R, omega, alpha, a, g)
-        F = add(F, Fp)
-        M = add(M, Mp)
-        iL = 1.0 / C.L
-        for l in range(6):
-            r, u, length, dx, dy, dz, h, height, f_S = leg_force(
-                leg_constants(C, l), R, p, v, a, omega, alpha, g, static, leg_model)
-            F = add(F, f_S)
-            M = add(M, cross(r, f_S))
-            rxu = cross(r, u)
-            for i in range(3):
-                A[i, l] = u[i]
-                A[3 + i, l] = rxu[i] * iL
-            leg_diagnostics(diag, l, length, h, height, dx, dy, dz)
+        legs_and_platform(C, R, p, v, a, omega, alpha, g, static, leg_model, F, M, A, rhs,
+                          diag)
+
+
+def kane_sample_pull(C, q, qd, qdd, g, pull, rows, A, rhs, diag, store):
+    """:func:`kane_sample` (all legs, full leg model) of the robot whose last arm body is
+    replaced by a force ``pull`` [N] (base axes) acting on the robot at that body's joint
+    origin (the cable's pull on the tip: a massless cable whose payload moves as it will,
+    e.g. hoisted by a winch). The arm rows of the bodies past the tip (the sway joints)
+    come out zero."""
+    R, p, omega, alpha, v, a = base_motion(q, qd, qdd, False)
+    arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store, False)
+    b = C.n_arm - 1
+    zero = scale(pull, 0.0)
+    put(store, b, F_, scale(pull, -1.0))      # the body's m (a − g): minus the force on it
+    put(store, b, T_, zero)
+    put(store, b, RC_, zero)
+    F, M = arm_backward(C, store, rows)
+    legs_and_platform(C, R, p, v, a, omega, alpha, g, False, FULL, F, M, A, rhs, diag)
+
+
+def base_motion(q, qd, qdd, static):
+    """The platform's attitude R, position p [m], ω [rad/s], α [rad/s²], velocity v [m/s]
+    and acceleration a [m/s²] (zero rates when ``static``)."""
+    R, w4, w5, w6 = attitude(q)
+    p = (q[0], q[1], q[2])
+    if static:
+        zero = scale(p, 0.0)
+        return R, p, zero, zero, zero, zero
+    omega, alpha = platform_rates(w4, w5, qd, qdd)
+    return R, p, omega, alpha, (qd[0], qd[1], qd[2]), (qdd[0], qdd[1], qdd[2])
+
+
+def legs_and_platform(C, R, p, v, a, omega, alpha, g, static, leg_model, F, M, A, rhs,
+                      diag):
+    """The Stewart system of :func:`kane_sample`: ``A``, ``rhs`` and ``diag`` from the
+    wrench ``(F, M about O2)`` the arm puts on the platform, the platform's and the legs'."""
+    Fp, Mp = platform_wrench(C, R, omega, alpha, a, g)
+    F = add(F, Fp)
+    M = add(M, Mp)
+    iL = 1.0 / C.L
+    for l in range(6):
+        r, u, length, dx, dy, dz, h, height, f_S = leg_force(
+            leg_constants(C, l), R, p, v, a, omega, alpha, g, static, leg_model)
+        F = add(F, f_S)
+        M = add(M, cross(r, f_S))
+        rxu = cross(r, u)
         for i in range(3):
-            rhs[i] = F[i]
-            rhs[3 + i] = M[i] * iL
+            A[i, l] = u[i]
+            A[3 + i, l] = rxu[i] * iL
+        leg_diagnostics(diag, l, length, h, height, dx, dy, dz)
+    for i in range(3):
+        rhs[i] = F[i]
+        rhs[3 + i] = M[i] * iL
 
 
 # --------------------------------------------------------------------------- explicit
@@ -385,67 +412,3 @@ def actuator_coordinates(C, q, qd, pos, rate):
 # come from :func:`pendulum` on the tip's motion (:func:`tip_motion`); the actuator forces
 # from :func:`kane_sample` on the whole chain, whose rows of the sway speeds must then
 # vanish (``rows[3:5] + c φ̇ = 0``): a check between the two.
-def tip_motion(C, q, qd, qdd):
-    """The first sway joint's frame (``arm_tip``): ``(R_base_tip, ω [rad/s], α [rad/s²],
-    a [m/s²])``, its attitude, angular velocity and acceleration, and its origin's
-    acceleration, under the robot's motion ``q, q̇, q̈`` (the arm chain ``C`` continued
-    by the two sway joints)."""
-    R, w4, w5, w6 = attitude(q)
-    omega, alpha = platform_rates(w4, w5, qd, qdd)
-    a = (qdd[0], qdd[1], qdd[2])
-    nb = C.n_arm - 2
-    for b in range(nb):
-        axis = row3(C.arm_axis, b)
-        r, Rj, z = arm_joint(R, mat3(C.arm_Ro, b), row3(C.arm_t, b), axis)
-        R, off, omega, alpha, a = arm_child(Rj, z, axis, omega, alpha,
-                                            point_acceleration(a, omega, alpha, r),
-                                            C.arm_prism[b], q[6 + b], qd[6 + b], qdd[6 + b])
-    r, Rj, z = arm_joint(R, mat3(C.arm_Ro, nb), row3(C.arm_t, nb), row3(C.arm_axis, nb))
-    return Rj, omega, alpha, point_acceleration(a, omega, alpha, r)
-
-
-def sway_direction(p1, p2):
-    """The cable's direction from the tip to the payload in tip axes,
-    ``e = Rx(φ1) Ry(φ2) (0, 0, −1)``, and its partials ``∂e/∂φ1``, ``∂e/∂φ2``."""
-    s1, k1, s2, k2 = sin(p1), cos(p1), sin(p2), cos(p2)
-    return (-s2, s1 * k2, -k1 * k2), (0.0 * s1, k1 * k2, s1 * k2), (-k2, -s1 * s2, k1 * s2)
-
-
-def pendulum(C, Rt, omega, alpha, a_t, g, p1, p2, r1, r2, c1, c2):
-    """Kane's equations of the sway speeds: ``(φ̈1, φ̈2)`` [rad/s²] and ``cos²φ2``.
-
-    A point mass m on a cable of length L (``C``'s last body, at ``(0, 0, −L)`` below the
-    sway joints) from the origin of a frame of attitude ``Rt`` (R_base_tip), angular
-    velocity ``omega``, acceleration ``alpha``, origin acceleration ``a_t``; sway angles
-    ``p1, p2`` about x then the rotated y of that frame, rates ``r1, r2``, viscous damping
-    ``c1, c2`` [N·m·s/rad]. With ``e = Rx(φ1) Ry(φ2) (0, 0, −1)`` (tip axes) the partial
-    velocities are ``v_r = L Rt ∂e/∂φ_r`` and ``v_r · m (a_p − g) + c_r φ̇_r = 0``, where
-    ``∂e/∂φ1 · ∂e/∂φ1 = cos²φ2``, ``∂e/∂φ2 · ∂e/∂φ2 = 1``, ``∂e/∂φ1 · ∂e/∂φ2 = 0``.
-    """
-    b = C.n_arm - 1
-    m = C.arm_m[b]
-    L = -C.arm_c[b, 2]
-    s1, k1, s2, k2 = sin(p1), cos(p1), sin(p2), cos(p2)
-    e, e1, e2 = sway_direction(p1, p2)
-    quad = axpy(r2 * r2, (s2, -s1 * k2, k1 * k2),
-                axpy(2.0 * r1 * r2, (0.0 * s1, -k1 * s2, -s1 * s2),
-                     scale((0.0 * s1, -s1 * k2, k1 * k2), r1 * r1)))
-    w = mtv(Rt, omega)
-    rho = scale(e, L)
-    # the payload's acceleration but for the φ̈ terms, minus g, in tip axes
-    acc = add(point_acceleration(mtv(Rt, sub(a_t, g)), w, mtv(Rt, alpha), rho),
-              add(scale(cross(w, axpy(r2, e2, scale(e1, r1))), 2.0 * L), scale(quad, L)))
-    mL = m * L
-    cos2 = k2 * k2
-    return (-(mL * dot(e1, acc) + c1 * r1) / (mL * L * cos2),
-            -(mL * dot(e2, acc) + c2 * r2) / (mL * L), cos2)
-
-
-def cable_force(C, store):
-    """The cable's pull on the arm tip ``f_tip`` (3,) [N] (base axes) and its tension [N]
-    (> 0 taut), from an arm pass at the true accelerations: the payload's
-    ``m (a − g)`` reversed, and its component along the cable (tip → payload)."""
-    b = C.n_arm - 1
-    f = scale(take(store, b, F_), -1.0)
-    rho = take(store, b, RC_)
-    return f, dot(f, rho) / sqrt(dot(rho, rho))

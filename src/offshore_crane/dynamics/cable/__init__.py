@@ -23,7 +23,7 @@ Two independent paths, like the rest of the project: ``method="kane"`` (compiled
 Pinocchio's model of the URDF, their accelerations from RNEA and CRBA, X from the RNEA
 reference), which share only the URDF. The Kane path writes the pendulum's own equations
 by Kane's method on the tip's motion
-(:func:`~offshore_crane.dynamics.formulas.tip_motion`, ``pendulum``) and X by
+(:func:`~offshore_crane.dynamics.sway.tip_motion`, ``pendulum``) and X by
 ``kane_sample`` on the arm chain continued by the sway joints and the payload (the
 cable's pull enters through the arm); that pass's rows of the sway speeds must vanish at
 the integrated sway, a check between the two (``CableResult.residual``).
@@ -36,7 +36,6 @@ warning, and the samples marked in ``CableResult.slack``).
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -47,74 +46,19 @@ from offshore_crane.errors import (InputError, ModelError, NumericalError, Singu
                      SlackCableError)
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.validation import as_gravity, as_pair, as_samples, check_memory, uniform_step
+from offshore_crane.dynamics.cable.hoist import hoist_grid, hoist_profile
+from offshore_crane.dynamics.cable.result import CableResult
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
     from offshore_crane.robot import Robot
 
+__all__ = ["CableResult", "METHODS", "SLACK", "cable_robot", "hoist_grid", "hoist_profile",
+           "inverse_dynamics", "stage_grid", "sway_accelerations", "swing", "warm_up"]
+
 METHODS = ("kane", "pinocchio")
 SLACK = ("error", "warn")
-
-
-@dataclass
-class CableResult:
-    """Inverse dynamics of the robot with its hanging payload, sampled like the input.
-
-    Attributes:
-        t: ``(N,)`` [s].
-        q, qd, qdd: ``(N, 9)`` the robot's prescribed motion [m, rad], rates, accelerations.
-        X: ``(N, 9)`` actuator forces ``[T1, T2 [N·m], Fs, Fl1..Fl6 [N]]``, the cable's
-            pull included.
-        sway: ``(N, 2)`` φ1, φ2 [rad] (``arm_tip`` frame, see the module docstring).
-        sway_rate: ``(N, 2)`` [rad/s]; sway_accel: ``(N, 2)`` [rad/s²].
-        tension: ``(N,)`` the cable's tension [N] (> 0 taut).
-        force_tip: ``(N, 3)`` the cable's pull on the arm tip [N], base frame.
-        residual: ``(N, 2)`` Kane's rows of the sway speeds at the result [N·m]
-            (zero up to round-off: the sway accelerations solve them).
-        slack: ``(N,)`` True where the tension is ≤ 0 (only with ``slack="warn"``).
-        condition: ``(N,)`` the Stewart system's condition number (NaN without checks).
-        sway_condition: worst ``1 / cos²φ2`` met (the sway inertia's condition).
-        length, mass: The cable length [m] and payload mass [kg] (from the URDF).
-        method, step: The path and the RK4 step [s].
-    """
-
-    t: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    qdd: np.ndarray
-    X: np.ndarray
-    sway: np.ndarray
-    sway_rate: np.ndarray
-    sway_accel: np.ndarray
-    tension: np.ndarray
-    force_tip: np.ndarray
-    residual: np.ndarray
-    slack: np.ndarray
-    condition: np.ndarray
-    sway_condition: float
-    length: float
-    mass: float
-    method: str = "kane"
-    step: float = 0.0
-    info: dict = field(default_factory=dict)
-
-    def __len__(self) -> int:
-        return len(self.t)
-
-    @property
-    def sway_angle(self) -> np.ndarray:
-        """``(N,)`` angle between the cable and the tip frame's downward axis [rad]:
-        ``arccos(cos φ1 cos φ2)``."""
-        return np.arccos(np.clip(np.cos(self.sway[:, 0]) * np.cos(self.sway[:, 1]), -1, 1))
-
-    def truncated(self, n: int) -> "CableResult":
-        """The first ``n`` samples."""
-        out = {}
-        for f in fields(self):
-            v = getattr(self, f.name)
-            out[f.name] = v[:n] if isinstance(v, np.ndarray) else v
-        return CableResult(**out)
 
 
 # --------------------------------------------------------------------------- helpers
@@ -235,7 +179,8 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
                      initial=(0.0, 0.0), initial_rate=(0.0, 0.0), substeps: int = 1,
                      slack: str = "error", method: str = "kane", limits: bool = True,
                      checks: bool = True, thresholds: ws.Thresholds = ws.Thresholds(),
-                     length: float | None = None, mass: float | None = None) -> CableResult:
+                     length: float | None = None, mass: float | None = None,
+                     hoist=None) -> CableResult:
     """Actuator forces of the prescribed motion with the payload swinging on its cable.
 
     Args:
@@ -257,6 +202,10 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
             condition ``1/cos²φ2`` follows the same thresholds).
         length, mass: Optional overrides of ``payload.cable_length`` [m] and
             ``payload.mass`` [kg].
+        hoist: A winch: ``hoist(t (n,)) -> (L, L̇, L̈)``, each ``(n,)``, the cable's
+            length [m] (> 0), its rate [m/s] and acceleration [m/s²] at any times (RK4's
+            stage times among them); e.g. :func:`hoist_profile`. None: the fixed
+            ``payload.cable_length``.
 
     Returns:
         :class:`CableResult`.
@@ -301,18 +250,21 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
     tt, Q, Qd, Qdd = stage_grid(t, q, qd, qdd, reference, int(substeps))
     h = dt / substeps
     y0 = np.concatenate([phi0, rate0])
+    length_, mass_ = robot.hybrid.cable_length, float(robot.hybrid.cable.mass[-1])
+    Lh = (np.array([[length_, 0.0, 0.0]]) if hoist is None else hoist_grid(hoist, tt))
     if method == "kane":
-        Y, status = _integrate_kane(robot, Q, Qd, Qdd, g, h, int(substeps), y0, thresholds)
+        Y, status = _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, int(substeps), y0,
+                                    thresholds)
     else:
         from offshore_crane.reference import cable as ref
 
         Y, status = ref.integrate(robot, Q, Qd, Qdd, g, h, int(substeps), y0,
-                                  1.0 / thresholds.error)
+                                  1.0 / thresholds.error, None if hoist is None else Lh)
     code, stop, worst = int(status[0]), int(status[1]), float(status[2])
     n = N if code == 0 else stop
-    length_, mass_ = robot.hybrid.cable_length, float(robot.hybrid.cable.mass[-1])
+    L = None if hoist is None else np.ascontiguousarray(Lh[::2 * int(substeps)][:n])
     res = _forces(robot, t[:n], q[:n], qd[:n], qdd[:n], Y[:n], g, method, limits, checks,
-                  thresholds, worst, length_, mass_, h)
+                  thresholds, worst, length_, mass_, h, L)
     if code != 0:
         if slack == "error":
             _slack(res, slack)         # a slack cable before the stop is its first cause
@@ -335,7 +287,7 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
     return res
 
 
-def _integrate_kane(robot, Q, Qd, Qdd, g, h, sub, y0, thresholds):
+def _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, sub, y0, thresholds):
     from offshore_crane.dynamics.runtime import compiled_kernels
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
@@ -347,7 +299,7 @@ def _integrate_kane(robot, Q, Qd, Qdd, g, h, sub, y0, thresholds):
     status = np.zeros(3)
     progress.run_polled(
         lambda: ck.integrate(arrays.flat, arrays.layout, arrays.prismatic,
-                             robot.hybrid.sway_damping, Q, Qd, Qdd, g, h, sub, y0,
+                             robot.hybrid.sway_damping, Q, Qd, Qdd, Lh, g, h, sub, y0,
                              1.0 / thresholds.error, Y, status),
         lambda: progress.filled_rows(Y), n_out, "sample", "swing")
     return Y, status
@@ -355,18 +307,19 @@ def _integrate_kane(robot, Q, Qd, Qdd, g, h, sub, y0, thresholds):
 
 
 def _forces(robot, t, q, qd, qdd, Y, g, method, limits, checks, thresholds, worst, length,
-            mass, h) -> CableResult:
-    """X, the cable force and the residual at the integrated sway (both paths)."""
+            mass, h, L=None) -> CableResult:
+    """X, the cable force and the residual at the integrated sway (both paths); ``L``
+    ``(n, 3)`` the hoisted length, rate, acceleration, or None."""
     n = len(t)
     if method == "kane":
-        X, F, kappa = _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds)
+        X, F, kappa = _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L)
     else:
         from offshore_crane.dynamics.constants import cable_arrays
         from offshore_crane.robot.kinematics.workspace import Limits
         from offshore_crane.dynamics.kernels import Options
         from offshore_crane.reference import cable as ref
 
-        r, F = ref.forces(robot, q, qd, qdd, Y, g, conditioning=bool(checks))
+        r, F = ref.forces(robot, q, qd, qdd, Y, g, conditioning=bool(checks), hoist=L)
         X, kappa, health = r.X, np.empty((3, n)) if checks else None, ws.new_health()
         lim = cable_arrays(robot).limits            # the robot's arm joints, for the checks
         lim = Limits(lim.arm[:robot.hybrid.arm.n], lim.stroke, lim.ujoint)
@@ -382,10 +335,10 @@ def _forces(robot, t, q, qd, qdd, Y, g, method, limits, checks, thresholds, wors
         sway_accel=Y[:, 4:6].copy(), tension=F[:, 3].copy(), force_tip=F[:, 0:3].copy(),
         residual=F[:, 4:6].copy(), slack=np.zeros(n, dtype=bool),
         condition=kappa[0] if kappa is not None else np.full(n, np.nan),
-        sway_condition=worst, length=length, mass=mass, method=method, step=h)
+        sway_condition=worst, length=length, mass=mass, method=method, step=h, hoist=L)
 
 
-def _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
+def _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None):
     from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
@@ -402,10 +355,12 @@ def _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds):
     if n == 0:
         return X, F, kappa if checks else None
 
+    hoist = np.empty((0, 3)) if L is None else L
+
     def run(start, stop, health):
         ck.kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11,
-                qd11, qdd11, g, checks, limits, thresholds.warn, thresholds.error, start, stop,
-                X, kappa, health, F)
+                qd11, qdd11, hoist, g, checks, limits, thresholds.warn, thresholds.error,
+                start, stop, X, kappa, health, F)
 
     health = run_threaded(run, n, 1)
     ws.enforce(health, (q, qd, qdd), arrays.limits if limits else None,
@@ -433,18 +388,21 @@ def _slack(res: CableResult, policy: str) -> None:
         "in the result's slack array"), stacklevel=3)
 
 
-def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY) -> np.ndarray:
+def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY,
+                       hoist=None) -> np.ndarray:
     """The right-hand side of the swing: ``φ̈`` ``(N, 2)`` [rad/s²] at given states.
 
     The same formulas the integrator runs compiled
-    (:func:`~offshore_crane.dynamics.formulas.tip_motion` and ``pendulum``), here on NumPy
-    arrays.
+    (:func:`~offshore_crane.dynamics.sway.tip_motion` and ``pendulum``, or
+    ``hoisted_pendulum`` with a winch), here on NumPy arrays.
 
     Args:
         robot: With a payload on a cable.
         q, qd, qdd: ``(N, 9)`` the robot's state and accelerations.
         sway, sway_rate: ``(N, 2)`` φ [rad], φ̇ [rad/s].
         gravity: ``(3,)`` [m/s²].
+        hoist: ``(N, 3)`` a winch's cable length [m], rate [m/s] and acceleration
+            [m/s²], or None for the description's fixed length.
     """
     from offshore_crane.dynamics import backends
     from offshore_crane.dynamics.constants import cable_arrays
@@ -459,10 +417,20 @@ def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY) -> n
     C = cable_arrays(robot).kane
     c1, c2 = (float(c) for c in robot.hybrid.sway_damping)
     F = backends.NUMPY
+    if hoist is not None:
+        hoist = as_samples("hoist", hoist, width=3)[0]
+        if len(hoist) != len(q) or not (hoist[:, 0] > 0).all():
+            raise InputError(f"hoist must be ({len(q)}, 3) rows (L > 0 [m], Ld [m/s], Ldd "
+                             "[m/s²]), one per sample", name="hoist")
     with np.errstate(divide="ignore", invalid="ignore"):
         Rt, w, al, a = F.tip_motion(C, q.T, qd.T, qdd.T)
-        a1, a2, _ = F.pendulum(C, Rt, w, al, a, g, sway[:, 0], sway[:, 1], sway_rate[:, 0],
-                               sway_rate[:, 1], c1, c2)
+        if hoist is None:
+            a1, a2, _ = F.pendulum(C, Rt, w, al, a, g, sway[:, 0], sway[:, 1],
+                                   sway_rate[:, 0], sway_rate[:, 1], c1, c2)
+        else:
+            a1, a2 = F.hoisted_pendulum(C, Rt, w, al, a, g, sway[:, 0], sway[:, 1],
+                                        sway_rate[:, 0], sway_rate[:, 1], c1, c2,
+                                        *hoist.T)[:2]
     out = np.stack([a1, a2], axis=-1)
     return out[0] if single else out
 
@@ -490,4 +458,7 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     t = np.array([0.0, 1e-3])
     q = np.repeat(robot.home_pose()[None, :], 2, axis=0)
     inverse_dynamics(robot, q, 0 * q, 0 * q, limits=False, t=t)
+    length = robot.hybrid.cable_length
+    inverse_dynamics(robot, q, 0 * q, 0 * q, limits=False, t=t,
+                     hoist=lambda tt: (np.full(len(tt), length), 0 * tt, 0 * tt))
     return [("hanging-load kernels", time.perf_counter() - t0)]

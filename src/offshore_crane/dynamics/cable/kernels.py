@@ -29,6 +29,7 @@ from offshore_crane.dynamics.formulas import STORE_WIDTH
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 
 tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_force
+hoisted_pendulum, kane_sample_pull = c.K.hoisted_pendulum, c.K.kane_sample_pull
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
 explicit_sample, cholesky_solve, solve6 = c.KE.explicit_sample, c.cholesky_solve, c.solve6
 kinetic_energy = c.kinetic_energy
@@ -65,15 +66,17 @@ def _helpers(stamp):
             out[15 + r] = a[r]
 
     @jit
-    def rhs(C, g, damp, T, y, out):
-        """``out = (φ̇1, φ̇2, φ̈1, φ̈2)`` for the tip state ``T`` (18,) and sway ``y``;
-        returns ``cos²φ2`` (0 on the singular set)."""
+    def rhs(C, g, damp, T, y, L, i, out):
+        """``out = (φ̇1, φ̇2, φ̈1, φ̈2)`` for the tip state ``T`` (18,) and sway ``y`` on a
+        cable of length ``L[i, 0]`` [m] hoisted at ``L[i, 1]`` [m/s] (row 0 when ``L`` has
+        one row: a fixed length); returns ``cos²φ2`` (0 on the singular set)."""
         if len(stamp) == 0:
             return 0.0
+        j = i if L.shape[0] > 1 else 0
         R = ((T[0], T[1], T[2]), (T[3], T[4], T[5]), (T[6], T[7], T[8]))
-        a1, a2, cos2 = pendulum(C, R, (T[9], T[10], T[11]), (T[12], T[13], T[14]),
-                                (T[15], T[16], T[17]), g, y[0], y[1], y[2], y[3], damp[0],
-                                damp[1])
+        a1, a2, cos2, _, _ = hoisted_pendulum(
+            C, R, (T[9], T[10], T[11]), (T[12], T[13], T[14]), (T[15], T[16], T[17]), g,
+            y[0], y[1], y[2], y[3], damp[0], damp[1], L[j, 0], L[j, 1], L[j, 2])
         out[0] = y[2]
         out[1] = y[3]
         out[2] = a1
@@ -89,10 +92,13 @@ tip, rhs = _helpers(c.STAMP)
 def _make(stamp):
 
     @jit
-    def integrate(flat, lay, prism, damp, Qh, Qdh, Qddh, g, h, sub, y0, rel_min, Y, status):
+    def integrate(flat, lay, prism, damp, Qh, Qdh, Qddh, Lh, g, h, sub, y0, rel_min, Y,
+                  status):
         """RK4 of the sway from ``y0`` (4,) with step ``h`` [s] and the sway joints'
         damping ``damp`` (2,) [N·m·s/rad]; ``Qh, Qdh, Qddh`` ``(2 n + 1, 9)`` the robot's
         motion at every half step (n steps; the tip's motion is formed once per point);
+        ``Lh`` ``(2 n + 1, 3)`` the cable's length [m], rate, acceleration there (a
+        winch), or ``(1, 3)`` for a fixed length;
         writes every ``sub``-th state to ``Y`` ``(n // sub + 1, 6)``: φ1, φ2 [rad], φ̇1,
         φ̇2 [rad/s], φ̈1, φ̈2 [rad/s²]. ``status`` (3,): stop code, sample index of the
         stop, and the worst ``1 / cos²φ2`` met (the sway inertia's condition); the run
@@ -120,7 +126,7 @@ def _make(stamp):
         status[2] = 0.0
         tip(C, Qh, Qdh, Qddh, 0, q, qd, qdd, T0)
         for s in range(n_steps + 1):
-            rel = rhs(C, gt, damp, T0, y, k1)
+            rel = rhs(C, gt, damp, T0, y, Lh, 2 * s, k1)
             if s % sub == 0:
                 k = s // sub
                 finite = True
@@ -146,29 +152,36 @@ def _make(stamp):
             tip(C, Qh, Qdh, Qddh, 2 * s + 1, q, qd, qdd, Tm)
             tip(C, Qh, Qdh, Qddh, 2 * s + 2, q, qd, qdd, T1)
             rk4_stage(y, k1, 0.5 * h, ys)
-            rhs(C, gt, damp, Tm, ys, k2)
+            rhs(C, gt, damp, Tm, ys, Lh, 2 * s + 1, k2)
             rk4_stage(y, k2, 0.5 * h, ys)
-            rhs(C, gt, damp, Tm, ys, k3)
+            rhs(C, gt, damp, Tm, ys, Lh, 2 * s + 1, k3)
             rk4_stage(y, k3, h, ys)
-            rhs(C, gt, damp, T1, ys, k4)
+            rhs(C, gt, damp, T1, ys, Lh, 2 * s + 2, k4)
             rk4_combine(y, h, k1, k2, k3, k4)
             for j in range(18):
                 T0[j] = T1[j]
 
     @jit
-    def kane(flat, lay, prism, damp, q, qd, qdd, g, want_cond, want_limits, warn, error,
+    def kane(flat, lay, prism, damp, q, qd, qdd, L, g, want_cond, want_limits, warn, error,
              start, stop, X, kappa, health, F):
         """Samples ``start..stop-1`` of the fused Kane equations of the robot with its
         hanging payload: ``q, qd, qdd`` ``(N, 11)`` (the sway's in columns 9, 10); fills
         X ``(N, 9)`` and ``F`` ``(N, 6)``: the cable's pull on the tip (3) [N, base
         axes], the tension [N], and the residual of the two sway equations [N·m]
         (Kane's rows of the sway speeds with the damping ``damp`` (2,) [N·m·s/rad], zero
-        when φ̈ solves them)."""
+        when φ̈ solves them).
+
+        ``L`` ``(N, 3)``: a winch's cable length [m], rate [m/s], acceleration [m/s²];
+        the pull then comes from :func:`~offshore_crane.dynamics.sway.hoisted_pendulum`
+        and enters X by ``kane_sample_pull``, and the residual is that of the hoisted
+        sway equations at the given φ̈. ``(0, 3)``: the description's fixed length, the
+        payload the arm chain's last body."""
         if len(stamp) == 0:
             return
         C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
         tb = tangent_bounds(lim_ujoint)
         na = C.n_arm
+        m = C.arm_m[na - 1]
         rows = np.zeros(na)
         A = np.empty((6, 6))
         rhs6 = np.empty(6)
@@ -177,21 +190,32 @@ def _make(stamp):
         x = np.empty(6)
         M = np.empty((6, 13))
         gt = (g[0], g[1], g[2])
+        hoisted = L.shape[0] > 0
         for k in range(start, stop):
             if not finite_inputs(q, qd, qdd, k, health):
                 for j in range(9):
                     X[k, j] = np.nan
                 continue
-            kane_sample(C, q[k], qd[k], qdd[k], gt, False, 0, True, rows, A, rhs6, diag,
-                        store)
+            if hoisted:
+                Rt, w, al, at = tip_motion(C, q[k], qd[k], qdd[k])
+                a1, a2, cos2, f, tension = hoisted_pendulum(
+                    C, Rt, w, al, at, gt, q[k, 4 + na], q[k, 5 + na], qd[k, 4 + na],
+                    qd[k, 5 + na], damp[0], damp[1], L[k, 0], L[k, 1], L[k, 2])
+                kane_sample_pull(C, q[k], qd[k], qdd[k], gt, f, rows, A, rhs6, diag, store)
+                mL2 = m * L[k, 0] * L[k, 0]
+                F[k, 4] = mL2 * cos2 * (qdd[k, 4 + na] - a1)
+                F[k, 5] = mL2 * (qdd[k, 5 + na] - a2)
+            else:
+                kane_sample(C, q[k], qd[k], qdd[k], gt, False, 0, True, rows, A, rhs6, diag,
+                            store)
+                f, tension = cable_force(C, store)
+                F[k, 4] = rows[na - 2] + damp[0] * qd[k, 4 + na]
+                F[k, 5] = rows[na - 1] + damp[1] * qd[k, 5 + na]
             for b in range(3):
                 X[k, b] = rows[b]
-            f, tension = cable_force(C, store)
             for j in range(3):
                 F[k, j] = f[j]
             F[k, 3] = tension
-            F[k, 4] = rows[na - 2] + damp[0] * qd[k, 4 + na]
-            F[k, 5] = rows[na - 1] + damp[1] * qd[k, 5 + na]
             post(k, q, na, A, rhs6, diag, True, want_cond, want_limits, warn, error,
                  lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 

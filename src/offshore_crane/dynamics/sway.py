@@ -1,0 +1,117 @@
+"""The hanging load's formulas: the tip's motion, the pendulum on its cable (fixed or
+hoisted by a winch) and the cable's pull, per sample (docs/cable.md).
+
+Written once like :mod:`offshore_crane.dynamics.formulas` (whose arm chain they continue
+by the two sway joints and the payload) and run by the same backends
+(:mod:`offshore_crane.dynamics.backends`: NumPy-vectorised, compiled, Python floats,
+mpmath). Units SI; vectors in base axes unless said (tip axes: the ``arm_tip`` frame's).
+"""
+
+from __future__ import annotations
+
+from numpy import cos, sin, sqrt
+
+from offshore_crane.dynamics.formulas import F_, RC_
+from offshore_crane.robot.kinematics.formulas import (add, arm_child, arm_joint, attitude, axpy,
+                                                      cross, dot, mat3, mtv, mv,
+                                                      platform_rates, point_acceleration,
+                                                      row3, scale, sub, take)
+
+
+def tip_motion(C, q, qd, qdd):
+    """The first sway joint's frame (``arm_tip``): ``(R_base_tip, ω [rad/s], α [rad/s²],
+    a [m/s²])``, its attitude, angular velocity and acceleration, and its origin's
+    acceleration, under the robot's motion ``q, q̇, q̈`` (the arm chain ``C`` continued
+    by the two sway joints)."""
+    R, w4, w5, w6 = attitude(q)
+    omega, alpha = platform_rates(w4, w5, qd, qdd)
+    a = (qdd[0], qdd[1], qdd[2])
+    nb = C.n_arm - 2
+    for b in range(nb):
+        axis = row3(C.arm_axis, b)
+        r, Rj, z = arm_joint(R, mat3(C.arm_Ro, b), row3(C.arm_t, b), axis)
+        R, off, omega, alpha, a = arm_child(Rj, z, axis, omega, alpha,
+                                            point_acceleration(a, omega, alpha, r),
+                                            C.arm_prism[b], q[6 + b], qd[6 + b], qdd[6 + b])
+    r, Rj, z = arm_joint(R, mat3(C.arm_Ro, nb), row3(C.arm_t, nb), row3(C.arm_axis, nb))
+    return Rj, omega, alpha, point_acceleration(a, omega, alpha, r)
+
+
+def sway_direction(p1, p2):
+    """The cable's direction from the tip to the payload in tip axes,
+    ``e = Rx(φ1) Ry(φ2) (0, 0, −1)``, and its partials ``∂e/∂φ1``, ``∂e/∂φ2``."""
+    s1, k1, s2, k2 = sin(p1), cos(p1), sin(p2), cos(p2)
+    return (-s2, s1 * k2, -k1 * k2), (0.0 * s1, k1 * k2, s1 * k2), (-k2, -s1 * s2, k1 * s2)
+
+
+def pendulum(C, Rt, omega, alpha, a_t, g, p1, p2, r1, r2, c1, c2):
+    """Kane's equations of the sway speeds: ``(φ̈1, φ̈2)`` [rad/s²] and ``cos²φ2``.
+
+    A point mass m on a cable of length L (``C``'s last body, at ``(0, 0, −L)`` below the
+    sway joints) from the origin of a frame of attitude ``Rt`` (R_base_tip), angular
+    velocity ``omega``, acceleration ``alpha``, origin acceleration ``a_t``; sway angles
+    ``p1, p2`` about x then the rotated y of that frame, rates ``r1, r2``, viscous damping
+    ``c1, c2`` [N·m·s/rad]. With ``e = Rx(φ1) Ry(φ2) (0, 0, −1)`` (tip axes) the partial
+    velocities are ``v_r = L Rt ∂e/∂φ_r`` and ``v_r · m (a_p − g) + c_r φ̇_r = 0``, where
+    ``∂e/∂φ1 · ∂e/∂φ1 = cos²φ2``, ``∂e/∂φ2 · ∂e/∂φ2 = 1``, ``∂e/∂φ1 · ∂e/∂φ2 = 0``.
+    """
+    b = C.n_arm - 1
+    m = C.arm_m[b]
+    L = -C.arm_c[b, 2]
+    e, e1, e2, acc, cos2 = sway_terms(Rt, omega, alpha, a_t, g, p1, p2, r1, r2, L, 0.0)
+    mL = m * L
+    return (-(mL * dot(e1, acc) + c1 * r1) / (mL * L * cos2),
+            -(mL * dot(e2, acc) + c2 * r2) / (mL * L), cos2)
+
+
+def sway_terms(Rt, omega, alpha, a_t, g, p1, p2, r1, r2, L, Ld):
+    """The pendulum's kinematics on a cable of length ``L`` [m] hoisted at ``Ld`` [m/s]:
+    ``(e, ∂e/∂φ1, ∂e/∂φ2, acc, cos²φ2)`` with ``acc`` the payload's acceleration minus g,
+    in tip axes, but for its φ̈ and L̈ terms.
+
+    With ``ρ = L e`` in the tip frame (attitude ``Rt``, angular velocity ω), its rates in
+    that frame ``ρ' = L̇ e + L ė`` and ``ρ'' = L̈ e + 2 L̇ ė + L ë``, the payload's
+    acceleration is ``a_t + α × ρ + ω × (ω × ρ) + 2 ω × ρ' + ρ''``: the hoisting adds
+    ``2 L̇ (ω × e + ė) + L̈ e`` to the fixed-length pendulum's."""
+    s1, k1, s2, k2 = sin(p1), cos(p1), sin(p2), cos(p2)
+    e, e1, e2 = sway_direction(p1, p2)
+    quad = axpy(r2 * r2, (s2, -s1 * k2, k1 * k2),
+                axpy(2.0 * r1 * r2, (0.0 * s1, -k1 * s2, -s1 * s2),
+                     scale((0.0 * s1, -s1 * k2, k1 * k2), r1 * r1)))
+    w = mtv(Rt, omega)
+    rho = scale(e, L)
+    edot = axpy(r2, e2, scale(e1, r1))
+    acc = add(point_acceleration(mtv(Rt, sub(a_t, g)), w, mtv(Rt, alpha), rho),
+              add(scale(cross(w, edot), 2.0 * L), scale(quad, L)))
+    acc = add(acc, scale(add(cross(w, e), edot), 2.0 * Ld))
+    return e, e1, e2, acc, k2 * k2
+
+
+def hoisted_pendulum(C, Rt, omega, alpha, a_t, g, p1, p2, r1, r2, c1, c2, L, Ld, Ldd):
+    """Kane's equations of the sway speeds on a cable of length ``L(t)`` (a winch):
+    ``(φ̈1, φ̈2, cos²φ2, pull, tension)``.
+
+    As :func:`pendulum` with the length ``L`` [m], its rate ``Ld`` [m/s] and acceleration
+    ``Ldd`` [m/s²] given (the payload mass m is ``C``'s last body's). The partial
+    velocities of the sway speeds are ``v_r = L Rt ∂e/∂φ_r``, orthogonal to e, so ``L̈``
+    does not enter the sway; it enters the pull: ``pull = m (g − a_p)`` [N, base axes],
+    the cable's force on the tip, and ``tension = pull · e`` [N] (> 0 taut), the line pull
+    the winch holds.
+    """
+    m = C.arm_m[C.n_arm - 1]
+    e, e1, e2, acc, cos2 = sway_terms(Rt, omega, alpha, a_t, g, p1, p2, r1, r2, L, Ld)
+    mL = m * L
+    a1 = -(mL * dot(e1, acc) + c1 * r1) / (mL * L * cos2)
+    a2 = -(mL * dot(e2, acc) + c2 * r2) / (mL * L)
+    full = add(acc, axpy(Ldd, e, scale(axpy(a2, e2, scale(e1, a1)), L)))
+    return a1, a2, cos2, scale(mv(Rt, full), -m), -m * dot(full, e)
+
+
+def cable_force(C, store):
+    """The cable's pull on the arm tip ``f_tip`` (3,) [N] (base axes) and its tension [N]
+    (> 0 taut), from an arm pass at the true accelerations: the payload's
+    ``m (a − g)`` reversed, and its component along the cable (tip → payload)."""
+    b = C.n_arm - 1
+    f = scale(take(store, b, F_), -1.0)
+    rho = take(store, b, RC_)
+    return f, dot(f, rho) / sqrt(dot(rho, rho))
