@@ -13,9 +13,10 @@ from numpy import cos, sin, sqrt
 
 from offshore_crane.dynamics.formulas import F_, RC_
 from offshore_crane.robot.kinematics.formulas import (add, arm_child, arm_joint, attitude, axpy,
-                                                      cross, dot, mat3, mtv, mv,
-                                                      platform_rates, point_acceleration,
-                                                      row3, scale, sub, take)
+                                                      axis_rotation, cross, dot, mat3, mm,
+                                                      mtv, mv, platform_rates,
+                                                      point_acceleration, row3, scale, sub,
+                                                      take)
 
 
 def tip_motion(C, q, qd, qdd):
@@ -115,3 +116,43 @@ def cable_force(C, store):
     f = scale(take(store, b, F_), -1.0)
     rho = take(store, b, RC_)
     return f, dot(f, rho) / sqrt(dot(rho, rho))
+
+
+def tip_state(C, q, qd):
+    """The tip's (``arm_tip`` origin's) position [m] and velocity [m/s] in the base frame,
+    under the robot's ``q, q̇`` (the arm chain ``C`` continued by the two sway joints)."""
+    R, w4, w5, w6 = attitude(q)
+    omega = platform_rates(w4, w5, qd, qd)[0]          # ω needs no acceleration
+    p = (q[0], q[1], q[2])
+    v = (qd[0], qd[1], qd[2])
+    nb = C.n_arm - 2
+    for b in range(nb):
+        axis = row3(C.arm_axis, b)
+        r, Rj, z = arm_joint(R, mat3(C.arm_Ro, b), row3(C.arm_t, b), axis)
+        p = add(p, r)
+        v = add(v, cross(omega, r))
+        if C.arm_prism[b]:
+            off = scale(z, q[6 + b])
+            p = add(p, off)
+            v = axpy(qd[6 + b], z, add(v, cross(omega, off)))
+            R = Rj
+        else:
+            R = mm(Rj, axis_rotation(axis, cos(q[6 + b]), sin(q[6 + b])))
+            omega = axpy(qd[6 + b], z, omega)
+    r = arm_joint(R, mat3(C.arm_Ro, nb), row3(C.arm_t, nb), row3(C.arm_axis, nb))[0]
+    return add(p, r), add(v, cross(omega, r))
+
+
+def cable_tension(rho, rhod, L, Ld, EA, c):
+    """An elastic cable's law, before the clamp: ``(T, s, u)``.
+
+    The payload at ``rho`` [m] from the tip, moving at ``rhod`` [m/s] relative to it
+    (base axes); unstretched length ``L`` [m] paid out at ``Ld`` [m/s]; axial stiffness
+    ``EA`` [N] (spring ``EA / L`` [N/m]) and damping ``c`` [N·s/m]. ``s = |ρ| − L`` the
+    stretch [m], ``u = ρ / |ρ|`` the cable's direction (tip → payload) and
+    ``T = EA s / L + c ṡ`` with ``ṡ = u · ρ̇ − L̇``. The cable pulls only when taut and
+    pulling (``s > 0`` and ``T > 0``; else the tension is zero: the caller clamps)."""
+    d = sqrt(dot(rho, rho))
+    u = scale(rho, 1.0 / d)
+    s = d - L
+    return EA / L * s + c * (dot(u, rhod) - Ld), s, u

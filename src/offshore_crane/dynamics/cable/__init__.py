@@ -42,12 +42,16 @@ import numpy as np
 
 from offshore_crane import progress
 from offshore_crane.conventions import GRAVITY
-from offshore_crane.errors import (InputError, ModelError, NumericalError, SingularConfigurationError,
-                     SlackCableError)
+from offshore_crane.errors import (InputError, NumericalError, SingularConfigurationError,
+                                   SlackCableError)
 from offshore_crane.robot.kinematics import workspace as ws
-from offshore_crane.validation import as_gravity, as_pair, as_samples, check_memory, uniform_step
+from offshore_crane.validation import as_gravity, as_pair, as_samples
 from offshore_crane.dynamics.cable.hoist import hoist_grid, hoist_profile
 from offshore_crane.dynamics.cable.result import CableResult
+from offshore_crane.dynamics.cable.grid import (cable_robot, motion_samples, stage_grid,
+                                                uniform_times)
+from offshore_crane.dynamics.cable.forces import kane_forces
+from offshore_crane.dynamics.cable.elastic import ElasticResult, elastic_inverse_dynamics
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -55,124 +59,14 @@ if TYPE_CHECKING:
     from offshore_crane.robot import Robot
 
 __all__ = ["CableResult", "METHODS", "SLACK", "cable_robot", "hoist_grid", "hoist_profile",
-           "inverse_dynamics", "stage_grid", "sway_accelerations", "swing", "warm_up"]
+           "inverse_dynamics", "kane_forces", "stage_grid", "sway_accelerations", "swing",
+           "uniform_times", "warm_up", "ElasticResult", "elastic_inverse_dynamics"]
 
 METHODS = ("kane", "pinocchio")
 SLACK = ("error", "warn")
 
 
 # --------------------------------------------------------------------------- helpers
-def _quintic_midpoints(t, q, qd, qdd, sub: int):
-    """The motion at the ``2 sub − 1`` interior stage points of each interval (spacing
-    ``h / 2``, ``h = Δt / sub``) by quintic Hermite interpolation of ``q, q̇, q̈`` at the
-    interval's ends; returns the whole stage grid ``(2 sub (N − 1) + 1, 9)`` × 3."""
-    dt = np.diff(t)[:, None, None]                         # (N-1, 1, 1)
-    s = (np.arange(2 * sub + 1) / (2 * sub))[None, :, None]   # (1, 2 sub + 1, 1)
-    s2, s3, s4, s5 = s ** 2, s ** 3, s ** 4, s ** 5
-    # basis functions (value, first, second derivative in s) of the quintic Hermite
-    H = [(1 - 10 * s3 + 15 * s4 - 6 * s5, -30 * s2 + 60 * s3 - 30 * s4,
-          -60 * s + 180 * s2 - 120 * s3),
-         (s - 6 * s3 + 8 * s4 - 3 * s5, 1 - 18 * s2 + 32 * s3 - 15 * s4,
-          -36 * s + 96 * s2 - 60 * s3),
-         (0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5, s - 4.5 * s2 + 6 * s3 - 2.5 * s4,
-          1 - 9 * s + 18 * s2 - 10 * s3),
-         (0.5 * s3 - s4 + 0.5 * s5, 1.5 * s2 - 4 * s3 + 2.5 * s4, 3 * s - 12 * s2 + 10 * s3),
-         (-4 * s3 + 7 * s4 - 3 * s5, -12 * s2 + 28 * s3 - 15 * s4, -24 * s + 84 * s2 - 60 * s3),
-         (10 * s3 - 15 * s4 + 6 * s5, 30 * s2 - 60 * s3 + 30 * s4, 60 * s - 180 * s2 + 120 * s3)]
-    ends = (q[:-1, None], qd[:-1, None] * dt, qdd[:-1, None] * dt ** 2, qdd[1:, None] * dt ** 2,
-            qd[1:, None] * dt, q[1:, None])
-    out = []
-    for d in range(3):
-        val = sum(Hk[d] * e for Hk, e in zip(H, ends)) / dt ** d
-        grid = val[:, :-1].reshape(-1, 9)
-        last = (q, qd, qdd)[d][-1:]
-        out.append(np.ascontiguousarray(np.concatenate([grid, last])))
-    for d, given in enumerate((q, qd, qdd)):       # the samples themselves, exactly
-        out[d][::2 * sub] = given
-    return out
-
-
-def _uniform_times(t, N: int) -> tuple[np.ndarray, float]:
-    t = np.asarray(t, dtype=float)
-    if t.shape != (N,):
-        raise InputError(f"t has shape {t.shape}; expected ({N},), one time per sample of q",
-                         name="t")
-    if N < 2:
-        raise InputError("the swing is integrated over time: give at least 2 samples",
-                         name="t")
-    if not np.isfinite(t).all():
-        k = int(np.argmax(~np.isfinite(t)))
-        raise InputError(f"t[{k}] is {t[k]}: every time must be finite", name="t", index=k)
-    return t, uniform_step(t, "the motion (the swing's RK4 steps along it)")
-
-
-def cable_robot(robot, length=None, mass=None):
-    """``robot``, or the same description with ``payload.cable_length`` and
-    ``payload.mass`` overridden, checked: the robot must carry a payload on a cable.
-
-    Raises:
-        InputError: ``length ≤ 0`` or ``mass ≤ 0`` given, or a robot without cable.
-    """
-    if length is not None or mass is not None:
-        over = {}
-        if length is not None:
-            if not (isinstance(length, (int, float)) and np.isfinite(length) and length > 0):
-                raise InputError(f"length = {length!r} m: the cable needs a finite length "
-                                 "> 0 (a welded payload is an ordinary robot: use "
-                                 "offshore_crane.inverse_dynamics)", name="length")
-            over["payload.cable_length"] = float(length)
-        if mass is not None:
-            if not (isinstance(mass, (int, float)) and np.isfinite(mass) and mass > 0):
-                raise InputError(f"mass = {mass!r} kg: the hanging payload needs a finite "
-                                 "mass > 0", name="mass")
-            over["payload.mass"] = float(mass)
-        from offshore_crane.robot import load_robot
-
-        if robot.spec is None:
-            raise InputError("length/mass overrides need a robot loaded from a description "
-                             "(load_robot), not from URDF text", name="robot")
-        robot = load_robot(robot.description_path, {**robot.overrides, **over})
-    if robot.hybrid.cable is None:
-        raise ModelError("this robot's payload is welded to arm_tip (payload.cable_length = "
-                         "0): give payload.cable_length > 0 and payload.mass > 0 "
-                         "(--set payload.cable_length=1.5, a scene's [payload]), or length= "
-                         "and mass=", element="payload.cable_length")
-    return robot
-
-
-def stage_grid(t, q, qd, qdd, reference, substeps: int):
-    """The robot's motion at RK4's stage times (every half step): ``(tt, Q, Qd, Qdd)``
-    with ``2 substeps (N − 1) + 1`` rows (see the module docstring); the samples' own rows
-    are the given ``q, qd, qdd``, only the points between them are evaluated."""
-    N = len(t)
-    rows = 2 * substeps * (N - 1) + 1
-    check_memory(8.0 * 28 * rows, f"the swing's stage grid ({N} samples × {substeps} "
-                 "substeps)", "lower substeps (--substeps) or the sample count",
-                 "substeps")
-    h = (t[-1] - t[0]) / (N - 1) / substeps
-    tt = t[0] + np.arange(2 * substeps * (N - 1) + 1) * (0.5 * h)
-    tt[::2 * substeps] = t
-    if reference is None:
-        return (tt, *_quintic_midpoints(t, q, qd, qdd, substeps))
-    between = np.ones(len(tt), dtype=bool)
-    between[::2 * substeps] = False
-    grid = []
-    for name, x, given in zip(("q", "qd", "qdd"), reference(tt[between]), (q, qd, qdd)):
-        x = np.asarray(x, dtype=float)
-        if x.shape != (int(between.sum()), 9):
-            raise InputError(f"reference(t) returned {name} of shape {x.shape}; expected "
-                             f"({int(between.sum())}, 9)", name="reference")
-        if not np.isfinite(x).all():
-            k = int(np.argmax(~np.isfinite(x).all(axis=1)))
-            raise InputError(f"reference(t) returned a non-finite {name} at t = "
-                             f"{tt[between][k]:.6g} s", name="reference", index=k)
-        full = np.empty((len(tt), 9))
-        full[between] = x
-        full[~between] = given
-        grid.append(full)
-    return (tt, *grid)
-
-
 # --------------------------------------------------------------------------- public
 def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, *,
                      t: ArrayLike, reference=None, gravity: ArrayLike = GRAVITY,
@@ -230,14 +124,7 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
         raise InputError(f"thresholds must be a Thresholds(warn, error), got {thresholds!r}",
                          name="thresholds")
     robot = cable_robot(robot, length, mass)
-    q, _ = as_samples("q", q)
-    qd, _ = as_samples("qd", qd)
-    qdd, _ = as_samples("qdd", qdd)
-    N = q.shape[0]
-    if qd.shape[0] != N or qdd.shape[0] != N:
-        raise InputError(f"q, qd, qdd have {N}, {qd.shape[0]}, {qdd.shape[0]} samples: give "
-                         "the same number", name="qd")
-    t, dt = _uniform_times(t, N)
+    q, qd, qdd, t, dt = motion_samples(q, qd, qdd, t)
     g = as_gravity(gravity)
     phi0 = as_pair(initial, "initial", "rad")
     rate0 = as_pair(initial_rate, "initial_rate", "rad/s")
@@ -261,7 +148,7 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
         Y, status = ref.integrate(robot, Q, Qd, Qdd, g, h, int(substeps), y0,
                                   1.0 / thresholds.error, None if hoist is None else Lh)
     code, stop, worst = int(status[0]), int(status[1]), float(status[2])
-    n = N if code == 0 else stop
+    n = len(t) if code == 0 else stop
     L = None if hoist is None else np.ascontiguousarray(Lh[::2 * int(substeps)][:n])
     res = _forces(robot, t[:n], q[:n], qd[:n], qdd[:n], Y[:n], g, method, limits, checks,
                   thresholds, worst, length_, mass_, h, L)
@@ -312,7 +199,7 @@ def _forces(robot, t, q, qd, qdd, Y, g, method, limits, checks, thresholds, wors
     ``(n, 3)`` the hoisted length, rate, acceleration, or None."""
     n = len(t)
     if method == "kane":
-        X, F, kappa = _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L)
+        X, F, kappa = kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L)
     else:
         from offshore_crane.dynamics.constants import cable_arrays
         from offshore_crane.robot.kinematics.workspace import Limits
@@ -336,36 +223,6 @@ def _forces(robot, t, q, qd, qdd, Y, g, method, limits, checks, thresholds, wors
         residual=F[:, 4:6].copy(), slack=np.zeros(n, dtype=bool),
         condition=kappa[0] if kappa is not None else np.full(n, np.nan),
         sway_condition=worst, length=length, mass=mass, method=method, step=h, hoist=L)
-
-
-def _kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None):
-    from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded
-    from offshore_crane.dynamics.cable import kernels as ck
-    from offshore_crane.dynamics.constants import cable_arrays
-
-    compiled_kernels()
-    arrays = cable_arrays(robot)
-    n = len(t)
-    q11 = np.ascontiguousarray(np.concatenate([q, Y[:, 0:2]], axis=1))
-    qd11 = np.ascontiguousarray(np.concatenate([qd, Y[:, 2:4]], axis=1))
-    qdd11 = np.ascontiguousarray(np.concatenate([qdd, Y[:, 4:6]], axis=1))
-    X = np.empty((n, 9))
-    F = np.empty((n, 6))
-    kappa = np.empty((3, n)) if checks else np.empty((3, 1))
-    if n == 0:
-        return X, F, kappa if checks else None
-
-    hoist = np.empty((0, 3)) if L is None else L
-
-    def run(start, stop, health):
-        ck.kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11,
-                qd11, qdd11, hoist, g, checks, limits, thresholds.warn, thresholds.error,
-                start, stop, X, kappa, health, F)
-
-    health = run_threaded(run, n, 1)
-    ws.enforce(health, (q, qd, qdd), arrays.limits if limits else None,
-               kappa if checks else None, thresholds, (ws.LEG_JACOBIAN, ws.GIMBAL), t)
-    return X, F, kappa if checks else None
 
 
 def _slack(res: CableResult, policy: str) -> None:
@@ -461,4 +318,5 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     length = robot.hybrid.cable_length
     inverse_dynamics(robot, q, 0 * q, 0 * q, limits=False, t=t,
                      hoist=lambda tt: (np.full(len(tt), length), 0 * tt, 0 * tt))
+    elastic_inverse_dynamics(robot, q, 0 * q, 0 * q, limits=False, t=t, ea=1e4)
     return [("hanging-load kernels", time.perf_counter() - t0)]

@@ -162,8 +162,8 @@ def _make(stamp):
                 T0[j] = T1[j]
 
     @jit
-    def kane(flat, lay, prism, damp, q, qd, qdd, L, g, want_cond, want_limits, warn, error,
-             start, stop, X, kappa, health, F):
+    def kane(flat, lay, prism, damp, q, qd, qdd, L, P, g, want_cond, want_limits, warn,
+             error, start, stop, X, kappa, health, F):
         """Samples ``start..stop-1`` of the fused Kane equations of the robot with its
         hanging payload: ``q, qd, qdd`` ``(N, 11)`` (the sway's in columns 9, 10); fills
         X ``(N, 9)`` and ``F`` ``(N, 6)``: the cable's pull on the tip (3) [N, base
@@ -175,7 +175,9 @@ def _make(stamp):
         the pull then comes from :func:`~offshore_crane.dynamics.sway.hoisted_pendulum`
         and enters X by ``kane_sample_pull``, and the residual is that of the hoisted
         sway equations at the given φ̈. ``(0, 3)``: the description's fixed length, the
-        payload the arm chain's last body."""
+        payload the arm chain's last body. ``P`` ``(N, 3)``: the pull on the tip given
+        [N] (an elastic cable; the sway columns are then not read, the residual is zero
+        and the tension is ``|P|``), or ``(0, 3)``."""
         if len(stamp) == 0:
             return
         C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
@@ -191,12 +193,19 @@ def _make(stamp):
         M = np.empty((6, 13))
         gt = (g[0], g[1], g[2])
         hoisted = L.shape[0] > 0
+        pulled = P.shape[0] > 0
         for k in range(start, stop):
             if not finite_inputs(q, qd, qdd, k, health):
                 for j in range(9):
                     X[k, j] = np.nan
                 continue
-            if hoisted:
+            if pulled:
+                f = (P[k, 0], P[k, 1], P[k, 2])
+                tension = np.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
+                kane_sample_pull(C, q[k], qd[k], qdd[k], gt, f, rows, A, rhs6, diag, store)
+                F[k, 4] = 0.0
+                F[k, 5] = 0.0
+            elif hoisted:
                 Rt, w, al, at = tip_motion(C, q[k], qd[k], qdd[k])
                 a1, a2, cos2, f, tension = hoisted_pendulum(
                     C, Rt, w, al, at, gt, q[k, 4 + na], q[k, 5 + na], qd[k, 4 + na],

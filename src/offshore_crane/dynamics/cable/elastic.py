@@ -1,0 +1,217 @@
+"""An elastic cable that can go slack and snap: the payload as a free point mass.
+
+Model (docs/cable.md): the payload (mass m, the robot description's ``payload.mass``) at
+``ρ`` from the tip (base axes), pulled towards it by a cable of unstretched length ``L``
+(``payload.cable_length``, or a winch's ``L(t)``), axial stiffness ``EA`` [N] (a spring
+``EA / L``) and damping ``c`` [N·s/m]: ``T = EA s / L + c ṡ`` for a stretch
+``s = |ρ| − L > 0`` when that is positive, else 0 (a cable does not push). Relative to
+the tip, ``ρ̈ = g − a_tip − (T / m) u``, ``u = ρ / |ρ|``: the robot's motion is
+prescribed, the payload's three coordinates free, slack phases simulated (the payload
+flies) and the snap on re-tension resolved by the integrator:
+
+- **step**: RK4 with ``substeps`` steps a sample interval, by default enough for
+  :data:`STEPS_PER_PERIOD` steps in the shortest axial period ``2π √(m L_min / EA)``;
+- **slack ↔ taut**: a step across which the cable changes state (the force's derivative
+  jumps there and RK4 drops to low order) is done again in :data:`REFINE` steps;
+- **checked**: the snap of a load released with slack against its closed form, the free
+  fall while slack, the energy balance, the rigid cable as ``EA → ∞``
+  (tests/dynamics/test_elastic_cable.py).
+
+X takes the pull ``T u`` as a force on the tip (``formulas.kane_sample_pull``), the same
+Kane pass the winch uses.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from offshore_crane import progress
+from offshore_crane.conventions import GRAVITY
+from offshore_crane.errors import InputError, NumericalError
+from offshore_crane.robot.kinematics import workspace as ws
+from offshore_crane.validation import as_gravity, as_samples
+
+#: RK4 steps in the shortest axial period by default: the axial oscillation's amplitude
+#: then drifts by ~1e-8 of itself a period (RK4's (ωh)⁶/144 per step at ωh = 2π/50).
+STEPS_PER_PERIOD = 50
+#: Steps a slack ↔ taut step is redone in: the kink's local error, O(h²) of the step,
+#: falls by REFINE² (measured: the analytic snap load to ~1e-6 at 50 steps a period).
+REFINE = 64
+
+
+@dataclass
+class ElasticResult:
+    """The robot's inverse dynamics with its payload on an elastic cable.
+
+    Attributes:
+        t: ``(N,)`` [s]. q, qd, qdd: ``(N, 9)`` the robot's prescribed motion.
+        X: ``(N, 9)`` actuator forces [N·m, N], the cable's pull included.
+        position, velocity: ``(N, 3)`` the payload from the tip [m] and relative to it
+            [m/s], base axes.
+        payload, payload_velocity: ``(N, 3)`` the payload in the base frame [m, m/s].
+        tension: ``(N,)`` [N] (0 while slack); stretch: ``(N,)`` ``|ρ| − L`` [m].
+        force_tip: ``(N, 3)`` the cable's pull on the tip [N], base axes.
+        hoist: ``(N, 3)`` the winch's L [m], L̇, L̈, or None (fixed length).
+        mass [kg], length [m] (unstretched, fixed), ea [N], damping [N·s/m].
+        static_tension: ``m |g|`` [N], what the ratios are taken against.
+        step: RK4's step [s]; substeps: steps a sample interval; refined: steps redone
+        at a slack ↔ taut change; axial_period: the shortest ``2π √(m L / EA)`` [s].
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    X: np.ndarray
+    position: np.ndarray
+    velocity: np.ndarray
+    payload: np.ndarray
+    payload_velocity: np.ndarray
+    tension: np.ndarray
+    stretch: np.ndarray
+    force_tip: np.ndarray
+    hoist: np.ndarray | None
+    mass: float
+    length: float
+    ea: float
+    damping: float
+    static_tension: float
+    step: float
+    substeps: int
+    refined: int
+    axial_period: float
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    @property
+    def slack(self) -> np.ndarray:
+        """``(N,)`` True where the cable does not pull."""
+        return ~(self.tension > 0.0)
+
+    @property
+    def tension_ratio(self) -> np.ndarray:
+        """``(N,)`` ``T / (m |g|)``: the slack criterion reads its minimum, the snap
+        load its maximum."""
+        return self.tension / self.static_tension
+
+    def time_slack(self) -> float:
+        """Time the cable spent slack [s] (samples' intervals, the sample's state held)."""
+        if len(self.t) < 2:
+            return 0.0
+        return float(np.diff(self.t)[self.slack[:-1]].sum())
+
+    def peak_tension(self) -> float:
+        """The largest tension [N], refined between samples by the parabola through the
+        largest sample and its neighbours (the snap's peak falls between samples)."""
+        T = self.tension
+        k = int(np.argmax(T))
+        if 0 < k < len(T) - 1:
+            a, b, c = T[k - 1], T[k], T[k + 1]
+            den = a - 2.0 * b + c
+            if den < 0.0:
+                return float(b - 0.125 * (c - a) ** 2 / den)
+        return float(T[k])
+
+
+def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float = 0.0,
+                             reference=None, gravity=GRAVITY, hoist=None, initial=None,
+                             initial_velocity=(0.0, 0.0, 0.0), substeps: int | None = None,
+                             limits: bool = True, checks: bool = True,
+                             thresholds: ws.Thresholds = ws.Thresholds()) -> ElasticResult:
+    """Actuator forces of the prescribed motion with the payload on an elastic cable.
+
+    Args:
+        robot: With a payload on a cable (``payload.cable_length > 0``: the unstretched
+            length, ``payload.mass``).
+        q, qd, qdd: ``(N, 9)`` the robot's motion [m, rad], rates, accelerations.
+        t: ``(N,)`` uniform times [s], N ≥ 2.
+        ea: Axial stiffness EA [N], finite and > 0.
+        damping: Axial damping c [N·s/m], ≥ 0.
+        reference: ``reference(t) -> (q, qd, qdd)`` at the midpoints (analytic motions);
+            None: quintic Hermite interpolation of the samples.
+        gravity: ``(3,)`` [m/s²], base frame.
+        hoist: A winch ``hoist(t) -> (L, L̇, L̈)`` (:func:`~.hoist.hoist_profile`), or
+            None: the fixed ``payload.cable_length``.
+        initial: ``(3,)`` the payload from the tip at ``t[0]`` [m], base axes; None:
+            hanging along g at the static stretch.
+        initial_velocity: ``(3,)`` relative to the tip [m/s].
+        substeps: RK4 steps a sample interval; None: :data:`STEPS_PER_PERIOD` a period.
+        limits, checks, thresholds: As :func:`offshore_crane.inverse_dynamics`.
+
+    Raises:
+        InputError: EA or c out of range, bad shapes, an initial position at the tip.
+        NumericalError: the payload reaches the tip (a non-finite state).
+        WorkspaceError, SingularConfigurationError: as the inverse dynamics.
+    """
+    from offshore_crane.dynamics import backends
+    from offshore_crane.dynamics.cable.forces import kane_forces
+    from offshore_crane.dynamics.cable.grid import cable_robot, motion_samples, stage_grid
+    from offshore_crane.dynamics.cable import elastic_kernels as ek
+    from offshore_crane.dynamics.cable.hoist import hoist_grid
+    from offshore_crane.dynamics.constants import cable_arrays
+    from offshore_crane.dynamics.runtime import compiled_kernels
+
+    for name, value, low, unit in (("ea", ea, "> 0", "N"), ("damping", damping, ">= 0",
+                                                            "N·s/m")):
+        ok = (isinstance(value, (int, float, np.floating)) and not isinstance(value, bool)
+              and math.isfinite(value) and (value > 0 if low == "> 0" else value >= 0))
+        if not ok:
+            raise InputError(f"cable {name} = {value!r} {unit}: give a finite number {low}",
+                             name=name)
+    robot = cable_robot(robot)
+    q, qd, qdd, t, dt = motion_samples(q, qd, qdd, t)
+    N = q.shape[0]
+    g = as_gravity(gravity)
+    m = float(robot.hybrid.cable.mass[-1])
+    L0 = float(robot.hybrid.cable_length)
+    tt, Q, Qd, Qdd = stage_grid(t, q, qd, qdd, reference, 1)
+    Lh = np.array([[L0, 0.0, 0.0]]) if hoist is None else hoist_grid(hoist, tt)
+    L_min = float(Lh[:, 0].min())
+    period = 2.0 * math.pi * math.sqrt(m * L_min / float(ea))
+    if substeps is None:
+        substeps = max(1, math.ceil(dt * STEPS_PER_PERIOD / period))
+    if isinstance(substeps, bool) or not isinstance(substeps, (int, np.integer)) or substeps < 1:
+        raise InputError(f"substeps = {substeps!r} must be an integer >= 1", name="substeps")
+    gn = float(np.linalg.norm(g))
+    if initial is None:
+        down = g / gn if gn > 0 else np.array([0.0, 0.0, -1.0])
+        initial = down * Lh[0, 0] * (1.0 + m * gn / float(ea))
+    rho0 = as_samples("initial", initial, width=3)[0].reshape(3)
+    rate0 = as_samples("initial_velocity", initial_velocity, width=3)[0].reshape(3)
+    if not np.linalg.norm(rho0) > 0:
+        raise InputError("initial = (0, 0, 0) m puts the payload at the tip: give its "
+                         "position from the tip", name="initial")
+    compiled_kernels()
+    arrays = cable_arrays(robot)
+    Y = np.full((N, 8), np.nan)
+    status = np.zeros(3)
+    y0 = np.concatenate([rho0, rate0])
+    progress.run_polled(
+        lambda: ek.integrate(arrays.flat, arrays.layout, arrays.prismatic, Q, Qd, Qdd, Lh,
+                             g, int(substeps), REFINE, dt, float(ea), float(damping), m, y0,
+                             Y, status),
+        lambda: progress.filled_rows(Y), N, "sample", "elastic cable")
+    if int(status[0]) != ek.OK:
+        k = int(status[1])
+        raise NumericalError(f"elastic cable: the payload's state is not finite at sample {k} "
+                             f"(t = {t[k]:.6g} s; it reached the tip?): check the motion "
+                             "and the cable", index=k, name="elastic")
+    rho = Y[:, 0:3]
+    pull = Y[:, 6:7] * rho / np.linalg.norm(rho, axis=1)[:, None]
+    zeros = np.zeros((N, 6))
+    X, F, kappa = kane_forces(robot, t, q, qd, qdd, zeros, g, limits, checks, thresholds,
+                               P=pull)
+    B = backends.NUMPY
+    p_tip, v_tip = (np.stack(x, axis=-1) for x in B.tip_state(cable_arrays(robot).kane,
+                                                              q.T, qd.T))
+    L = None if hoist is None else np.ascontiguousarray(Lh[::2])
+    return ElasticResult(
+        t=t, q=q, qd=qd, qdd=qdd, X=X, position=rho.copy(), velocity=Y[:, 3:6].copy(),
+        payload=p_tip + rho, payload_velocity=v_tip + Y[:, 3:6], tension=Y[:, 6].copy(),
+        stretch=Y[:, 7].copy(), force_tip=pull, hoist=L, mass=m, length=L0, ea=float(ea),
+        damping=float(damping), static_tension=m * gn, step=dt / substeps,
+        substeps=int(substeps), refined=int(status[2]), axial_period=period)

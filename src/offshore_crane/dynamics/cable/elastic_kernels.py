@@ -1,0 +1,170 @@
+"""Compiled driver of the elastic cable (:mod:`offshore_crane.dynamics.cable.elastic`;
+imports Numba).
+
+The payload is a point mass whose position ``ρ`` from the tip and velocity ``ρ̇`` relative
+to it (base axes) obey ``ρ̈ = g − a_tip − (T / m) u`` with the cable's law
+:func:`~offshore_crane.dynamics.sway.cable_tension` clamped to a cable that only pulls.
+Classical RK4 runs ``sub`` steps per sample interval; the tip's acceleration (from
+:func:`~offshore_crane.dynamics.sway.tip_motion`) and the winch's length are given at
+the interval's ends and middle and interpolated quadratically between (exact at those
+three points, so ``sub = 1`` is plain RK4 on the stage grid). A step across which the
+cable goes slack or taut (the force's derivative jumps there, RK4's order drops) is done
+again in ``refine`` steps.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from offshore_crane.dynamics import compiled as c
+from offshore_crane.dynamics.cable.kernels import jit, tip
+from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
+
+cable_tension = c.K.cable_tension
+unpack = c.unpack
+#: Stop codes (``status[0]``): none, a non-finite state (the payload at the tip).
+OK, DIVERGED = 0, 2
+
+
+def _helpers(stamp):
+    """The step's pieces, closed over the formulas' hash only; the driver reaches them
+    as module globals (a jitted closure variable would defeat the disk cache)."""
+
+    @jit
+    def quadratic(y0, ym, y1, theta):
+        """The parabola through ``(0, y0), (½, ym), (1, y1)`` at ``theta``."""
+        return (y0 * (1.0 - theta) * (1.0 - 2.0 * theta) + 4.0 * ym * theta * (1.0 - theta)
+                + y1 * theta * (2.0 * theta - 1.0))
+
+    @jit
+    def forcing(A, Lr, theta, aT, Lt):
+        """The tip's acceleration ``aT`` (3,) and the winch's ``(L, L̇)`` ``Lt`` (2,) at
+        the fraction ``theta`` of the interval: ``A`` (3, 3) and ``Lr`` (3, 3) hold them
+        at its start, middle and end (rows)."""
+        if len(stamp) == 0:
+            return
+        for j in range(3):
+            aT[j] = quadratic(A[0, j], A[1, j], A[2, j], theta)
+        for j in range(2):
+            Lt[j] = quadratic(Lr[0, j], Lr[1, j], Lr[2, j], theta)
+
+    @jit
+    def rhs(aT, g, y, Lt, EA, damping, m, out):
+        """``out = (ρ̇, ρ̈)``; returns the tension [N] (0 slack)."""
+        if len(stamp) == 0:
+            return 0.0
+        T, s, u = cable_tension((y[0], y[1], y[2]), (y[3], y[4], y[5]), Lt[0], Lt[1], EA,
+                                damping)
+        if not (s > 0.0 and T > 0.0):
+            T = 0.0
+        for j in range(3):
+            out[j] = y[3 + j]
+            out[3 + j] = g[j] - aT[j] - T / m * u[j]
+        return T
+
+    @jit
+    def steps(A, Lr, g, y, theta0, dtheta, n, dt, EA, damping, m, w):
+        """``n`` RK4 steps of ``dtheta`` (fractions of the interval ``dt`` [s]) from
+        ``theta0``, in place; ``w`` (8, 6) workspace. Returns True when the cable's state
+        (taut or slack) flipped in one of them (with ``n = 1``: in the step)."""
+        if len(stamp) == 0:
+            return False
+        aT, Lt = w[6, 0:3], w[7, 0:2]
+        k1, k2, k3, k4, ys = w[0], w[1], w[2], w[3], w[4]
+        h = dtheta * dt
+        flipped = False
+        for i in range(n):
+            th = theta0 + i * dtheta
+            forcing(A, Lr, th, aT, Lt)
+            before = rhs(aT, g, y, Lt, EA, damping, m, k1) > 0.0
+            forcing(A, Lr, th + 0.5 * dtheta, aT, Lt)
+            rk4_stage(y, k1, 0.5 * h, ys)
+            rhs(aT, g, ys, Lt, EA, damping, m, k2)
+            rk4_stage(y, k2, 0.5 * h, ys)
+            rhs(aT, g, ys, Lt, EA, damping, m, k3)
+            forcing(A, Lr, th + dtheta, aT, Lt)
+            rk4_stage(y, k3, h, ys)
+            rhs(aT, g, ys, Lt, EA, damping, m, k4)
+            rk4_combine(y, h, k1, k2, k3, k4)
+            after = rhs(aT, g, y, Lt, EA, damping, m, w[5]) > 0.0
+            flipped = flipped or (before != after)
+        return flipped
+
+    return quadratic, forcing, rhs, steps
+
+
+quadratic, forcing, rhs, steps = _helpers(c.STAMP)
+
+
+def _make(stamp):
+
+    @jit
+    def integrate(flat, lay, prism, Qh, Qdh, Qddh, Lh, g, sub, refine, dt, EA, damping, m,
+                  y0, Y, status):
+        """RK4 of the payload from ``y0`` (6,) = ρ [m], ρ̇ [m/s] (base axes, relative to
+        the tip) along the samples ``dt`` [s] apart, ``sub`` steps an interval (a step
+        that flips the cable's state redone in ``refine``); ``Qh, Qdh, Qddh``
+        ``(2 N − 1, 9)`` the robot's motion at the samples and midpoints, ``Lh`` the
+        winch's ``(L, L̇, L̈)`` there ``(2 N − 1, 3)`` (or ``(1, 3)``: fixed). Writes ``Y``
+        ``(N, 8)``: ρ, ρ̇, the tension [N] and the stretch [m]; ``status`` (3,): stop
+        code, the sample of the stop, the count of refined steps."""
+        if len(stamp) == 0:
+            return
+        C = unpack(flat, lay, prism)[0]
+        gt = np.array([g[0], g[1], g[2]])
+        q = np.empty(9)
+        qd = np.empty(9)
+        qdd = np.empty(9)
+        T = np.empty((3, 18))
+        A = np.empty((3, 3))
+        Lr = np.empty((3, 3))
+        w = np.empty((8, 6))
+        y = y0.copy()
+        keep = np.empty(6)
+        N = Y.shape[0]
+        status[0] = OK
+        status[1] = -1
+        status[2] = 0.0
+        dtheta = 1.0 / sub
+        for k in range(N):
+            aT, Lt = w[6, 0:3], w[7, 0:2]
+            tip(C, Qh, Qdh, Qddh, 2 * k, q, qd, qdd, T[0])
+            r = 2 * k if Lh.shape[0] > 1 else 0
+            for j in range(3):
+                aT[j] = T[0, 15 + j]
+            Lt[0] = Lh[r, 0]
+            Lt[1] = Lh[r, 1]
+            tension = rhs(aT, gt, y, Lt, EA, damping, m, w[5])
+            finite = True
+            for j in range(6):
+                Y[k, j] = y[j]
+                finite = finite and np.isfinite(y[j])
+            Y[k, 6] = tension
+            Y[k, 7] = np.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]) - Lt[0]
+            if not finite or not np.isfinite(tension):
+                status[0] = DIVERGED
+                status[1] = k
+                return
+            if k == N - 1:
+                break
+            tip(C, Qh, Qdh, Qddh, 2 * k + 1, q, qd, qdd, T[1])
+            tip(C, Qh, Qdh, Qddh, 2 * k + 2, q, qd, qdd, T[2])
+            for i in range(3):
+                ri = 2 * k + i if Lh.shape[0] > 1 else 0
+                for j in range(3):
+                    A[i, j] = T[i, 15 + j]
+                    Lr[i, j] = Lh[ri, j]
+            for i in range(sub):
+                for j in range(6):
+                    keep[j] = y[j]
+                if steps(A, Lr, gt, y, i * dtheta, dtheta, 1, dt, EA, damping, m, w):
+                    for j in range(6):
+                        y[j] = keep[j]
+                    steps(A, Lr, gt, y, i * dtheta, dtheta / refine, refine, dt, EA,
+                          damping, m, w)
+                    status[2] += 1.0
+
+    return integrate
+
+
+integrate = _make(c.STAMP)
