@@ -750,7 +750,47 @@ CASES = [
     Case("cable-flags-without-cable", "--initial-sway on a welded payload", oc.InputError,
          r"--initial-sway: applies to a payload on a cable",
          cli=lambda tmp: ["id", "--duration", "1", "--initial-sway", "0.1", "0"]),
+    # ---- the real lift (issue 23): the winch and the elastic cable
+    Case("cable-negative-ea", "an elastic cable of negative axial stiffness", oc.SceneError,
+         r"\[cable\] ea = -5: must be > 0 N",
+         lib=lambda tmp: scenes.load_scene(_lift(tmp, ea="-5.0")),
+         cli=lambda tmp: ["id", "--scene", str(_lift(tmp, ea="-5.0")), "--out",
+                          str(tmp / "out" / "x.csv")]),
+    Case("cable-ea-library", "elastic_inverse_dynamics(ea=-1)", oc.InputError,
+         r"cable ea = -1\.0 N: give a finite number > 0",
+         lib=lambda tmp: oc.dynamics.cable.elastic_inverse_dynamics(
+             _crane(), *_states(), t=np.arange(5) * 0.01, ea=-1.0)),
+    Case("winch-without-capacities", "[cable] winch = true on a description without "
+         "actuators.winch", oc.SceneError,
+         r"winch = true, but the robot description gives no winch capacities",
+         lib=lambda tmp: scenes.run(scenes.load_scene(_lift(tmp, capacities=False))),
+         cli=lambda tmp: ["id", "--scene", str(_lift(tmp, capacities=False)), "--out",
+                          str(tmp / "out" / "x.csv")]),
+    Case("winch-without-hoist-column", "[cable] winch = true with 4-column waypoints",
+         oc.SceneError, r"winch = true needs the hoist column in \[operation\]",
+         lib=lambda tmp: scenes.load_scene(_lift(tmp, hoist=False))),
+    Case("hoist-column-without-winch", "a fifth waypoint column without [cable] winch",
+         oc.SceneError, r"have a fifth column .*set \[cable\] winch = true",
+         lib=lambda tmp: scenes.load_scene(_lift(tmp, winch="false"))),
+    Case("hoist-profile-bad-length", "a hoist of length 0 m in a library profile",
+         oc.InputError, "hoist waypoints need increasing times and lengths > 0 m",
+         lib=lambda tmp: oc.dynamics.cable.hoist_profile([(0.0, 1.0), (2.0, 0.0)])),
 ]
+
+
+def _lift(tmp: Path, ea: str = "1.25e4", winch: str = "true", hoist: bool = True,
+          capacities: bool = True) -> Path:
+    """scenes/winch_lift.toml with one thing changed."""
+    text = (_SCENES / "winch_lift.toml").read_text()
+    text = text.replace("ea = 1.25e4", f"ea = {ea}").replace("winch = true",
+                                                               f"winch = {winch}")
+    if not capacities:
+        head, rest = text.split("[actuators.winch]")
+        text = head + rest[rest.index("[cable]"):]
+    if not hoist:
+        text = text[:text.index("\n[operation]") + 1] + (
+            "[operation]\nwaypoints = [[0, 0.0, 0.0, 0.0], [5, 0.5, 0.0, 0.0]]\n")
+    return _bytes(tmp, "lift.toml", text.encode())
 
 
 def _scene_with_description(tmp: Path) -> Path:

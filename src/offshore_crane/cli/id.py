@@ -117,7 +117,7 @@ def run(args) -> int:
     if cable is not None:
         from offshore_crane.outputs.report import cable_summary
 
-        say(cable_summary(cable))
+        say(cable_summary(cable, robot.winch))
     status = 0
     first = _METHOD_LABELS[scene.methods[0]]
     for m, diff, scale, rel, i, j in scenes.compare_methods(done):
@@ -128,7 +128,7 @@ def run(args) -> int:
             f"({'OK' if ok else 'FAIL'}, limit {RELATIVE_LIMIT:g})")
         status = status if ok else 1
         other = done.results[m].cable
-        if cable is not None and other is not None:
+        if cable is not None and other is not None and hasattr(cable, "sway"):
             say(f"{first} vs {_METHOD_LABELS[m]}: max |Δsway| = "
                 f"{np.abs(other.sway - cable.sway).max():.3e} rad, max |Δtension| = "
                 f"{np.abs(other.tension - cable.tension).max():.3e} N")

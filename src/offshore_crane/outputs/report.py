@@ -48,21 +48,63 @@ PLOT_FORMATS = FIGURE_FORMATS
 
 #: Columns added when the payload hangs on a cable (docs/cable.md).
 CABLE_COLUMNS = "phi1_rad,phi2_rad,tension_N"
+#: ... on an elastic cable: the payload from the tip, base axes.
+ELASTIC_COLUMNS = "rho_x_m,rho_y_m,rho_z_m,tension_N"
+#: ... with a winch: the cable's length, its rate, and the winch's line pull Fw.
+WINCH_COLUMNS = "L_m,Ld_m_s,Fw_N"
+
+
+def cable_columns(cable) -> tuple[str, np.ndarray]:
+    """``(header, (N, k) values)`` a hanging load adds to the CSV."""
+    if hasattr(cable, "sway"):
+        head, cols = CABLE_COLUMNS, [cable.sway, cable.tension]
+    else:
+        head, cols = ELASTIC_COLUMNS, [cable.position, cable.tension]
+    if cable.hoist is not None:
+        head += "," + WINCH_COLUMNS
+        cols += [cable.hoist[:, :2], cable.tension]
+    return head, np.column_stack(cols)
 
 
 def write_csv(target, t: np.ndarray, X: np.ndarray, cable=None) -> None:
     """Write ``t_s,T1_Nm,T2_Nm,Fs_N,Fl1_N,...,Fl6_N`` with 17 significant digits
-    (``target``: a path or a :class:`~offshore_crane.io.Target`); with a
-    :class:`~offshore_crane.dynamics.cable.CableResult`, also ``phi1_rad,phi2_rad,tension_N``."""
+    (``target``: a path or a :class:`~offshore_crane.io.Target`); with a hanging load the
+    columns of :func:`cable_columns` (sway and tension; the payload's position for an
+    elastic cable; the winch's L, L̇, Fw)."""
     if cable is None:
         io.write_csv(target, CSV_HEADER, np.column_stack([t, X]))
     else:
-        io.write_csv(target, f"{CSV_HEADER},{CABLE_COLUMNS}",
-                     np.column_stack([t, X, cable.sway, cable.tension]))
+        head, values = cable_columns(cable)
+        io.write_csv(target, f"{CSV_HEADER},{head}", np.column_stack([t, X, values]))
 
 
-def cable_summary(cable) -> str:
-    """Lines on the hanging load: largest sway, smallest and largest tension, and when."""
+def lift_lines(cable, winch=None) -> list[str]:
+    """The lift's lines: tension against the static tension (slack, snap), time slack,
+    and the winch's demand against ``winch`` (:class:`WinchCapacities`) when hoisted."""
+    from offshore_crane.dynamics.cable import lift_metrics
+
+    m = lift_metrics(cable)
+    lines = [f"lift: tension {m.tension_min:.4g}..{m.tension_max:.4g} N = "
+             f"{m.ratio_min:.3g}..{m.ratio_max:.3g} × m g ({m.static_tension:.4g} N); slack "
+             f"for {m.time_slack:.3g} s"]
+    if cable.hoist is not None:
+        use = m.winch_utilisation(winch) if winch is not None else {}
+
+        def of(name, value, unit):
+            u = use.get(name, float("nan"))
+            return f"{value:.4g} {unit}" + ("" if u != u else f" ({100 * u:.0f} %)")
+        lines.append("winch: peak pull " + of("pull", m.winch_pull, "N") + ", speed "
+                     + of("speed", m.winch_speed, "m/s") + ", acceleration "
+                     + of("acceleration", m.winch_acceleration, "m/s²") + ", power "
+                     + of("power", m.winch_power, "W") + " of its capacities")
+    return lines
+
+
+def cable_summary(cable, winch=None) -> str:
+    """Lines on the hanging load: largest sway, smallest and largest tension, and when;
+    the lift's figures (:func:`lift_lines`)."""
+    if not hasattr(cable, "sway"):
+        return elastic_summary(cable, winch)
     t = cable.t
     angle = cable.sway_angle
     k = int(np.argmax(angle))
@@ -78,7 +120,25 @@ def cable_summary(cable) -> str:
     if cable.slack.any():
         lines.append(f"SLACK CABLE at {int(cable.slack.sum())} samples (first t = "
                      f"{t[int(np.argmax(cable.slack))]:.2f} s): the model does not hold there")
+    if cable.hoist is not None:
+        lines += lift_lines(cable, winch)
     return "\n".join(lines)
+
+
+def elastic_summary(cable, winch=None) -> str:
+    """Lines on a payload on an elastic cable: its stiffness and step, its largest angle
+    from the vertical and stretch, and the lift's figures (:func:`lift_lines`)."""
+    t, rho = cable.t, cable.position
+    down = np.degrees(np.arccos(np.clip(-rho[:, 2] / np.linalg.norm(rho, axis=1), -1, 1)))
+    k = int(np.argmax(down))
+    j = int(np.argmax(cable.stretch))
+    lines = [f"hanging load: {cable.mass:g} kg on an elastic cable, EA {cable.ea:.4g} N, "
+             f"damping {cable.damping:.4g} N·s/m, {cable.length:g} m unstretched (axial "
+             f"period {cable.axial_period * 1e3:.3g} ms, RK4 step {cable.step:.3g} s, "
+             f"{cable.refined} slack/taut steps redone)",
+             f"payload: max {down[k]:.4g}° from the vertical below the tip at t = {t[k]:.2f} s;"
+             f" max stretch {1e3 * cable.stretch[j]:.4g} mm at t = {t[j]:.2f} s"]
+    return "\n".join(lines + lift_lines(cable, winch))
 
 
 def pyplot(purpose: str = "--plot"):
@@ -111,10 +171,16 @@ def plot(path, t: np.ndarray, X: np.ndarray, title: str = "", cable=None) -> Non
     axes[1].set_ylabel("arm torque [N·m]")
     axes[2].plot(t, X[:, 2], label="Fs", color="k")
     axes[2].set_ylabel("slider force [N]")
-    if cable is not None:
+    if cable is not None and hasattr(cable, "sway"):
         axes[3].plot(t, np.degrees(cable.sway[:, 0]), label="phi1")
         axes[3].plot(t, np.degrees(cable.sway[:, 1]), label="phi2")
         axes[3].set_ylabel("sway [deg]")
+    elif cable is not None:                     # an elastic cable: the payload's angle
+        rho = cable.position
+        axes[3].plot(t, np.degrees(np.arccos(np.clip(-rho[:, 2] / np.linalg.norm(
+            rho, axis=1), -1, 1))), label="from the vertical")
+        axes[3].set_ylabel("cable angle [deg]")
+    if cable is not None:
         axes[4].plot(t, cable.tension, label="tension", color="k")
         axes[4].set_ylabel("cable tension [N]")
     finish_figure(fig, axes, path, title)

@@ -91,6 +91,15 @@ class Robot:
         return LoadLimits() if self.spec is None else self.spec.load_limits
 
     @property
+    def winch(self):
+        """The winch's capacities
+        (:class:`~offshore_crane.robot.description.WinchCapacities`; all ``inf`` when the
+        description gives none)."""
+        from offshore_crane.robot.description import WinchCapacities
+
+        return WinchCapacities() if self.spec is None else self.spec.winch
+
+    @property
     def capacities(self):
         """The actuators' capacities (:class:`~offshore_crane.robot.description.Capacities`,
         in the order of X; ``inf`` where the description gives none)."""

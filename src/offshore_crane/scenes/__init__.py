@@ -104,4 +104,4 @@ from offshore_crane.scenes.keys import (SECTIONS, TOP_KEYS, SUBSYSTEM_KEYS, PAYL
                                         SEA_REQUIRED, OPERATION_KEYS, SEA_DURATION, SEA_RATE,
                                         CONTROL_KEYS, CONTROLLER_KEYS, SCENE_FIELDS,
                                         FIDELITY_REPEAT)
-from offshore_crane.scenes.scene import Payload, Scene, sea_arguments, check_scene
+from offshore_crane.scenes.scene import Payload, Scene, sea_arguments, check_scene, hoist_waypoints

@@ -16,7 +16,7 @@ SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
 PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length", "sway_damping", "limits")
 #: [payload.limits] keys: the hanging load's limits judged by ``size``.
 LOAD_LIMIT_KEYS = ("sway_max_deg", "tension_ratio_min", "tension_max")
-CABLE_KEYS = ("initial", "initial_rate", "substeps", "slack")
+CABLE_KEYS = ("initial", "initial_rate", "substeps", "slack", "ea", "damping", "winch")
 INERTIA_KEYS = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
 TRAJECTORY_KEYS = ("source", "duration", "rate", "fd_order")
 SEA_KEYS = ("hs", "tp", "heading", "scale", "vessel", "kind", "gamma", "spreading",

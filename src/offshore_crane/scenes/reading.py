@@ -241,11 +241,11 @@ def _sea(where: str, data: dict, base: Path | None) -> dict:
     if "waypoints" in o.table:
         w = o.get("waypoints")
         if (not isinstance(w, list) or not w or any(
-                not isinstance(row, list) or len(row) != 4 or any(
-                    isinstance(x, bool) or not isinstance(x, (int, float))
-                    or not math.isfinite(x) for x in row) for row in w)):
+                not isinstance(row, list) or len(row) != len(w[0]) or len(row) not in (4, 5)
+                or any(isinstance(x, bool) or not isinstance(x, (int, float))
+                       or not math.isfinite(x) for x in row) for row in w)):
             o.fail("waypoints", "must be a list of [t, q7, q8, q9] rows of finite numbers "
-                   "[s, rad, rad, m]")
+                   "[s, rad, rad, m] (with a winch: [t, q7, q8, q9, L], L [m])")
         operation = tuple(tuple(float(x) for x in row) for row in w)
     return dict(sea=sea, operation=operation)
 
@@ -305,7 +305,9 @@ def _control(where: str, data: dict) -> dict:
 
 def _cable(where: str, data: dict) -> dict:
     """The ``[cable]`` section: :func:`offshore_crane.dynamics.cable.inverse_dynamics`'s
-    ``initial``, ``initial_rate``, ``substeps`` and ``slack``, checked."""
+    ``initial``, ``initial_rate``, ``substeps`` and ``slack``; an elastic cable's ``ea``
+    [N] and ``damping`` [N·s/m]; ``winch`` (the hoist column of ``[operation]``),
+    checked."""
     from offshore_crane.dynamics.cable import SLACK
 
     r = _section(where, data, "cable", CABLE_KEYS)
@@ -321,6 +323,12 @@ def _cable(where: str, data: dict) -> dict:
         out["substeps"] = n
     if "slack" in r.table:
         out["slack"] = r.string("slack", choices=SLACK)
+    if "ea" in r.table:
+        out["ea"] = r.number("ea", None, "N", positive=True)
+    if "damping" in r.table:
+        out["damping"] = r.number("damping", None, "N·s/m", minimum=0.0)
+    if "winch" in r.table:
+        out["winch"] = r.boolean("winch", False)
     return out
 
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from offshore_crane.conventions import ACTUATORS
 from offshore_crane.scenes.assembly import load_robot, load_trajectory
-from offshore_crane.scenes.scene import Scene
+from offshore_crane.scenes.scene import Scene, hoist_waypoints
 
 
 @dataclass
@@ -60,15 +60,47 @@ CABLE_METHODS = {"kane": "kane", "rnea": "pinocchio"}
 def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, checks: bool = True,
            thresholds=None, **ignored):
     """A scene with a payload on a cable: :func:`offshore_crane.dynamics.cable.swing` (the
-    ``[cable]`` options; ``backend`` and ``threads`` do not apply), as a
-    :class:`~offshore_crane.dynamics.Result` holding the :class:`CableResult`."""
-    from offshore_crane.dynamics.cable import swing
+    ``[cable]`` options; ``backend`` and ``threads`` do not apply), with a winch when
+    ``[cable] winch = true`` (the hoist column of ``[operation]``), or on an elastic cable
+    when ``[cable] ea`` is given (:func:`~offshore_crane.dynamics.cable.elastic_inverse_dynamics`,
+    Kane's path only), as a :class:`~offshore_crane.dynamics.Result` holding the
+    :class:`CableResult` or :class:`ElasticResult`.
+
+    Raises:
+        SceneError: a winch whose capacities the description does not give; an elastic
+            cable asked of the Pinocchio reference.
+    """
+    from offshore_crane.dynamics.cable import elastic_inverse_dynamics, hoist_profile, swing
     from offshore_crane.dynamics import Result
+    from offshore_crane.errors import SceneError
     from offshore_crane.robot.kinematics.workspace import Thresholds
 
-    res = swing(robot, traj, method=CABLE_METHODS[method], gravity=scene.gravity,
-                limits=limits, checks=checks, thresholds=thresholds or Thresholds(),
-                **scene.cable)
+    options = {k: v for k, v in scene.cable.items() if k not in ("ea", "damping", "winch")}
+    checked = dict(gravity=scene.gravity, limits=limits, checks=checks,
+                   thresholds=thresholds or Thresholds())
+    waypoints = hoist_waypoints(scene)
+    if waypoints is not None:
+        if not robot.winch.given():
+            raise SceneError(f"{scene.where()}: [cable] winch = true, but the robot "
+                             "description gives no winch capacities: set actuators.winch."
+                             "pull_max, speed_max, acceleration_max, power_max ([actuators."
+                             "winch] in the scene)", path=scene.path, name="cable.winch")
+        options["hoist"] = hoist_profile(waypoints)
+    if "ea" in scene.cable:
+        if method != "kane":
+            raise SceneError(f"{scene.where()}: the elastic cable ([cable] ea) has Kane's "
+                             f"path only: use methods = [\"kane\"], not {method!r}",
+                             path=scene.path, name="methods")
+        elastic = {k: v for k, v in options.items() if k in ("substeps", "hoist")}
+        res = elastic_inverse_dynamics(
+            robot, traj.q, traj.qd, traj.qdd, t=traj.t,
+            reference=traj.reference if traj.source is not None else None,
+            ea=scene.cable["ea"], damping=scene.cable.get("damping", 0.0), **elastic,
+            **checked)
+        return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
+                      condition=np.full(len(res.t), np.nan), gimbal=None, attitude=None,
+                      backend="numba", cable=res)
+    res = swing(robot, traj, method=CABLE_METHODS[method], **checked, **options)
     return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
                   condition=res.condition, gimbal=None, attitude=None,
                   backend="numba" if method == "kane" else "pinocchio", cable=res)

@@ -227,6 +227,15 @@ def _check_sea(scene: "Scene") -> None:
     def fail(key, message):
         raise SceneError(f"{where}: {message}", path=scene.path, name=key)
 
+    hoisted = scene.operation is not None and len(scene.operation[0]) == 5
+    if scene.cable.get("winch") and not hoisted:
+        fail("cable.winch", "[cable] winch = true needs the hoist column in [operation] "
+             "waypoints: rows [t, q7, q8, q9, L] with L the cable length [m]")
+    if hoisted and not scene.cable.get("winch"):
+        fail("operation.waypoints", "[operation] waypoints have a fifth column (the cable "
+             "length L): set [cable] winch = true to hoist the load")
+    if hoisted and min(row[4] for row in scene.operation) <= 0.0:
+        fail("operation.waypoints", "[operation] the hoist column L must stay > 0 m")
     if scene.trajectory != "sea":
         if scene.sea:
             fail("sea", f"[sea] applies to [trajectory] source = \"sea\", not "
@@ -262,8 +271,16 @@ def sea_arguments(scene: "Scene") -> dict:
     args = dict(scene.sea)
     args["heading_deg"] = args.pop("heading", None)
     if scene.operation is not None:
-        args["operation"] = [list(row) for row in scene.operation]
+        args["operation"] = [list(row[:4]) for row in scene.operation]
     return args
+
+
+def hoist_waypoints(scene: "Scene") -> list | None:
+    """The winch's ``[(t [s], L [m]), ...]`` from the hoist column of ``[operation]``
+    (``[cable] winch = true``), or None."""
+    if not scene.cable.get("winch") or scene.operation is None:
+        return None
+    return [(row[0], row[4]) for row in scene.operation]
 
 
 def _check_values(scene: Scene) -> None:

@@ -52,6 +52,7 @@ from offshore_crane.dynamics.cable.grid import (cable_robot, motion_samples, sta
                                                 uniform_times)
 from offshore_crane.dynamics.cable.forces import kane_forces
 from offshore_crane.dynamics.cable.elastic import ElasticResult, elastic_inverse_dynamics
+from offshore_crane.dynamics.cable.lift import LiftMetrics, lift_metrics
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -60,7 +61,8 @@ if TYPE_CHECKING:
 
 __all__ = ["CableResult", "METHODS", "SLACK", "cable_robot", "hoist_grid", "hoist_profile",
            "inverse_dynamics", "kane_forces", "stage_grid", "sway_accelerations", "swing",
-           "uniform_times", "warm_up", "ElasticResult", "elastic_inverse_dynamics"]
+           "uniform_times", "warm_up", "ElasticResult", "elastic_inverse_dynamics",
+           "LiftMetrics", "lift_metrics"]
 
 METHODS = ("kane", "pinocchio")
 SLACK = ("error", "warn")

@@ -172,7 +172,7 @@ from offshore_crane.robot.description.schema import (FORMAT, DESCRIPTION_DIR, DE
                                                      leaf_components, field_names, schema_lookup)
 from offshore_crane.robot.description.values import as_boolean
 from offshore_crane.robot.description.results import (Capacities, Body, ArmJoint, Description,
-                                                     LoadLimits)
+                                                     LoadLimits, WinchCapacities)
 from offshore_crane.robot.description.loading import resolve, frozen, resolve_data
 from offshore_crane.robot.description.files import (description_dir, default_description, read_description,
                                                     read_toml, label)

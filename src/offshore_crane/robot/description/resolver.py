@@ -15,9 +15,10 @@ from offshore_crane.io import toml_value
 from offshore_crane.robot.description.files import label
 from offshore_crane.robot.description.geometry import rpy_angles, solid_inertia
 from offshore_crane.spatial import attitude_matrix
-from offshore_crane.robot.description.results import (ArmJoint, Body, Capacities, Description,
-                                                     LoadLimits)
-from offshore_crane.robot.description.schema import (ACTUATOR, ACTUATORS, ANCHOR_RTOL, ARM_BODIES,
+from offshore_crane.robot.description.capacities import (capacities, load_limits,
+                                                        winch_capacities)
+from offshore_crane.robot.description.results import ArmJoint, Body, Description
+from offshore_crane.robot.description.schema import (ANCHOR_RTOL, ARM_BODIES,
                                                      ARM_DRAW_RATIO, COM_RTOL, DISC_MARGIN,
                                                      DISC_THICKNESS, FORMAT, GIMBAL_LIMIT,
                                                      HOME_CONDITION_LIMIT, INERTIA_KEYS,
@@ -70,7 +71,7 @@ class Resolver:
         self._check_home(P, S, h, stroke, R_U, ulim)
         arm = self._arm()
         payload, cable, damping = self._payload(arm is not None)
-        caps = self._capacities()
+        caps = capacities(self.v.has, self.n.get, self.fail)
         return Description(
             name=self.v.raw.get("name", Path(self.path).stem), source=self.v.raw.get(
                 "source", ""), path=self.path, overrides=self.overrides, home_height=h,
@@ -78,7 +79,9 @@ class Resolver:
             upper=tuple(p[1] for p in parts), part_length=lengths, stroke=stroke,
             ujoint_limit=ulim, platform=platform, base_visual=self._base_visual(P),
             arm=arm, payload=payload, cable_length=cable, sway_damping=damping,
-            capacities=caps, values=dict(self.n.cache), load_limits=self._load_limits())
+            capacities=caps, values=dict(self.n.cache),
+            load_limits=load_limits(self.n.get, self.fail),
+            winch=winch_capacities(self.n.get, self.fail))
 
     # ------------------------------------------------------------------ anchors
     def _anchors(self, side: str, letter: str) -> np.ndarray:
@@ -446,38 +449,6 @@ class Resolver:
                           "payload.inertia to zero (the cable length is measured to the "
                           "centre of mass)", "payload.cable_length")
         return Body(m, com, I, {"type": "none"}), cable, damping
-
-    # ------------------------------------------------------------------ actuators
-    def _capacities(self) -> Capacities:
-        cols = {k: [] for k in ACTUATOR}
-        for name in ACTUATORS:
-            group = "Fl" if name.startswith("Fl") else name
-            for key in ACTUATOR:
-                own, common = f"actuators.{name}.{key}", f"actuators.{group}.{key}"
-                field_ = own if self.v.has(own) else common
-                x = self.n.get(field_, math.inf)
-                positive = key in ("speed_max", "power_max")
-                if x < 0.0 or (positive and x == 0.0):
-                    self.fail(field_, f"{x:g} must be {'> 0' if positive else '>= 0'}")
-                cols[key].append(x)
-        return Capacities(ACTUATORS, *(np.array(cols[k]) for k in ACTUATOR))
-
-    def _load_limits(self) -> LoadLimits:
-        """``payload.limits``: each given value checked (a sway angle in (0, 90]°, a
-        tension ratio in [0, 1), a tension > 0)."""
-        pre = "payload.limits"
-        sway = self.n.get(f"{pre}.sway_max_deg", math.inf)
-        if not (0.0 < sway <= 90.0 or sway == math.inf):
-            self.fail(f"{pre}.sway_max_deg", f"{sway:g}° must be in (0, 90]")
-        ratio = self.n.get(f"{pre}.tension_ratio_min", math.nan)
-        if not (math.isnan(ratio) or 0.0 <= ratio < 1.0):
-            self.fail(f"{pre}.tension_ratio_min", f"{ratio:g} must be in [0, 1) (a fraction "
-                      "of the static tension m·g, e.g. 0.1)")
-        tension = self.n.get(f"{pre}.tension_max", math.inf)
-        if not tension > 0.0:
-            self.fail(f"{pre}.tension_max", f"{tension:g} N must be > 0")
-        return LoadLimits(math.radians(sway) if sway != math.inf else math.inf, ratio,
-                          tension)
 
     def _base_visual(self, P):
         shape = self._shape("base.shape")

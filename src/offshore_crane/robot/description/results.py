@@ -39,6 +39,26 @@ class Capacities:
 
 
 @dataclass(frozen=True)
+class WinchCapacities:
+    """A winch's capacities (``actuators.winch``), each ``inf`` when not given.
+
+    Attributes:
+        pull_max: Largest line pull [N]. speed_max: largest |L̇| [m/s].
+        acceleration_max: Largest |L̈| [m/s²]. power_max: largest |Fw L̇| [W].
+    """
+
+    pull_max: float = math.inf
+    speed_max: float = math.inf
+    acceleration_max: float = math.inf
+    power_max: float = math.inf
+
+    def given(self) -> bool:
+        """True when every capacity is given (a winch can be judged)."""
+        return all(math.isfinite(v) for v in (self.pull_max, self.speed_max,
+                                             self.acceleration_max, self.power_max))
+
+
+@dataclass(frozen=True)
 class LoadLimits:
     """Limits of a hanging load (``payload.limits``), judged by ``size`` like the
     actuators' capacities.
@@ -117,6 +137,7 @@ class Description:
         sway_damping: [N·m·s/rad].
         capacities: :class:`Capacities`.
         load_limits: :class:`LoadLimits` of a hanging load.
+        winch: :class:`WinchCapacities` (``actuators.winch``).
         values: ``{dotted name: value}`` of every numeric field given (after overrides
             and expressions).
     """
@@ -145,6 +166,7 @@ class Description:
     capacities: Capacities
     values: dict = field(repr=False)
     load_limits: LoadLimits = field(default_factory=LoadLimits)
+    winch: WinchCapacities = field(default_factory=WinchCapacities)
 
     @property
     def has_arm(self) -> bool:

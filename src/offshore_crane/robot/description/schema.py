@@ -123,6 +123,12 @@ ACTUATOR = {
     "speed_max": _num("m/s or rad/s", "largest |rate|"),
     "power_max": _num("W", "largest |force × rate|"),
 }
+WINCH = {
+    "pull_max": _num("N", "largest line pull the winch holds"),
+    "speed_max": _num("m/s", "largest |hoisting speed| (haul in or pay out)"),
+    "acceleration_max": _num("m/s²", "largest |hoisting acceleration|"),
+    "power_max": _num("W", "largest |line pull × hoisting speed|"),
+}
 PLACEMENT = {"origin": Leaf("vec3", "m", "origin in the parent frame"),
              "rpy": Leaf("vec3", "rad", "orientation in the parent frame (URDF rpy)")}
 JOINT_BODY = {**PLACEMENT,
@@ -165,7 +171,7 @@ SCHEMA = {
                                               "tension m·g (slack criterion, e.g. 0.1; "
                                               "none: not judged)"),
                     "tension_max": _num("N", "largest cable tension (none: no limit)")}},
-    "actuators": {g: ACTUATOR for g in ACTUATOR_GROUPS},
+    "actuators": {**{g: ACTUATOR for g in ACTUATOR_GROUPS}, "winch": WINCH},
 }
 
 
