@@ -99,6 +99,13 @@ def run(args) -> int:
     if flags:
         controller = replace(controller, _arrays={}, **flags)
     c = scene.control
+    later = [f"[cable] {k}" for k in ("ea", "winch") if k in scene.cable] + (
+        ["[control] compensation"] if c.get("compensation", "none") != "none" else [])
+    if later:
+        raise InputError(f"simulate runs the rigid cable at a fixed length without "
+                         f"compensation; {', '.join(later)}: use offshore-crane id or "
+                         "compensate (inverse dynamics of the prescribed lift)",
+                         name="--scene")
     step = args.step if args.step is not None else c.get("step", 1e-3)
     span = float(traj.t[-1] - traj.t[0])
     duration = args.duration if args.duration is not None else span

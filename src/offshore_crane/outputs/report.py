@@ -186,6 +186,21 @@ def plot(path, t: np.ndarray, X: np.ndarray, title: str = "", cable=None) -> Non
     finish_figure(fig, axes, path, title)
 
 
+def compensation_plot(target, runs, title: str = "") -> None:
+    """The payload's residual motion x, y, z [mm] against time, one line per mode
+    (:func:`offshore_crane.studies.compensation.compare_compensation`'s runs)."""
+    plt = pyplot()
+    fig, axes = plt.subplots(3, 1, figsize=(8, 7.5), sharex=True, constrained_layout=True)
+    for r in runs:
+        t = r.result.t
+        for i, axis in enumerate("xyz"):
+            axes[i].plot(t, 1e3 * r.residual[:, i], lw=0.9,
+                         label=f"{r.mode} (RMS {1e3 * r.rms[i]:.3g} mm)")
+    for i, axis in enumerate("xyz"):
+        axes[i].set_ylabel(f"payload {axis} [mm]")
+    finish_figure(fig, axes, target, title)
+
+
 def finish_figure(fig, axes, target, title: str = "") -> None:
     """Grid, legends, a time axis label and the title, then :func:`save_figure`."""
     axes[-1].set_xlabel("time [s]")

@@ -27,7 +27,8 @@ OPERATION_KEYS = ("waypoints",)
 #: Model-scale record of ``source = "sea"`` when [trajectory] does not say [s], [Hz].
 SEA_DURATION, SEA_RATE = 60.0, 100.0
 CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error", "noise_q",
-                "noise_qd", "seed", "model", "lower", "upper", "saturation", "anti_sway")
+                "noise_qd", "seed", "model", "lower", "upper", "saturation", "anti_sway",
+                "compensation", "delay")
 #: [control] keys that are Controller arguments (the others: simulate's).
 CONTROLLER_KEYS = ("law", "kp", "kd", "rate", "lower", "upper", "saturation", "noise_q",
                    "noise_qd", "seed", "anti_sway")

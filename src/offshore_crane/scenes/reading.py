@@ -280,6 +280,12 @@ def _control(where: str, data: dict) -> dict:
         out["rate"] = r.number("rate", unit="Hz", positive=True)
     if "anti_sway" in r.table:
         out["anti_sway"] = r.number("anti_sway", unit="damping ratio", minimum=0.0)
+    if "compensation" in r.table:
+        from offshore_crane.simulation.compensation import MODES
+
+        out["compensation"] = r.string("compensation", choices=MODES)
+    if "delay" in r.table:
+        out["delay"] = r.number("delay", unit="s", minimum=0.0)
     if "step" in r.table:
         out["step"] = r.number("step", unit="s", positive=True)
     if "integrator" in r.table:

@@ -9,14 +9,10 @@ from offshore_crane.errors import InputError, ModelError
 from offshore_crane.validation import as_samples, check_memory, uniform_step
 
 
-def _quintic_midpoints(t, q, qd, qdd, sub: int):
-    """The motion at the ``2 sub − 1`` interior stage points of each interval (spacing
-    ``h / 2``, ``h = Δt / sub``) by quintic Hermite interpolation of ``q, q̇, q̈`` at the
-    interval's ends; returns the whole stage grid ``(2 sub (N − 1) + 1, 9)`` × 3."""
-    dt = np.diff(t)[:, None, None]                         # (N-1, 1, 1)
-    s = (np.arange(2 * sub + 1) / (2 * sub))[None, :, None]   # (1, 2 sub + 1, 1)
+def _quintic_basis(s):
+    """The quintic Hermite basis at ``s`` in [0, 1]: six (value, d/ds, d²/ds²) triples,
+    weighting y0, y0' h, y0'' h², y1'' h², y1' h, y1 in that order."""
     s2, s3, s4, s5 = s ** 2, s ** 3, s ** 4, s ** 5
-    # basis functions (value, first, second derivative in s) of the quintic Hermite
     H = [(1 - 10 * s3 + 15 * s4 - 6 * s5, -30 * s2 + 60 * s3 - 30 * s4,
           -60 * s + 180 * s2 - 120 * s3),
          (s - 6 * s3 + 8 * s4 - 3 * s5, 1 - 18 * s2 + 32 * s3 - 15 * s4,
@@ -26,12 +22,36 @@ def _quintic_midpoints(t, q, qd, qdd, sub: int):
          (0.5 * s3 - s4 + 0.5 * s5, 1.5 * s2 - 4 * s3 + 2.5 * s4, 3 * s - 12 * s2 + 10 * s3),
          (-4 * s3 + 7 * s4 - 3 * s5, -12 * s2 + 28 * s3 - 15 * s4, -24 * s + 84 * s2 - 60 * s3),
          (10 * s3 - 15 * s4 + 6 * s5, 30 * s2 - 60 * s3 + 30 * s4, 60 * s - 180 * s2 + 120 * s3)]
+    return H
+
+
+def quintic_hermite(t, y, yd, ydd, x) -> tuple:
+    """The quintic Hermite interpolant of samples ``y, ẏ, ÿ`` ``(N, m)`` at times ``t``
+    ``(N,)`` [s], evaluated at ``x`` ``(n,)`` within them: ``(y, ẏ, ÿ)`` each ``(n,)``
+    when ``m = 1``, else ``(n, m)`` (error ``O(h⁶)`` in y)."""
+    x = np.asarray(x, dtype=float)
+    k = np.clip(np.searchsorted(t, x, side="right") - 1, 0, len(t) - 2)
+    h = (t[k + 1] - t[k])[:, None]
+    s = (x - t[k])[:, None] / h
+    H = _quintic_basis(s)
+    ends = (y[k], yd[k] * h, ydd[k] * h ** 2, ydd[k + 1] * h ** 2, yd[k + 1] * h, y[k + 1])
+    out = tuple(sum(Hk[d] * e for Hk, e in zip(H, ends)) / h ** d for d in range(3))
+    return tuple(o[:, 0] for o in out) if y.shape[1] == 1 else out
+
+
+def _quintic_midpoints(t, q, qd, qdd, sub: int):
+    """The motion at the ``2 sub − 1`` interior stage points of each interval (spacing
+    ``h / 2``, ``h = Δt / sub``) by quintic Hermite interpolation of ``q, q̇, q̈`` at the
+    interval's ends; returns the whole stage grid ``(2 sub (N − 1) + 1, 9)`` × 3."""
+    dt = np.diff(t)[:, None, None]                         # (N-1, 1, 1)
+    s = (np.arange(2 * sub + 1) / (2 * sub))[None, :, None]   # (1, 2 sub + 1, 1)
+    H = _quintic_basis(s)
     ends = (q[:-1, None], qd[:-1, None] * dt, qdd[:-1, None] * dt ** 2, qdd[1:, None] * dt ** 2,
             qd[1:, None] * dt, q[1:, None])
     out = []
     for d in range(3):
         val = sum(Hk[d] * e for Hk, e in zip(H, ends)) / dt ** d
-        grid = val[:, :-1].reshape(-1, 9)
+        grid = val[:, :-1].reshape(-1, q.shape[1])
         last = (q, qd, qdd)[d][-1:]
         out.append(np.ascontiguousarray(np.concatenate([grid, last])))
     for d, given in enumerate((q, qd, qdd)):       # the samples themselves, exactly

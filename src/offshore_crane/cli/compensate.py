@@ -1,0 +1,59 @@
+"""``offshore-crane compensate``: a lift uncompensated, with the arm compensating, and with
+the arm and the winch, side by side.
+
+The scene's sea moves the platform; its ``[operation]`` is the crane's motion on a still
+ship. The arm then holds the tip over the still-ship point and the winch holds the
+payload's height (docs/cable.md), acting on the platform's motion measured ``--delay``
+seconds late (the scene's ``[control] delay``). Printed per mode: the payload's residual
+motion (RMS and largest, per axis, base frame), the cable's largest angle, the tension
+against m g, the worst actuator and the winch against their capacities, and the joints
+that met their limits. Exit status 1 when an actuator or the winch exceeds a capacity.
+"""
+
+from __future__ import annotations
+
+
+def add_parser(sub) -> None:
+    from offshore_crane.cli.common import add_robot_options
+
+    doc = __doc__.splitlines()
+    p = sub.add_parser("compensate", help="compare uncompensated and motion-compensated "
+                       "lifts", description=doc[0].split(": ", 1)[1])
+    p.add_argument("--scene", required=True, metavar="TOML",
+                   help="a sea scene with a payload on a cable ([payload] cable_length)")
+    p.add_argument("--delay", type=float, metavar="S",
+                   help="the measurement's delay [s] (default: the scene's [control] "
+                   "delay, else 0)")
+    p.add_argument("--plot", metavar="FIGURE", help="write the payload's residual motion "
+                   "per mode to this figure (PNG, PDF, SVG)")
+    add_robot_options(p)
+    p.set_defaults(run=run)
+
+
+def run(args) -> int:
+    from offshore_crane import scenes
+    from offshore_crane.cli.common import plan, robot_scene
+    from offshore_crane.studies.compensation import compare_compensation, format_comparison
+
+    scene = robot_scene(args, scenes.load_scene(args.scene))
+    args.out = None
+    outputs, say = plan(args, scene)
+    target = outputs.get("--plot")
+    delay = args.delay if args.delay is not None else scene.control.get("delay", 0.0)
+    robot = scenes.load_robot(scene)
+    traj = scenes.load_trajectory(scene, robot)
+    runs = compare_compensation(robot, traj, scene.cable, scene.gravity, delay=delay)
+    say(f"offshore-crane compensate: {scene.name} ({args.scene}), {traj.name}, "
+        f"{len(runs[0].residual)} samples, measurement delay {delay:g} s")
+    say(format_comparison(runs))
+    if target is not None:
+        from offshore_crane.outputs.report import compensation_plot
+
+        compensation_plot(target, runs, title=f"{scene.name}: payload motion, delay "
+                          f"{delay:g} s")
+        say(f"wrote {args.plot}")
+    over = [r.mode for r in runs if r.worst[0] > 1.0 or any(
+        v > 1.0 for v in r.winch.values() if v == v)]
+    if over:
+        say(f"OVER CAPACITY in {', '.join(over)}")
+    return 1 if over else 0

@@ -1,0 +1,239 @@
+"""Motion compensation: the arm holds the tip over the point the crane operation would
+reach on a still ship, the winch holds the payload's height (docs/cable.md).
+
+The platform reproduces the ship; a motion-compensated crane reads that motion and
+commands its own joints against it. Here the law is the exact kinematic one (the
+measured platform pose, no delay, no noise): at every sample the arm's coordinates
+q7, q8, q9 are those that put the tip's horizontal position in the base frame where the
+*still-ship* crane puts it (the platform at home, the arm at the operation's pose), and
+with a winch the cable's length follows the tip's height so that the payload's height
+stays the still ship's:
+
+- the arm has three joints for two horizontal coordinates: Newton's method with the
+  minimum-norm step ``J⁺ e`` and the redundant direction pulled to the operation's pose
+  (``(I − J⁺ J)(q_op − q)``), all samples at once;
+- a joint that would leave its limits is held at the limit (the residual then shows in
+  the payload's motion) and reported with the samples and the time it was held;
+- the rates and accelerations of the commanded arm and of the cable length come from
+  sixth-order finite differences of the solution on the uniform sample grid (the sea
+  record at 100 Hz: relative error ~1e-9).
+
+Compensation of the motion the *arm* introduces (the classic source, after W. Küchler,
+O. Sawodny et al., *Active control for an offshore crane using prediction of the
+vessel's motion*, IEEE/ASME Trans. Mechatronics 16(2), 2011: the winch compensates the
+rope's suspension point's vertical motion; the arm here adds the horizontal).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from offshore_crane.errors import InputError
+
+#: The compensation modes: none, the arm (horizontal), the arm and the winch (vertical).
+MODES = ("none", "arm", "arm+winch")
+#: Newton's tolerance on the tip's horizontal position [m] and its iteration cap.
+IK_TOLERANCE, IK_ITERATIONS = 1e-12, 30
+#: Finite-difference step of the arm Jacobian [rad or m] (central: error ~1e-12).
+JACOBIAN_STEP = 1e-6
+#: Order of the finite differences giving the commanded rates and accelerations.
+FD_ORDER = 6
+
+
+@dataclass
+class Compensated:
+    """A compensated motion (:func:`compensated_motion`).
+
+    Attributes:
+        mode: One of :data:`MODES`.
+        trajectory: The robot's motion with the arm's commanded q7..q9 (and their rates,
+            accelerations).
+        target: ``(N, 3)`` the tip's still-ship position, base frame [m].
+        tip: ``(N, 3)`` the tip's position under the compensated motion [m].
+        hoist: ``(N, 3)`` the cable length L [m], L̇, L̈ with the winch, else None.
+        held: ``{joint: (samples held at a limit, first time [s])}`` for joints that met
+            their limits.
+        length: The cable's length on the still ship [m].
+    """
+
+    mode: str
+    trajectory: object
+    target: np.ndarray
+    tip: np.ndarray
+    hoist: np.ndarray | None
+    length: float
+    held: dict = field(default_factory=dict)
+
+    def hoist_function(self):
+        """The winch's ``hoist(t) -> (L, L̇, L̈)`` at any times of the record (quintic
+        Hermite interpolation of the samples), or None."""
+        if self.hoist is None:
+            return None
+        from offshore_crane.dynamics.cable.grid import quintic_hermite
+
+        t, H = self.trajectory.t, self.hoist
+        return lambda x: quintic_hermite(t, H[:, 0:1], H[:, 1:2], H[:, 2:3], x)
+
+
+def tip_positions(robot, q: np.ndarray, qd: np.ndarray | None = None) -> tuple:
+    """The tip's position [m] and velocity [m/s] ``(N, 3)`` in the base frame for the
+    robot's ``q (N, 9)`` (and ``qd``; zero rates by default)."""
+    from offshore_crane.dynamics import backends
+    from offshore_crane.dynamics.constants import cable_arrays
+
+    qd = np.zeros_like(q) if qd is None else qd
+    p, v = backends.NUMPY.tip_state(cable_arrays(robot).kane, q.T, qd.T)
+    return np.stack(p, axis=-1), np.stack(v, axis=-1)
+
+
+def still_start(robot, trajectory, length: float, gravity, elastic: bool = False) -> dict:
+    """The payload hanging still at the record's start: straight down along g, at rest
+    in the base frame as far as the cable allows.
+
+    Returns:
+        Rigid cable: ``{"initial": (φ1, φ2), "initial_rate": (φ̇1, φ̇2)}`` [rad, rad/s]
+        (the cable along g in the tip's axes; the rates that cancel the tip's velocity
+        across the cable, over ``length`` [m]). Elastic (``elastic``):
+        ``{"initial": ρ0, "initial_velocity": −v_tip}`` [m, m/s], base axes (the caller
+        adds the static stretch).
+    """
+    from offshore_crane.dynamics import backends
+    from offshore_crane.dynamics.constants import cable_arrays
+
+    g = np.asarray(gravity, dtype=float)
+    down = g / np.linalg.norm(g)
+    q0, qd0, qdd0 = (np.asarray(x, dtype=float)[:1] for x in (trajectory.q, trajectory.qd,
+                                                               trajectory.qdd))
+    v_tip = tip_positions(robot, q0, qd0)[1][0]
+    if elastic:
+        return {"initial": down * length, "initial_velocity": -v_tip}
+    B, C = backends.NUMPY, cable_arrays(robot).kane
+    Rt, w = B.tip_motion(C, q0.T, qd0.T, qdd0.T)[:2]
+    Rt = np.array([[float(np.asarray(x)[0]) for x in row] for row in Rt])
+    w = np.array([float(np.asarray(x)[0]) for x in w])
+    e = Rt.T @ down                                       # the cable along g, tip axes
+    p2 = float(np.arcsin(np.clip(-e[0], -1.0, 1.0)))
+    p1 = float(np.arctan2(e[1], -e[2]))
+    _, e1, e2 = (np.array(v, dtype=float) for v in B.sway_direction(p1, p2))
+    # the payload at rest: L ė (tip axes) = −Rtᵀ v_tip − (Rtᵀ ω) × (L e), across the cable
+    edot = -(Rt.T @ v_tip) / length - np.cross(Rt.T @ w, e)
+    return {"initial": (p1, p2),
+            "initial_rate": (float(edot @ e1 / (e1 @ e1)), float(edot @ e2))}
+
+
+def compensated_motion(robot, trajectory, mode: str = "arm+winch",
+                       delay: float = 0.0) -> Compensated:
+    """The arm's (and the winch's) commands that cancel the ship's motion at the tip.
+
+    Args:
+        robot: With a payload on a cable (its length is the still ship's).
+        trajectory: The robot's motion (a sea record: q1..q6 the ship, q7..q9 the crane
+            operation), uniform in time.
+        mode: ``"none"`` (the operation as given), ``"arm"`` or ``"arm+winch"``.
+        delay: The measurement's delay [s] (≥ 0): the commands at t are those that
+            cancel the platform's pose at ``t − delay`` (the record's analytic source
+            must reach that far back; without a source the first sample is held).
+
+    Raises:
+        InputError: an unknown mode, a robot without arm or cable, a record too short
+            for the finite differences; the still-ship target out of the arm's reach
+            everywhere (Newton does not converge).
+    """
+    from offshore_crane.motion.trajectories.differences import finite_difference
+    from offshore_crane.robot.kinematics.workspace import limits_of
+
+    if mode not in MODES:
+        raise InputError(f"compensation = {mode!r}: use one of {', '.join(MODES)}",
+                         name="compensation")
+    if not (isinstance(delay, (int, float)) and np.isfinite(delay) and delay >= 0.0):
+        raise InputError(f"delay = {delay!r} s: give a finite number >= 0 (the "
+                         "measurement's delay)", name="delay")
+    if robot.hybrid.cable is None or robot.hybrid.arm.n != 3:
+        raise InputError("compensation needs the crane arm and a payload on a cable "
+                         "(payload.cable_length > 0)", name="compensation")
+    t, q = trajectory.t, np.array(trajectory.q, dtype=float)
+    still = q.copy()
+    still[:, :6] = robot.home_pose()[:6]
+    target = tip_positions(robot, still)[0]
+    length = float(robot.hybrid.cable_length)
+    if mode == "none":
+        return Compensated(mode, trajectory, target, tip_positions(robot, q)[0], None,
+                           length)
+    limits = limits_of(robot.hybrid).arm[:3]
+    held: dict = {}
+    seen = _delayed(trajectory, delay)              # the platform as measured
+    solved, stuck = _solve_arm(robot, seen, still[:, 6:9], target[:, :2], limits)
+    q[:, 6:9] = solved[:, 6:9]
+    for j, name in enumerate(("arm_joint1", "arm_joint2", "arm_slide")):
+        if stuck[:, j].any():
+            held[name] = (int(stuck[:, j].sum()), float(t[int(np.argmax(stuck[:, j]))]))
+    qd, qdd = np.array(trajectory.qd), np.array(trajectory.qdd)
+    qd[:, 6:9], qdd[:, 6:9] = finite_difference(t, q[:, 6:9], FD_ORDER)
+    tip = tip_positions(robot, q)[0]
+    hoist = None
+    if mode == "arm+winch":
+        L = length + tip_positions(robot, solved)[0][:, 2] - target[:, 2]
+        if not (L > 0).all():
+            k = int(np.argmax(~(L > 0)))
+            raise InputError(f"compensation: the winch would need a cable length of "
+                             f"{L[k]:.4g} m at t = {t[k]:.4g} s: lengthen the cable",
+                             name="compensation", index=k)
+        Ld, Ldd = finite_difference(t, L, FD_ORDER)
+        hoist = np.column_stack([L, Ld, Ldd])
+    traj = replace(trajectory, name=f"{trajectory.name}, compensated ({mode})", q=q, qd=qd,
+                   qdd=qdd, source=None)
+    return Compensated(mode, traj, target, tip, hoist, length, held)
+
+
+def _delayed(trajectory, delay: float) -> np.ndarray:
+    """``q (N, 9)`` with the platform's q1..q6 as measured ``delay`` [s] late (the
+    record's analytic source where it has one, else linear interpolation with the first
+    sample held before the start)."""
+    q = np.array(trajectory.q, dtype=float)
+    if delay == 0.0:
+        return q
+    if trajectory.source is not None:
+        q[:, :6] = np.asarray(trajectory.source(trajectory.t - delay)[0])[:, :6]
+    else:
+        t = np.maximum(trajectory.t - delay, trajectory.t[0])
+        for j in range(6):
+            q[:, j] = np.interp(t, trajectory.t, trajectory.q[:, j])
+    return q
+
+
+def _solve_arm(robot, q, q_op, xy, limits) -> tuple[np.ndarray, np.ndarray]:
+    """Newton on q7..q9 of every sample: the tip's horizontal position at ``xy``
+    ``(N, 2)``, the redundant direction towards ``q_op``; joints held inside ``limits``
+    ``(3, 2)``. Returns ``(q, held (N, 3) bool)``."""
+    q = q.copy()
+    lo, hi = limits[:, 0], limits[:, 1]
+    held = np.zeros((len(q), 3), dtype=bool)
+    for _ in range(IK_ITERATIONS):
+        p = tip_positions(robot, q)[0][:, :2]
+        e = xy - p
+        if np.abs(e[~held.any(axis=1)]).max(initial=0.0) <= IK_TOLERANCE:
+            break
+        J = np.empty((len(q), 2, 3))
+        for j in range(3):
+            a, b = q.copy(), q.copy()
+            a[:, 6 + j] += JACOBIAN_STEP
+            b[:, 6 + j] -= JACOBIAN_STEP
+            J[:, :, j] = (tip_positions(robot, a)[0][:, :2]
+                          - tip_positions(robot, b)[0][:, :2]) / (2 * JACOBIAN_STEP)
+        JJt = J @ J.transpose(0, 2, 1)
+        pinv = J.transpose(0, 2, 1) @ np.linalg.inv(JJt)               # (N, 3, 2)
+        null = np.eye(3) - pinv @ J
+        step = (pinv @ e[:, :, None])[:, :, 0] + (null @ (q_op - q[:, 6:9])[:, :, None])[:, :, 0]
+        arm = q[:, 6:9] + step
+        held = (arm < lo) | (arm > hi)
+        q[:, 6:9] = np.clip(arm, lo, hi)
+    else:
+        bad = np.abs(xy - tip_positions(robot, q)[0][:, :2]).max(axis=1) > 1e-6
+        if (bad & ~held.any(axis=1)).any():
+            k = int(np.argmax(bad & ~held.any(axis=1)))
+            raise InputError(f"compensation: the arm cannot reach the still-ship tip "
+                             f"position at sample {k} (Newton did not converge): check "
+                             "the operation's pose", name="compensation", index=k)
+    return q, held
