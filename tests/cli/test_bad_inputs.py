@@ -772,6 +772,27 @@ CASES = [
     Case("hoist-column-without-winch", "a fifth waypoint column without [cable] winch",
          oc.SceneError, r"have a fifth column .*set \[cable\] winch = true",
          lib=lambda tmp: scenes.load_scene(_lift(tmp, winch="false"))),
+    Case("compensation-with-winch-column", "[control] compensation with the winch's hoist "
+         "column (both would drive the winch)", oc.SceneError,
+         r"compensation drives the winch itself: drop \[cable\] winch",
+         lib=lambda tmp: scenes.run(scenes.load_scene(_bytes(
+             tmp, "c.toml", (_SCENES / "winch_lift.toml").read_bytes()
+             + b'\n[control]\ncompensation = "arm"\n'))),
+         cli=lambda tmp: ["id", "--scene", str(_bytes(
+             tmp, "c.toml", (_SCENES / "winch_lift.toml").read_bytes()
+             + b'\n[control]\ncompensation = "arm"\n'))]),
+    Case("compensation-unknown-mode", "[control] compensation = \"full\"", oc.SceneError,
+         r"\[control\] compensation.*must be one of none, arm, arm\+winch",
+         lib=lambda tmp: scenes.load_scene(_bytes(
+             tmp, "c.toml", (_SCENES / "compensated_lift.toml").read_bytes().replace(
+                 b'compensation = "arm+winch"', b'compensation = "full"')))),
+    Case("compensate-without-a-cable", "compensate on a scene whose payload is welded",
+         oc.InputError, "compensation needs the crane arm and a payload on a cable",
+         cli=lambda tmp: ["compensate", "--scene", str(_SCENES / "sea_state_crane.toml")]),
+    Case("compensate-without-a-sea", "compensate on a scene whose platform no sea moves",
+         oc.InputError, r"compensate cancels the ship's motion: .* has no sea",
+         cli=lambda tmp: ["compensate", "--scene", str(_bytes(
+             tmp, "c.toml", b'name = "c"\n[payload]\nmass = 2.0\ncable_length = 1.0\n'))]),
     Case("hoist-profile-bad-length", "a hoist of length 0 m in a library profile",
          oc.InputError, "hoist waypoints need increasing times and lengths > 0 m",
          lib=lambda tmp: oc.dynamics.cable.hoist_profile([(0.0, 1.0), (2.0, 0.0)])),

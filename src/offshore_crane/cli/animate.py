@@ -63,6 +63,13 @@ def load_motion(args, scene):
 
     from dataclasses import replace
 
+    later = [f"[cable] {k}" for k in ("ea", "winch") if k in scene.cable] + (
+        ["[control] compensation"] if scene.compensation != "none" else [])
+    if later:
+        raise InputError(f"{', '.join(later)}: the pictures draw the rigid cable at its "
+                         "fixed length only (a varying or slack cable is not drawn yet); "
+                         "run offshore-crane id or compensate for its figures",
+                         name="--scene")
     robot = scenes.load_robot(scene)
     if args.run_csv is not None:
         motion = mo.read_run(args.run_csv)

@@ -39,9 +39,22 @@ def run(args) -> int:
     args.out = None
     outputs, say = plan(args, scene)
     target = outputs.get("--plot")
+    from dataclasses import replace
+
+    from offshore_crane.errors import InputError
+    from offshore_crane.simulation.compensation import measured_from
+
+    if scene.trajectory != "sea":
+        raise InputError(f"compensate cancels the ship's motion: {args.scene} has no sea "
+                         f"(its trajectory is {scene.trajectory!r}); give a scene with "
+                         "[trajectory] source = \"sea\"", name="--scene")
     delay = args.delay if args.delay is not None else scene.control.get("delay", 0.0)
+    if not (delay >= 0.0 and delay < float("inf")):
+        raise InputError(f"--delay {delay:g} s: give a finite number >= 0 (the "
+                         "measurement's delay)", name="--delay")
     robot = scenes.load_robot(scene)
-    traj = scenes.load_trajectory(scene, robot)
+    record = replace(scene, control={})          # the sea record itself, not yet late
+    traj = measured_from(scenes.load_trajectory(record, robot), delay)
     runs = compare_compensation(robot, traj, scene.cable, scene.gravity, delay=delay)
     say(f"offshore-crane compensate: {scene.name} ({args.scene}), {traj.name}, "
         f"{len(runs[0].residual)} samples, measurement delay {delay:g} s")

@@ -99,7 +99,7 @@ def run(args) -> int:
     head = runs[0]
     status = 1 if v.exceeded else 0
     compared = []
-    if len(scene.methods) > 1 and not scene.control:
+    if len(scene.methods) > 1 and not scene.simulated:
         done = scenes.run(scene, robot, head.trajectory, limits=options["limits"],
                           thresholds=options["thresholds"], backend=backend,
                           threads=args.threads)

@@ -125,7 +125,9 @@ def with_robot_overrides(scene: Scene, overrides: dict, source: str = "--set") -
 
 
 def load_trajectory(scene: Scene, robot):
-    """The scene's trajectory; with ``platform = false``, q1..q6 held at the deck pose.
+    """The scene's trajectory; with ``platform = false``, q1..q6 held at the deck pose;
+    with ``[control] compensation`` and ``delay``, from the time the first measurement
+    has arrived.
 
     Returns:
         :class:`offshore_crane.motion.trajectories.Trajectory` (``(N, 9)`` arrays).
@@ -133,7 +135,12 @@ def load_trajectory(scene: Scene, robot):
     from offshore_crane.motion import trajectories
 
     if scene.trajectory == "sea":
-        return sea_trajectory(scene, robot)
+        traj = sea_trajectory(scene, robot)
+        if scene.compensation == "none":
+            return traj
+        from offshore_crane.simulation.compensation import measured_from
+
+        return measured_from(traj, float(scene.control.get("delay", 0.0)))
     traj = trajectories.load(scene.trajectory, duration=scene.duration, rate=scene.rate,
                              fd_order=scene.fd_order)
     if scene.platform:

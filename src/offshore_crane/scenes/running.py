@@ -78,6 +78,8 @@ def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, check
     options = {k: v for k, v in scene.cable.items() if k not in ("ea", "damping", "winch")}
     checked = dict(gravity=scene.gravity, limits=limits, checks=checks,
                    thresholds=thresholds or Thresholds())
+    if scene.compensation != "none":
+        traj, options = _compensated(scene, robot, traj, options)
     waypoints = hoist_waypoints(scene)
     if waypoints is not None:
         if not robot.winch.given():
@@ -91,7 +93,9 @@ def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, check
             raise SceneError(f"{scene.where()}: the elastic cable ([cable] ea) has Kane's "
                              f"path only: use methods = [\"kane\"], not {method!r}",
                              path=scene.path, name="methods")
-        elastic = {k: v for k, v in options.items() if k in ("substeps", "hoist")}
+        keys = ("substeps", "hoist") + (("initial", "initial_velocity")
+                                        if "initial_velocity" in options else ())
+        elastic = {k: v for k, v in options.items() if k in keys}
         res = elastic_inverse_dynamics(
             robot, traj.q, traj.qd, traj.qdd, t=traj.t,
             reference=traj.reference if traj.source is not None else None,
@@ -104,6 +108,45 @@ def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, check
     return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
                   condition=res.condition, gimbal=None, attitude=None,
                   backend="numba" if method == "kane" else "pinocchio", cable=res)
+
+
+def _compensated(scene: Scene, robot, traj, options: dict):
+    """The scene's ``[control] compensation`` applied to its sea record: the arm's (and
+    the winch's) commands (:func:`offshore_crane.simulation.compensation.compensated_motion`)
+    on the platform's motion measured ``[control] delay`` late (:func:`load_trajectory`
+    starts the record once the first measurement has arrived), the payload starting still
+    unless ``[cable] initial`` says otherwise. Returns ``(trajectory, cable options)``.
+
+    Raises:
+        SceneError: compensation with the winch's hoist column (the winch is the
+            compensation's), or without a sea.
+    """
+    from offshore_crane.errors import SceneError
+    from offshore_crane.simulation.compensation import compensated_motion, still_start
+
+    where = scene.where()
+    if scene.trajectory != "sea":
+        raise SceneError(f"{where}: [control] compensation cancels the platform's motion: "
+                         "it needs [trajectory] source = \"sea\"", path=scene.path,
+                         name="control.compensation")
+    if scene.cable.get("winch"):
+        raise SceneError(f"{where}: [control] compensation drives the winch itself: drop "
+                         "[cable] winch and the hoist column", path=scene.path,
+                         name="control.compensation")
+    delay = float(scene.control.get("delay", 0.0))     # load_trajectory starts it late
+    comp = compensated_motion(robot, traj, scene.compensation, delay)
+    options = dict(options)
+    if comp.hoist is not None:
+        options["hoist"] = comp.hoist_function()
+    if "initial" not in options:
+        length = comp.length if comp.hoist is None else float(comp.hoist[0, 0])
+        start = still_start(robot, comp.trajectory, length, scene.gravity,
+                            elastic="ea" in scene.cable)
+        if "ea" in scene.cable:
+            start["initial"] = start["initial"] * (1.0 + robot.hybrid.cable.mass[-1] * float(
+                np.linalg.norm(scene.gravity)) / scene.cable["ea"])
+        options.update(start)
+    return comp.trajectory, options
 
 
 def run(scene: Scene, robot=None, trajectory=None, **options) -> SceneRun:

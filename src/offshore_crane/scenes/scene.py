@@ -110,6 +110,17 @@ class Scene:
         check_scene(self)
         _check_sea(self)
 
+    @property
+    def simulated(self) -> bool:
+        """True when the scene is run forward under a controller (a ``[control]`` law);
+        ``compensation`` and ``delay`` alone prescribe a compensated lift instead."""
+        return bool(set(self.control) - {"compensation", "delay"})
+
+    @property
+    def compensation(self) -> str:
+        """``[control] compensation``: ``"none"``, ``"arm"`` or ``"arm+winch"``."""
+        return self.control.get("compensation", "none")
+
     def where(self) -> str:
         """Where the scene comes from, for messages."""
         return self.origin or self.path or f"scene '{self.name}'"

@@ -134,7 +134,8 @@ def compensated_motion(robot, trajectory, mode: str = "arm+winch",
         mode: ``"none"`` (the operation as given), ``"arm"`` or ``"arm+winch"``.
         delay: The measurement's delay [s] (≥ 0): the commands at t are those that
             cancel the platform's pose at ``t − delay`` (the record's analytic source
-            must reach that far back; without a source the first sample is held).
+            must reach that far back: :func:`measured_from`; without a source the first
+            sample is held).
 
     Raises:
         InputError: an unknown mode, a robot without arm or cable, a record too short
@@ -185,6 +186,17 @@ def compensated_motion(robot, trajectory, mode: str = "arm+winch",
     traj = replace(trajectory, name=f"{trajectory.name}, compensated ({mode})", q=q, qd=qd,
                    qdd=qdd, source=None)
     return Compensated(mode, traj, target, tip, hoist, length, held)
+
+
+def measured_from(trajectory, delay: float):
+    """The record from the time its first measurement has arrived (``t ≥ t0 + delay``):
+    a compensation acting ``delay`` [s] late reads the platform there through the
+    record's source, which reaches back to ``t0``."""
+    if delay <= 0.0:
+        return trajectory
+    k0 = int(np.searchsorted(trajectory.t, trajectory.t[0] + delay - 1e-12))
+    return replace(trajectory, t=trajectory.t[k0:], q=trajectory.q[k0:],
+                   qd=trajectory.qd[k0:], qdd=trajectory.qdd[k0:])
 
 
 def _delayed(trajectory, delay: float) -> np.ndarray:

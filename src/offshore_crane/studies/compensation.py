@@ -66,15 +66,16 @@ def compare_compensation(robot, trajectory, cable: dict | None = None, gravity=G
     Args:
         robot: With the arm and a payload on a cable; its ``actuators.winch``
             capacities judge the winch.
-        trajectory: The sea record (q1..q6 the ship, q7..q9 the operation).
+        trajectory: The sea record (q1..q6 the ship, q7..q9 the operation); with a
+            delay, its source must reach ``delay`` before its first sample
+            (:func:`~offshore_crane.simulation.compensation.measured_from`).
         cable: ``[cable]`` options: ``ea``, ``damping`` (an elastic cable), ``initial``,
             ``initial_rate``, ``substeps``, ``slack`` (a rigid one). Without ``initial``
             the payload starts hanging still along g
             (:func:`~offshore_crane.simulation.compensation.still_start`).
         gravity: ``(3,)`` [m/s²].
         modes: Out of :data:`offshore_crane.simulation.compensation.MODES`.
-        delay: The measurement's delay [s] the compensation acts on (the lift then
-            starts at the record's start + delay, for every mode).
+        delay: The measurement's delay [s] the compensation acts on.
 
     Raises:
         The errors of :func:`~offshore_crane.simulation.compensation.compensated_motion`
@@ -85,12 +86,6 @@ def compare_compensation(robot, trajectory, cable: dict | None = None, gravity=G
     from offshore_crane.simulation.compensation import compensated_motion, still_start
     from offshore_crane.studies.sizing.envelopes import envelope, worst_utilisation
 
-    if delay > 0.0:             # the lift starts once the first measurement has arrived
-        from dataclasses import replace
-
-        k0 = int(np.searchsorted(trajectory.t, trajectory.t[0] + delay - 1e-12))
-        trajectory = replace(trajectory, t=trajectory.t[k0:], q=trajectory.q[k0:],
-                             qd=trajectory.qd[k0:], qdd=trajectory.qdd[k0:])
     cable = dict(cable or {})
     elastic = {k: cable.pop(k) for k in ("ea", "damping") if k in cable}
     cable.pop("winch", None)

@@ -88,6 +88,13 @@ class ElasticResult:
         return len(self.t)
 
     @property
+    def sway_angle(self) -> np.ndarray:
+        """``(N,)`` the cable's angle from the base's vertical (−z) [rad] (a rigid
+        cable's is measured from the tip's vertical)."""
+        rho = self.position
+        return np.arccos(np.clip(-rho[:, 2] / np.linalg.norm(rho, axis=1), -1.0, 1.0))
+
+    @property
     def slack(self) -> np.ndarray:
         """``(N,)`` True where the cable does not pull."""
         return ~(self.tension > 0.0)

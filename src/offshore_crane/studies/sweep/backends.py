@@ -268,7 +268,7 @@ def warm_up_scene(scene) -> None:
     robot = scenes.load_robot(scene).without_hanging_payload()
     warm_up(robot, methods=(scene.methods[0], "kane"), forward=False)
     warm_up_cable()            # any case may hang its payload (a grid's cable_length)
-    if scene.control:
+    if scene.simulated:
         from offshore_crane.simulation.rigid import warm_up as warm_up_simulation
 
         warm_up_simulation()

@@ -80,7 +80,7 @@ def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads
     traj = trajectory or scenes.load_trajectory(scene, robot)
     options = dict(limits=limits, thresholds=thresholds, backend=backend, threads=threads)
     simulation = None
-    if scene.control:
+    if scene.simulated:
         simulation = _simulate(scene, robot, traj, limits)
         t, q, qd, X = simulation.t, simulation.q, simulation.qd, simulation.X
         result = solve(robot, q, qd, simulation.qdd, "kane", scene.gravity,
