@@ -156,3 +156,27 @@ def cable_tension(rho, rhod, L, Ld, EA, c):
     u = scale(rho, 1.0 / d)
     s = d - L
     return EA / L * s + c * (dot(u, rhod) - Ld), s, u
+
+
+def tip_jacobian(C, q):
+    """The tip's position [m] (base frame) and its partial derivatives with respect to
+    the arm's coordinates q7, q8, … (one 3-vector each: ``z × (p_tip − o_j)`` for a
+    revolute joint of axis z through o_j [m/rad], ``z`` for a slider [m/m]), for the
+    robot's ``q`` (the arm chain ``C`` continued by the two sway joints)."""
+    R = attitude(q)[0]
+    p = (q[0], q[1], q[2])
+    nb = C.n_arm - 2
+    joints = []
+    for b in range(nb):
+        axis = row3(C.arm_axis, b)
+        r, Rj, z = arm_joint(R, mat3(C.arm_Ro, b), row3(C.arm_t, b), axis)
+        p = add(p, r)
+        joints.append((p, z, C.arm_prism[b]))
+        if C.arm_prism[b]:
+            p = add(p, scale(z, q[6 + b]))
+            R = Rj
+        else:
+            R = mm(Rj, axis_rotation(axis, cos(q[6 + b]), sin(q[6 + b])))
+    tip = add(p, arm_joint(R, mat3(C.arm_Ro, nb), row3(C.arm_t, nb),
+                           row3(C.arm_axis, nb))[0])
+    return tip, [z if prism else cross(z, sub(tip, o)) for o, z, prism in joints]

@@ -36,10 +36,11 @@ from offshore_crane.errors import InputError
 MODES = ("none", "arm", "arm+winch")
 #: Newton's tolerance on the tip's horizontal position [m] and its iteration cap.
 IK_TOLERANCE, IK_ITERATIONS = 1e-12, 30
-#: Finite-difference step of the arm Jacobian [rad or m] (central: error ~1e-12).
-JACOBIAN_STEP = 1e-6
 #: Order of the finite differences giving the commanded rates and accelerations.
 FD_ORDER = 6
+#: Samples evaluated at once (the vectorised formulas' arrays stay in the caches: a
+#: 3-hour record at 100 Hz takes 2.4 × less time in blocks of 2¹⁵ than whole).
+BLOCK = 1 << 15
 
 
 @dataclass
@@ -84,8 +85,13 @@ def tip_positions(robot, q: np.ndarray, qd: np.ndarray | None = None) -> tuple:
     from offshore_crane.dynamics.constants import cable_arrays
 
     qd = np.zeros_like(q) if qd is None else qd
-    p, v = backends.NUMPY.tip_state(cable_arrays(robot).kane, q.T, qd.T)
-    return np.stack(p, axis=-1), np.stack(v, axis=-1)
+    C = cable_arrays(robot).kane
+    p, v = np.empty((len(q), 3)), np.empty((len(q), 3))
+    for a in range(0, len(q), BLOCK):
+        b = slice(a, a + BLOCK)
+        pb, vb = backends.NUMPY.tip_state(C, q[b].T, qd[b].T)
+        p[b], v[b] = np.stack(pb, axis=-1), np.stack(vb, axis=-1)
+    return p, v
 
 
 def still_start(robot, trajectory, length: float, gravity, elastic: bool = False) -> dict:
@@ -218,33 +224,50 @@ def _delayed(trajectory, delay: float) -> np.ndarray:
 def _solve_arm(robot, q, q_op, xy, limits) -> tuple[np.ndarray, np.ndarray]:
     """Newton on q7..q9 of every sample: the tip's horizontal position at ``xy``
     ``(N, 2)``, the redundant direction towards ``q_op``; joints held inside ``limits``
-    ``(3, 2)``. Returns ``(q, held (N, 3) bool)``."""
+    ``(3, 2)``. Returns ``(q, held (N, 3) bool)``; in blocks of :data:`BLOCK` samples."""
+    out, held = np.empty_like(q), np.zeros((len(q), 3), dtype=bool)
+    for a in range(0, len(q), BLOCK):
+        b = slice(a, a + BLOCK)
+        out[b], held[b] = _solve_block(robot, q[b], q_op[b], xy[b], limits, a)
+    return out, held
+
+
+def _solve_block(robot, q, q_op, xy, limits, first: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_solve_arm` on one block whose first sample is ``first``."""
+    from offshore_crane.dynamics import backends
+    from offshore_crane.dynamics.constants import cable_arrays
+
+    C = cable_arrays(robot).kane
     q = q.copy()
     lo, hi = limits[:, 0], limits[:, 1]
     held = np.zeros((len(q), 3), dtype=bool)
+    active = np.arange(len(q))                  # samples still iterating
     for _ in range(IK_ITERATIONS):
-        p = tip_positions(robot, q)[0][:, :2]
-        e = xy - p
-        if np.abs(e[~held.any(axis=1)]).max(initial=0.0) <= IK_TOLERANCE:
+        qa = q[active]
+        tip, cols = backends.NUMPY.tip_jacobian(C, qa.T)
+        e = xy[active] - np.stack(tip[:2], axis=-1)
+        done = (np.abs(e).max(axis=1) <= IK_TOLERANCE) | held[active].any(axis=1)
+        keep = ~done
+        active, e, qa = active[keep], e[keep], qa[keep]
+        if not len(active):
             break
-        J = np.empty((len(q), 2, 3))
-        for j in range(3):
-            a, b = q.copy(), q.copy()
-            a[:, 6 + j] += JACOBIAN_STEP
-            b[:, 6 + j] -= JACOBIAN_STEP
-            J[:, :, j] = (tip_positions(robot, a)[0][:, :2]
-                          - tip_positions(robot, b)[0][:, :2]) / (2 * JACOBIAN_STEP)
-        JJt = J @ J.transpose(0, 2, 1)
-        pinv = J.transpose(0, 2, 1) @ np.linalg.inv(JJt)               # (N, 3, 2)
-        null = np.eye(3) - pinv @ J
-        step = (pinv @ e[:, :, None])[:, :, 0] + (null @ (q_op - q[:, 6:9])[:, :, None])[:, :, 0]
-        arm = q[:, 6:9] + step
-        held = (arm < lo) | (arm > hi)
-        q[:, 6:9] = np.clip(arm, lo, hi)
+        # rows of the horizontal Jacobian J (2 × 3); the step J⁺ e + (I − J⁺ J) d with
+        # d = q_op − q is d + Jᵀ (J Jᵀ)⁻¹ (e − J d), the 2 × 2 inverse written out
+        j0 = np.stack([c[0][keep] for c in cols], axis=-1)               # (n, 3)
+        j1 = np.stack([c[1][keep] for c in cols], axis=-1)
+        d = q_op[active] - qa[:, 6:9]
+        r0 = e[:, 0] - (j0 * d).sum(axis=1)
+        r1 = e[:, 1] - (j1 * d).sum(axis=1)
+        a, b, c = (j0 * j0).sum(axis=1), (j0 * j1).sum(axis=1), (j1 * j1).sum(axis=1)
+        det = a * c - b * b
+        w0, w1 = (c * r0 - b * r1) / det, (a * r1 - b * r0) / det
+        arm = qa[:, 6:9] + d + j0 * w0[:, None] + j1 * w1[:, None]
+        held[active] = (arm < lo) | (arm > hi)
+        q[active, 6:9] = np.clip(arm, lo, hi)
     else:
         bad = np.abs(xy - tip_positions(robot, q)[0][:, :2]).max(axis=1) > 1e-6
         if (bad & ~held.any(axis=1)).any():
-            k = int(np.argmax(bad & ~held.any(axis=1)))
+            k = first + int(np.argmax(bad & ~held.any(axis=1)))
             raise InputError(f"compensation: the arm cannot reach the still-ship tip "
                              f"position at sample {k} (Newton did not converge): check "
                              "the operation's pose", name="compensation", index=k)

@@ -44,18 +44,17 @@ def _quintic_midpoints(t, q, qd, qdd, sub: int):
     ``h / 2``, ``h = Δt / sub``) by quintic Hermite interpolation of ``q, q̇, q̈`` at the
     interval's ends; returns the whole stage grid ``(2 sub (N − 1) + 1, 9)`` × 3."""
     dt = np.diff(t)[:, None, None]                         # (N-1, 1, 1)
-    s = (np.arange(2 * sub + 1) / (2 * sub))[None, :, None]   # (1, 2 sub + 1, 1)
+    s = (np.arange(1, 2 * sub) / (2 * sub))[None, :, None]    # (1, 2 sub - 1, 1): interior
     H = _quintic_basis(s)
     ends = (q[:-1, None], qd[:-1, None] * dt, qdd[:-1, None] * dt ** 2, qdd[1:, None] * dt ** 2,
             qd[1:, None] * dt, q[1:, None])
+    n, m = len(t), q.shape[1]
     out = []
-    for d in range(3):
-        val = sum(Hk[d] * e for Hk, e in zip(H, ends)) / dt ** d
-        grid = val[:, :-1].reshape(-1, q.shape[1])
-        last = (q, qd, qdd)[d][-1:]
-        out.append(np.ascontiguousarray(np.concatenate([grid, last])))
-    for d, given in enumerate((q, qd, qdd)):       # the samples themselves, exactly
-        out[d][::2 * sub] = given
+    for d, given in enumerate((q, qd, qdd)):
+        grid = np.empty((n - 1, 2 * sub, m))
+        grid[:, 0] = given[:-1]                            # the samples themselves, exactly
+        grid[:, 1:] = sum(Hk[d] * e for Hk, e in zip(H, ends)) / dt ** d
+        out.append(np.ascontiguousarray(np.concatenate([grid.reshape(-1, m), given[-1:]])))
     return out
 
 
