@@ -198,3 +198,25 @@ def test_the_shipped_winch_lift_runs_from_the_command_line(tmp_path, capsys):
     a, b = done.results["kane"], done.results["rnea"]
     assert np.abs(a.X - b.X).max() <= 1e-9 * np.abs(b.X).max()
     assert np.abs(a.cable.tension - data[:, -4]).max() <= 0.1 * data[:, -4].max()
+
+
+def test_size_judges_the_winch_against_its_capacities(tmp_path, capsys):
+    """`size` on the winch lift: the winch's peak pull, speed, acceleration and power
+    beside their capacities (verdict.load in --json); a speed capacity below the
+    hoisting profile's 0.075 m/s exits 1 naming the winch's speed."""
+    import json
+    from pathlib import Path
+
+    from offshore_crane.__main__ import main
+
+    scene = Path(__file__).resolve().parents[2] / "scenes" / "winch_lift.toml"
+    assert main(["size", "--scene", str(scene), "--json"]) == 0
+    load = json.loads(capsys.readouterr().out)["verdict"]["load"]
+    assert load["observed"]["winch speed"] == pytest.approx(0.075, rel=1e-12)
+    assert load["utilisation"]["winch speed"] == pytest.approx(0.15, rel=1e-12)
+    slow = tmp_path / "slow.toml"
+    slow.write_text(scene.read_text().replace("speed_max = 0.5 ", "speed_max = 0.05 "))
+    assert main(["size", "--scene", str(slow)]) == 1
+    out = capsys.readouterr().out
+    assert "winch speed 0.075 m/s" in out and "150.0 % EXCEEDED" in out
+    assert "EXCEEDS its limits: winch speed" in out

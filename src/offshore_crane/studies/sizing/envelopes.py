@@ -54,6 +54,10 @@ class Envelope:
         sway_max: Largest angle of the cable from the tip's vertical [rad] (NaN: no cable).
         tension_min, tension_max: The cable's tension range [N] (NaN: no cable).
         static_tension: The cable's tension at rest, m·|g| [N] (NaN: no cable).
+        winch: ``{"pull" [N], "speed" [m/s], "acceleration" [m/s²], "power" [W]}`` the
+            winch's largest demands (empty without a winch).
+        winch_capacities: The robot's
+            :class:`~offshore_crane.robot.description.WinchCapacities` (with a winch).
         load_limits: The robot's :class:`~offshore_crane.robot.description.LoadLimits`
             (None: no cable).
     """
@@ -80,6 +84,8 @@ class Envelope:
     tension_max: float = math.nan
     static_tension: float = math.nan
     load_limits: object = None
+    winch: dict = field(default_factory=dict)
+    winch_capacities: object = None
 
     @property
     def present(self) -> np.ndarray:
@@ -266,13 +272,25 @@ def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
         sway_max=float(cable.sway_angle.max()), tension_min=float(cable.tension.min()),
         tension_max=float(cable.tension.max()),
         static_tension=float(cable.mass * np.linalg.norm(np.asarray(gravity, float))),
-        load_limits=robot.load_limits)
+        load_limits=robot.load_limits, **_winch(cable, robot))
     return Envelope(duration=float(t[-1] - t[0]), samples=N, peak_push=peak_push,
                     t_push=t_push, peak_pull=peak_pull, t_pull=t_pull, rms=rms,
                     peak_speed=peak_speed, peak_power=peak_power,
                     mean_abs_power=mean_abs_power, stroke_min=stroke_min,
                     stroke_max=stroke_max, stroke_range=rng, capacities=capacities,
                     utilisation=util, kappa=kappa, t_kappa=t_kappa, **hanging)
+
+
+def _winch(cable, robot) -> dict:
+    """The envelope's winch fields of a hoisted cable's result (none without)."""
+    if getattr(cable, "hoist", None) is None:
+        return {}
+    from offshore_crane.dynamics.cable import lift_metrics
+
+    m = lift_metrics(cable)
+    return dict(winch={"pull": m.winch_pull, "speed": m.winch_speed,
+                       "acceleration": m.winch_acceleration, "power": m.winch_power},
+                winch_capacities=robot.winch)
 
 
 def conditions(result) -> dict:

@@ -112,4 +112,18 @@ def format_load(load) -> list[str]:
             f"{load.static:.4g} N (observed {load.observed['tension_min']:.4g} N); "
             f"{judged('slack', ratio_limit)}",
             f"  tension max {load.tension_max:.4g} N (observed "
-            f"{load.observed['tension_max']:.4g} N); {judged('tension', t_limit)}"]
+            f"{load.observed['tension_max']:.4g} N); {judged('tension', t_limit)}"] + [
+            f"  winch {key} {value:.4g} {unit} (observed "
+            f"{load.observed['winch ' + key]:.4g} {unit}); "
+            f"{judged('winch ' + key, f'{cap:.4g} {unit}')}"
+            for (key, unit), value, cap in zip(
+                (("pull", "N"), ("speed", "m/s"), ("acceleration", "m/s²"), ("power", "W")),
+                load.winch.values(), _winch_caps(load))]
+
+
+def _winch_caps(load) -> list:
+    """The winch's capacities in the order of its verdict's demands."""
+    if not load.winch:
+        return []
+    return [load.winch_capacities.pull_max, load.winch_capacities.speed_max,
+            load.winch_capacities.acceleration_max, load.winch_capacities.power_max]

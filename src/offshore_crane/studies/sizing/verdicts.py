@@ -5,7 +5,7 @@ exposure) against its capacities.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -81,7 +81,12 @@ class LoadVerdict:
         limits: The :class:`~offshore_crane.robot.description.LoadLimits`.
         utilisation: ``{"sway": sway / limit, "slack": limit ratio / ratio_min,
             "tension": tension_max / limit}`` (NaN: no limit given; inf: the cable goes
-            slack, ratio ≤ 0, against a slack limit).
+            slack, ratio ≤ 0, against a slack limit); with a winch also ``"winch pull"``,
+            ``"winch speed"``, ``"winch acceleration"``, ``"winch power"`` against
+            ``actuators.winch``.
+        winch: ``{"pull", "speed", "acceleration", "power"}`` the winch's extreme demands
+            [N, m/s, m/s², W] (empty without a winch).
+        winch_capacities: The :class:`WinchCapacities` they are judged against.
     """
 
     sway: float
@@ -91,6 +96,8 @@ class LoadVerdict:
     observed: dict
     limits: object
     utilisation: dict
+    winch: dict = field(default_factory=dict)
+    winch_capacities: object = None
 
     @property
     def ratio_min(self) -> float:
@@ -128,8 +135,18 @@ def load_verdict(envelopes, record: float, exposure: float, gumbel: bool):
     util = {"sway": float(utilisation(np.array([sway]), np.array([lim.sway_max]))[0]),
             "slack": slack,
             "tension": float(utilisation(np.array([t_max]), np.array([lim.tension_max]))[0])}
+    winch = {}
+    if first.winch:                     # the winch's demands, extrapolated like the rest
+        caps = first.winch_capacities
+        for key, cap in (("pull", caps.pull_max), ("speed", caps.speed_max),
+                         ("acceleration", caps.acceleration_max), ("power", caps.power_max)):
+            winch[key] = extreme([e.winch[key] for e in envelopes], 1.0)
+            observed[f"winch {key}"] = max(e.winch[key] for e in envelopes)
+            util[f"winch {key}"] = float(utilisation(np.array([winch[key]]),
+                                                     np.array([cap]))[0])
     return LoadVerdict(sway=sway, tension_min=t_min, tension_max=t_max, static=static,
-                       observed=observed, limits=lim, utilisation=util)
+                       observed=observed, limits=lim, utilisation=util, winch=winch,
+                       winch_capacities=first.winch_capacities)
 
 
 #: Quantities the verdict extrapolates, with the envelope attribute and the capacity.
