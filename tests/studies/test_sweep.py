@@ -810,6 +810,24 @@ def test_two_sweeps_of_different_scenes_on_one_directory(tmp_path):
     assert manifest["grids"][0]["payload.mass"][0] == (0.5, 1.5)[winner]
 
 
+def test_a_directory_just_taken_by_another_run_is_not_called_foreign(tmp_path):
+    """The race CI met: a run that has just taken a new directory holds its lock, its
+    name and a whole-file write's temporary (.oc-*.tmp), no manifest yet; a second run
+    opening the directory then must not call it "not a results directory" (it goes on
+    to the lock, which names the holder)."""
+    from offshore_crane.studies.sweep.store import LOCK, LOCK_INFO, ResultsStore
+
+    out = tmp_path / "res"
+    out.mkdir()
+    for name in (LOCK, LOCK_INFO, ".oc-a1b2c3d4.tmp"):
+        (out / name).write_text("")
+    scene = scenes.load_scene(_scene(tmp_path))
+    assert ResultsStore.open(out, scene).manifest is None
+    (out / "notes.txt").write_text("mine")
+    with pytest.raises(ResultsDirectoryError, match="holds files but no sweep manifest"):
+        ResultsStore.open(out, scene)
+
+
 def test_a_refused_run_waits_for_the_holder_to_say_who_it_is(tmp_path):
     """The holder writes its name just after taking the lock: a run refused in between
     waits for it (up to store.HOLDER_WAIT) and names the process, not 'another process'

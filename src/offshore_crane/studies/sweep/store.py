@@ -83,7 +83,10 @@ class ResultsStore:
             return cls(given, scene.name, digest, None)
         manifest_path = os.path.join(given, MANIFEST)
         if not os.path.exists(manifest_path):
-            if set(os.listdir(given)) - {LOCK, LOCK_INFO}:
+            # the lock, its holder's name, and the whole-file writes' temporaries
+            # (.oc-*.tmp) of a run that has just taken the directory are not results
+            if [n for n in os.listdir(given) if n not in (LOCK, LOCK_INFO)
+                    and not n.startswith(".oc-")]:
                 refuse("exists and holds files but no sweep manifest (_manifest.json): "
                        "it is not a results directory; choose a new or empty directory")
             return cls(given, scene.name, digest, None)
