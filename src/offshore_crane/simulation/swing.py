@@ -223,8 +223,8 @@ def _finish(robot, res, sway_acc, g, limits) -> None:
     qdd11 = np.ascontiguousarray(np.concatenate([res.qdd, sway_acc], 1))
     F = np.full((n, 6), np.nan)              # a non-finite sample is skipped: NaN row
     ck.kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11,
-            qd11, qdd11, np.empty((0, 3)), np.empty((0, 3)), g, False, False, np.inf,
-            np.inf, 0, n, np.empty((n, 9)), np.empty((3, 1)), ws.new_health(), F)
+            qd11, qdd11, g, False, False, np.inf, np.inf, 0, n, np.empty((n, 9)),
+            np.empty((3, 1)), ws.new_health(), F)
     res.tension = F[:, 3]
     res.power = actuator_power(robot, res.q, res.qd, res.X)
 

@@ -10,8 +10,10 @@ from offshore_crane.robot.kinematics import workspace as ws
 
 def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, P=None):
     """X ``(n, 9)``, the cable's ``F`` ``(n, 6)`` and the condition numbers, by the
-    compiled ``kernels.kane``: the payload on the chain (``L`` and ``P`` None), hoisted
-    (``L`` ``(n, 3)``) or replaced by a given pull on the tip (``P`` ``(n, 3)`` [N])."""
+    compiled ``kernels.kane``: the payload on the chain (``L`` and ``P`` None), or
+    ``kernels.kane_pulled`` with the pull on the tip of the hoisted pendulum (``L``
+    ``(n, 3)``: the winch's length, rate, acceleration) or given (``P`` ``(n, 3)`` [N]:
+    an elastic cable)."""
     from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
@@ -27,16 +29,44 @@ def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, 
     kappa = np.empty((3, n)) if checks else np.empty((3, 1))
     if n == 0:
         return X, F, kappa if checks else None
-
-    hoist = np.empty((0, 3)) if L is None else L
-    pull = np.empty((0, 3)) if P is None else np.ascontiguousarray(P)
+    if L is not None:                # the hoisted pendulum's pull, vectorised
+        P, F[:] = _hoisted_pull(robot, arrays.kane, q, qd, qdd, Y, L, g)
+    elif P is not None:              # an elastic cable's: its tension is |P|
+        P = np.ascontiguousarray(P)
+        F[:, 0:3], F[:, 3], F[:, 4:6] = P, np.linalg.norm(P, axis=1), 0.0
 
     def run(start, stop, health):
-        ck.kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11,
-                qd11, qdd11, hoist, pull, g, checks, limits, thresholds.warn,
-                thresholds.error, start, stop, X, kappa, health, F)
+        if P is None:
+            ck.kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping,
+                    q11, qd11, qdd11, g, checks, limits, thresholds.warn, thresholds.error,
+                    start, stop, X, kappa, health, F)
+        else:
+            ck.kane_pulled(arrays.flat, arrays.layout, arrays.prismatic, q11, qd11, qdd11, P,
+                           g, checks, limits, thresholds.warn, thresholds.error, start, stop,
+                           X, kappa, health)
 
     health = run_threaded(run, n, 1)
     ws.enforce(health, (q, qd, qdd), arrays.limits if limits else None,
                kappa if checks else None, thresholds, (ws.LEG_JACOBIAN, ws.GIMBAL), t)
     return X, F, kappa if checks else None
+
+
+def _hoisted_pull(robot, C, q, qd, qdd, Y, L, g):
+    """``(pull (n, 3), F (n, 6))`` of the hoisted pendulum
+    (:func:`~offshore_crane.dynamics.sway.hoisted_pendulum` on NumPy arrays) at the sway
+    ``Y`` and the winch's ``L`` ``(n, 3)``: the pull [N], the tension [N] and the
+    residual of the sway equations at Y's φ̈ [N·m]."""
+    from offshore_crane.dynamics import backends
+
+    B = backends.NUMPY
+    c1, c2 = (float(c) for c in robot.hybrid.sway_damping)
+    gt = tuple(float(x) for x in g)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        Rt, w, al, at = B.tip_motion(C, q.T, qd.T, qdd.T)
+        a1, a2, cos2, pull, tension = B.hoisted_pendulum(
+            C, Rt, w, al, at, gt, Y[:, 0], Y[:, 1], Y[:, 2], Y[:, 3], c1, c2, *L.T)
+    m = float(C.arm_m[C.n_arm - 1])
+    mL2 = m * L[:, 0] ** 2
+    P = np.ascontiguousarray(np.stack(pull, axis=-1))
+    F = np.column_stack([P, tension, mL2 * cos2 * (Y[:, 4] - a1), mL2 * (Y[:, 5] - a2)])
+    return P, F

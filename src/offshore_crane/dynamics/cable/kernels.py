@@ -162,28 +162,19 @@ def _make(stamp):
                 T0[j] = T1[j]
 
     @jit
-    def kane(flat, lay, prism, damp, q, qd, qdd, L, P, g, want_cond, want_limits, warn,
-             error, start, stop, X, kappa, health, F):
+    def kane(flat, lay, prism, damp, q, qd, qdd, g, want_cond, want_limits, warn, error,
+             start, stop, X, kappa, health, F):
         """Samples ``start..stop-1`` of the fused Kane equations of the robot with its
         hanging payload: ``q, qd, qdd`` ``(N, 11)`` (the sway's in columns 9, 10); fills
         X ``(N, 9)`` and ``F`` ``(N, 6)``: the cable's pull on the tip (3) [N, base
         axes], the tension [N], and the residual of the two sway equations [N·m]
         (Kane's rows of the sway speeds with the damping ``damp`` (2,) [N·m·s/rad], zero
-        when φ̈ solves them).
-
-        ``L`` ``(N, 3)``: a winch's cable length [m], rate [m/s], acceleration [m/s²];
-        the pull then comes from :func:`~offshore_crane.dynamics.sway.hoisted_pendulum`
-        and enters X by ``kane_sample_pull``, and the residual is that of the hoisted
-        sway equations at the given φ̈. ``(0, 3)``: the description's fixed length, the
-        payload the arm chain's last body. ``P`` ``(N, 3)``: the pull on the tip given
-        [N] (an elastic cable; the sway columns are then not read, the residual is zero
-        and the tension is ``|P|``), or ``(0, 3)``."""
+        when φ̈ solves them)."""
         if len(stamp) == 0:
             return
         C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
         tb = tangent_bounds(lim_ujoint)
         na = C.n_arm
-        m = C.arm_m[na - 1]
         rows = np.zeros(na)
         A = np.empty((6, 6))
         rhs6 = np.empty(6)
@@ -192,39 +183,52 @@ def _make(stamp):
         x = np.empty(6)
         M = np.empty((6, 13))
         gt = (g[0], g[1], g[2])
-        hoisted = L.shape[0] > 0
-        pulled = P.shape[0] > 0
         for k in range(start, stop):
             if not finite_inputs(q, qd, qdd, k, health):
                 for j in range(9):
                     X[k, j] = np.nan
                 continue
-            if pulled:
-                f = (P[k, 0], P[k, 1], P[k, 2])
-                tension = np.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
-                kane_sample_pull(C, q[k], qd[k], qdd[k], gt, f, rows, A, rhs6, diag, store)
-                F[k, 4] = 0.0
-                F[k, 5] = 0.0
-            elif hoisted:
-                Rt, w, al, at = tip_motion(C, q[k], qd[k], qdd[k])
-                a1, a2, cos2, f, tension = hoisted_pendulum(
-                    C, Rt, w, al, at, gt, q[k, 4 + na], q[k, 5 + na], qd[k, 4 + na],
-                    qd[k, 5 + na], damp[0], damp[1], L[k, 0], L[k, 1], L[k, 2])
-                kane_sample_pull(C, q[k], qd[k], qdd[k], gt, f, rows, A, rhs6, diag, store)
-                mL2 = m * L[k, 0] * L[k, 0]
-                F[k, 4] = mL2 * cos2 * (qdd[k, 4 + na] - a1)
-                F[k, 5] = mL2 * (qdd[k, 5 + na] - a2)
-            else:
-                kane_sample(C, q[k], qd[k], qdd[k], gt, False, 0, True, rows, A, rhs6, diag,
-                            store)
-                f, tension = cable_force(C, store)
-                F[k, 4] = rows[na - 2] + damp[0] * qd[k, 4 + na]
-                F[k, 5] = rows[na - 1] + damp[1] * qd[k, 5 + na]
+            kane_sample(C, q[k], qd[k], qdd[k], gt, False, 0, True, rows, A, rhs6, diag,
+                        store)
             for b in range(3):
                 X[k, b] = rows[b]
+            f, tension = cable_force(C, store)
             for j in range(3):
                 F[k, j] = f[j]
             F[k, 3] = tension
+            F[k, 4] = rows[na - 2] + damp[0] * qd[k, 4 + na]
+            F[k, 5] = rows[na - 1] + damp[1] * qd[k, 5 + na]
+            post(k, q, na, A, rhs6, diag, True, want_cond, want_limits, warn, error,
+                 lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
+
+    @jit
+    def kane_pulled(flat, lay, prism, q, qd, qdd, P, g, want_cond, want_limits, warn,
+                    error, start, stop, X, kappa, health):
+        """As :func:`kane` with the payload replaced by a given pull ``P`` ``(N, 3)`` [N]
+        (base axes) on the tip (``formulas.kane_sample_pull``: a winch's hoisted
+        pendulum, an elastic cable); fills X only (the sway columns are not read)."""
+        if len(stamp) == 0:
+            return
+        C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
+        tb = tangent_bounds(lim_ujoint)
+        na = C.n_arm
+        rows = np.zeros(na)
+        A = np.empty((6, 6))
+        rhs6 = np.empty(6)
+        diag = np.zeros((7, 6))
+        store = np.empty((na, STORE_WIDTH))
+        x = np.empty(6)
+        M = np.empty((6, 13))
+        gt = (g[0], g[1], g[2])
+        for k in range(start, stop):
+            if not finite_inputs(q, qd, qdd, k, health):
+                for j in range(9):
+                    X[k, j] = np.nan
+                continue
+            kane_sample_pull(C, q[k], qd[k], qdd[k], gt, (P[k, 0], P[k, 1], P[k, 2]), rows,
+                             A, rhs6, diag, store)
+            for b in range(3):
+                X[k, b] = rows[b]
             post(k, q, na, A, rhs6, diag, True, want_cond, want_limits, warn, error,
                  lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 
@@ -314,7 +318,7 @@ def _make(stamp):
             pay[i] = rate[i]
             pay[3 + i] = rho[i]
 
-    return integrate, kane, accelerations, computed_torque, payload
+    return integrate, kane, kane_pulled, accelerations, computed_torque, payload
 
 
-integrate, kane, accelerations, computed_torque, payload = _make(c.STAMP)
+integrate, kane, kane_pulled, accelerations, computed_torque, payload = _make(c.STAMP)
