@@ -178,7 +178,7 @@ def main() -> None:
     first = cold_pool(scene)
     saved["first_case_s"] = first
     print(f"2 fresh workers: slowest first case {first:.2f} s (forked with the kernels "
-          "loaded; compiling them takes ~1-1.5 min)")
+          "loaded; compiling them takes ~2 min)")
     for workers in (1, 2):
         r = overhead(scene, args.cases, workers)
         saved[f"overhead_{workers}"] = r

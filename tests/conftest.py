@@ -37,7 +37,7 @@ def pytest_sessionstart(session):
     say = session.config.pluginmanager.get_plugin("terminalreporter")
     if say is not None:
         say.write_line("Numba kernels: loading them, or compiling them first on a fresh "
-                       "clone (about 1-1.5 min on 2 cores) ...", flush=True)
+                       "clone (about 2 min on 2 cores) ...", flush=True)
     t0 = time.perf_counter()
     _COMPILE["parts"] = warm_up() + warm_up_simulation() + warm_up_cable()
     _COMPILE["total"] = time.perf_counter() - t0

@@ -29,7 +29,7 @@ COMPILED = [0]
 #: Said once per process before the first kernel compiles (:func:`offshore_crane.
 #: progress.notice`); the figures are the whole set's cold compile on a 2-core machine.
 COMPILE_NOTICE = ("compiling the Numba kernels this run needs, once (they are cached "
-                  "afterwards; the whole set takes about 1-1.5 min on 2 cores: "
+                  "afterwards; the whole set takes about 2 min on 2 cores: "
                   "'offshore-crane compile' does it up front)")
 
 
