@@ -72,7 +72,8 @@ class Operation:
 
     Attributes:
         times: ``(K,)`` waypoint times [s], strictly increasing.
-        positions: ``(K, 3)`` q7 [rad], q8 [rad], q9 [m] at the waypoints.
+        positions: ``(K, 3)`` q7 [rad], q8 [rad], q9 [m] at the waypoints (any ``(K, m)``
+            columns blend alike: a winch's cable length is one).
     """
 
     times: np.ndarray
@@ -153,17 +154,18 @@ class Operation:
 
         Returns:
             ``(q, qd, qdd)``, each ``(n, 3)`` (``(3,)`` for a scalar ``t``): q7, q8 [rad],
-            q9 [m] and their rates [rad/s, m/s] and accelerations [rad/s², m/s²].
+            q9 [m] and their rates [rad/s, m/s] and accelerations [rad/s², m/s²]
+            (``(n, m)`` for ``m`` columns of positions).
 
         Raises:
             SeaStateError: ``t`` not numeric, not 1-D, or not finite.
         """
         t, scalar = as_times(t)
         T, P = self.times, self.positions
-        n = t.shape[0]
-        q = np.empty((n, 3))
-        qd = np.zeros((n, 3))
-        qdd = np.zeros((n, 3))
+        n, m = t.shape[0], P.shape[1]
+        q = np.empty((n, m))
+        qd = np.zeros((n, m))
+        qdd = np.zeros((n, m))
         k = np.searchsorted(T, t, side="right") - 1          # segment index, -1 before
         before, after = k < 0, k >= len(T) - 1
         q[before] = P[0]

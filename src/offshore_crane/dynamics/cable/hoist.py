@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from offshore_crane.errors import InputError
+from offshore_crane.motion.operations import Operation
 
 
 def hoist_grid(hoist, tt: np.ndarray) -> np.ndarray:
@@ -36,9 +37,11 @@ def hoist_grid(hoist, tt: np.ndarray) -> np.ndarray:
 
 
 def hoist_profile(waypoints) -> "callable":
-    """A winch's cable length through waypoints ``((t, L), ...)`` [s, m], by quintic
-    rest-to-rest moves between them (zero rate and acceleration at each waypoint, held
-    before the first and after the last): ``hoist(t) -> (L, L̇, L̈)``.
+    """A winch's cable length through waypoints ``((t, L), ...)`` [s, m], by the crane
+    operations' quintic rest-to-rest moves
+    (:class:`~offshore_crane.motion.operations.Operation`: zero rate and acceleration at
+    each waypoint, held before the first and after the last): ``hoist(t) -> (L, L̇, L̈)``
+    for ``t (n,)``.
 
     Raises:
         InputError: fewer than one waypoint, times not increasing, a length ≤ 0.
@@ -50,17 +53,9 @@ def hoist_profile(waypoints) -> "callable":
     if (np.diff(w[:, 0]) <= 0).any() or (w[:, 1] <= 0).any():
         raise InputError("hoist waypoints need increasing times and lengths > 0 m",
                          name="hoist")
+    blend = Operation(np.ascontiguousarray(w[:, 0]), np.ascontiguousarray(w[:, 1:2]))
 
     def hoist(t):
-        t = np.asarray(t, dtype=float)
-        k = np.clip(np.searchsorted(w[:, 0], t, side="right") - 1, 0, len(w) - 1)
-        nxt = np.minimum(k + 1, len(w) - 1)
-        span = np.where(nxt > k, w[nxt, 0] - w[k, 0], 1.0)
-        s = np.clip((t - w[k, 0]) / span, 0.0, 1.0)
-        s = np.where(nxt > k, s, 0.0)
-        dL = w[nxt, 1] - w[k, 1]
-        shape = s ** 3 * (10.0 - 15.0 * s + 6.0 * s * s)
-        rate = 30.0 * s * s * (1.0 - s) ** 2 / span
-        acc = 60.0 * s * (1.0 - s) * (1.0 - 2.0 * s) / span ** 2
-        return w[k, 1] + dL * shape, dL * rate, dL * acc
+        L, Ld, Ldd = blend(np.asarray(t, dtype=float))
+        return L[:, 0], Ld[:, 0], Ldd[:, 0]
     return hoist
