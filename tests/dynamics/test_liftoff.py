@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane.dynamics import backends, cable
-from offshore_crane.dynamics.constants import cable_arrays
+from offshore_crane.dynamics import cable
+from offshore_crane.dynamics.cable.tip import tip_positions
 from offshore_crane.errors import InputError
 from offshore_crane.motion.trajectories import Trajectory, time_grid
 
@@ -27,8 +27,7 @@ def held():
     t = time_grid(4.0, 1000.0)
     q = np.zeros((len(t), 9))
     q[:, 2] = robot.home_height
-    tip = np.stack(backends.NUMPY.tip_state(cable_arrays(robot).kane, q[:1].T, q[:1].T)[0],
-                   axis=-1)[0]
+    tip = tip_positions(robot, q[:1])[0][0]
     return robot, Trajectory("held", t, q, 0 * q, 0 * q), float(tip[2])
 
 

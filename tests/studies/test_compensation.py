@@ -14,7 +14,8 @@ import pytest
 from offshore_crane import scenes
 from offshore_crane.__main__ import main
 from offshore_crane.errors import InputError
-from offshore_crane.simulation.compensation import compensated_motion, tip_positions
+from offshore_crane.dynamics.cable.tip import tip_positions
+from offshore_crane.simulation.compensation import compensated_motion
 from offshore_crane.studies.compensation import compare_compensation
 
 SCENE = Path(__file__).resolve().parents[2] / "scenes" / "compensated_lift.toml"

@@ -63,8 +63,7 @@ def load_motion(args, scene):
 
     from dataclasses import replace
 
-    later = [f"[cable] {k}" for k in ("ea", "winch") if k in scene.cable] + (
-        ["[control] compensation"] if scene.compensation != "none" else [])
+    later = scene.varying_cable
     if later:
         raise InputError(f"{', '.join(later)}: the pictures draw the rigid cable at its "
                          "fixed length only (a varying or slack cable is not drawn yet); "

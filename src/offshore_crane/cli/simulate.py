@@ -99,8 +99,7 @@ def run(args) -> int:
     if flags:
         controller = replace(controller, _arrays={}, **flags)
     c = scene.control
-    later = [f"[cable] {k}" for k in ("ea", "winch") if k in scene.cable] + (
-        ["[control] compensation"] if c.get("compensation", "none") != "none" else [])
+    later = scene.varying_cable
     if later:
         raise InputError(f"simulate runs the rigid cable at a fixed length without "
                          f"compensation; {', '.join(later)}: use offshore-crane id or "

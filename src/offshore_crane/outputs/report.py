@@ -128,8 +128,8 @@ def cable_summary(cable, winch=None) -> str:
 def elastic_summary(cable, winch=None) -> str:
     """Lines on a payload on an elastic cable: its stiffness and step, its largest angle
     from the vertical and stretch, and the lift's figures (:func:`lift_lines`)."""
-    t, rho = cable.t, cable.position
-    down = np.degrees(np.arccos(np.clip(-rho[:, 2] / np.linalg.norm(rho, axis=1), -1, 1)))
+    t = cable.t
+    down = np.degrees(cable.sway_angle)
     k = int(np.argmax(down))
     j = int(np.argmax(cable.stretch))
     lines = [f"hanging load: {cable.mass:g} kg on an elastic cable, EA {cable.ea:.4g} N, "
@@ -176,9 +176,7 @@ def plot(path, t: np.ndarray, X: np.ndarray, title: str = "", cable=None) -> Non
         axes[3].plot(t, np.degrees(cable.sway[:, 1]), label="phi2")
         axes[3].set_ylabel("sway [deg]")
     elif cable is not None:                     # an elastic cable: the payload's angle
-        rho = cable.position
-        axes[3].plot(t, np.degrees(np.arccos(np.clip(-rho[:, 2] / np.linalg.norm(
-            rho, axis=1), -1, 1))), label="from the vertical")
+        axes[3].plot(t, np.degrees(cable.sway_angle), label="from the vertical")
         axes[3].set_ylabel("cable angle [deg]")
     if cable is not None:
         axes[4].plot(t, cable.tension, label="tension", color="k")

@@ -139,13 +139,7 @@ def _compensated(scene: Scene, robot, traj, options: dict):
     if comp.hoist is not None:
         options["hoist"] = comp.hoist_function()
     if "initial" not in options:
-        length = comp.length if comp.hoist is None else float(comp.hoist[0, 0])
-        start = still_start(robot, comp.trajectory, length, scene.gravity,
-                            elastic="ea" in scene.cable)
-        if "ea" in scene.cable:
-            start["initial"] = start["initial"] * (1.0 + robot.hybrid.cable.mass[-1] * float(
-                np.linalg.norm(scene.gravity)) / scene.cable["ea"])
-        options.update(start)
+        options.update(still_start(robot, comp, scene.gravity, scene.cable.get("ea")))
     return comp.trajectory, options
 
 

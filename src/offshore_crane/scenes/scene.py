@@ -121,6 +121,14 @@ class Scene:
         """``[control] compensation``: ``"none"``, ``"arm"`` or ``"arm+winch"``."""
         return self.control.get("compensation", "none")
 
+    @property
+    def varying_cable(self) -> list[str]:
+        """The scene's keys that make its cable other than rigid at a fixed length (an
+        elastic cable, a winch, a compensation's winch or arm): ``["[cable] ea", ...]``,
+        empty for none — what the forward simulation and the pictures do not handle."""
+        return [f"[cable] {k}" for k in ("ea", "winch") if k in self.cable] + (
+            ["[control] compensation"] if self.compensation != "none" else [])
+
     def where(self) -> str:
         """Where the scene comes from, for messages."""
         return self.origin or self.path or f"scene '{self.name}'"

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from offshore_crane.dynamics.cable.tip import BLOCK, tip_positions
 from offshore_crane.errors import InputError
 
 #: The compensation modes: none, the arm (horizontal), the arm and the winch (vertical).
@@ -38,9 +39,6 @@ MODES = ("none", "arm", "arm+winch")
 IK_TOLERANCE, IK_ITERATIONS = 1e-12, 30
 #: Order of the finite differences giving the commanded rates and accelerations.
 FD_ORDER = 6
-#: Samples evaluated at once (the vectorised formulas' arrays stay in the caches: a
-#: 3-hour record at 100 Hz takes 2.4 × less time in blocks of 2¹⁵ than whole).
-BLOCK = 1 << 15
 
 
 @dataclass
@@ -78,43 +76,30 @@ class Compensated:
         return lambda x: quintic_hermite(t, H[:, 0:1], H[:, 1:2], H[:, 2:3], x)
 
 
-def tip_positions(robot, q: np.ndarray, qd: np.ndarray | None = None) -> tuple:
-    """The tip's position [m] and velocity [m/s] ``(N, 3)`` in the base frame for the
-    robot's ``q (N, 9)`` (and ``qd``; zero rates by default)."""
-    from offshore_crane.dynamics import backends
-    from offshore_crane.dynamics.constants import cable_arrays
-
-    qd = np.zeros_like(q) if qd is None else qd
-    C = cable_arrays(robot).kane
-    p, v = np.empty((len(q), 3)), np.empty((len(q), 3))
-    for a in range(0, len(q), BLOCK):
-        b = slice(a, a + BLOCK)
-        pb, vb = backends.NUMPY.tip_state(C, q[b].T, qd[b].T)
-        p[b], v[b] = np.stack(pb, axis=-1), np.stack(vb, axis=-1)
-    return p, v
-
-
-def still_start(robot, trajectory, length: float, gravity, elastic: bool = False) -> dict:
-    """The payload hanging still at the record's start: straight down along g, at rest
-    in the base frame as far as the cable allows.
+def still_start(robot, comp: Compensated, gravity, ea: float | None = None) -> dict:
+    """The payload hanging still at the start of a compensated motion ``comp``: straight
+    down along g on the cable's starting length (the winch's, else the still ship's), at
+    rest in the base frame as far as the cable allows.
 
     Returns:
         Rigid cable: ``{"initial": (φ1, φ2), "initial_rate": (φ̇1, φ̇2)}`` [rad, rad/s]
         (the cable along g in the tip's axes; the rates that cancel the tip's velocity
-        across the cable, over ``length`` [m]). Elastic (``elastic``):
-        ``{"initial": ρ0, "initial_velocity": −v_tip}`` [m, m/s], base axes (the caller
-        adds the static stretch).
+        across the cable). Elastic of stiffness ``ea`` [N]: ``{"initial": ρ0,
+        "initial_velocity": −v_tip}`` [m, m/s], base axes, ρ0 at the static stretch.
     """
     from offshore_crane.dynamics import backends
     from offshore_crane.dynamics.constants import cable_arrays
 
+    trajectory = comp.trajectory
+    length = comp.length if comp.hoist is None else float(comp.hoist[0, 0])
     g = np.asarray(gravity, dtype=float)
     down = g / np.linalg.norm(g)
     q0, qd0, qdd0 = (np.asarray(x, dtype=float)[:1] for x in (trajectory.q, trajectory.qd,
                                                                trajectory.qdd))
     v_tip = tip_positions(robot, q0, qd0)[1][0]
-    if elastic:
-        return {"initial": down * length, "initial_velocity": -v_tip}
+    if ea is not None:
+        stretch = 1.0 + float(robot.hybrid.cable.mass[-1]) * np.linalg.norm(g) / ea
+        return {"initial": down * length * stretch, "initial_velocity": -v_tip}
     B, C = backends.NUMPY, cable_arrays(robot).kane
     Rt, w = B.tip_motion(C, q0.T, qd0.T, qdd0.T)[:2]
     Rt = np.array([[float(np.asarray(x)[0]) for x in row] for row in Rt])

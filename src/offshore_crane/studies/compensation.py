@@ -47,7 +47,7 @@ def payload_positions(robot, res) -> np.ndarray:
         return np.asarray(res.payload)
     from offshore_crane.dynamics import backends
     from offshore_crane.dynamics.constants import cable_arrays
-    from offshore_crane.simulation.compensation import tip_positions
+    from offshore_crane.dynamics.cable.tip import tip_positions
 
     B, C = backends.NUMPY, cable_arrays(robot).kane
     Rt = B.tip_motion(C, res.q.T, res.qd.T, res.qdd.T)[0]
@@ -97,11 +97,8 @@ def compare_compensation(robot, trajectory, cable: dict | None = None, gravity=G
         tr = comp.trajectory
         args = dict(t=tr.t, gravity=g, hoist=comp.hoist_function(),
                     reference=tr.reference if tr.source is not None else None)
-        length = comp.length if comp.hoist is None else float(comp.hoist[0, 0])
-        start = still_start(robot, tr, length, g, elastic=bool(elastic))
+        start = still_start(robot, comp, g, elastic.get("ea"))
         if elastic:
-            start["initial"] = start["initial"] * (1.0 + robot.hybrid.cable.mass[-1]
-                                                   * np.linalg.norm(g) / elastic["ea"])
             res = elastic_inverse_dynamics(robot, tr.q, tr.qd, tr.qdd, **args, **elastic,
                                            **start, **{k: v for k, v in cable.items()
                                                        if k == "substeps"})

@@ -106,10 +106,10 @@ class ElasticResult:
         return self.tension / self.static_tension
 
     def time_slack(self) -> float:
-        """Time the cable spent slack [s] (samples' intervals, the sample's state held)."""
-        if len(self.t) < 2:
-            return 0.0
-        return float(np.diff(self.t)[self.slack[:-1]].sum())
+        """Time the cable spent slack [s] (:func:`~.lift.time_slack`)."""
+        from offshore_crane.dynamics.cable.lift import time_slack
+
+        return time_slack(self.t, self.tension)
 
     def peak_tension(self) -> float:
         """The largest tension [N], refined between samples by the parabola through the
@@ -154,7 +154,7 @@ def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float 
         NumericalError: the payload reaches the tip (a non-finite state).
         WorkspaceError, SingularConfigurationError: as the inverse dynamics.
     """
-    from offshore_crane.dynamics import backends
+    from offshore_crane.dynamics.cable.tip import tip_positions
     from offshore_crane.dynamics.cable.forces import kane_forces
     from offshore_crane.dynamics.cable.grid import cable_robot, motion_samples, stage_grid
     from offshore_crane.dynamics.cable import elastic_kernels as ek
@@ -212,9 +212,7 @@ def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float 
     zeros = np.zeros((N, 6))
     X, F, kappa = kane_forces(robot, t, q, qd, qdd, zeros, g, limits, checks, thresholds,
                                P=pull)
-    B = backends.NUMPY
-    p_tip, v_tip = (np.stack(x, axis=-1) for x in B.tip_state(cable_arrays(robot).kane,
-                                                              q.T, qd.T))
+    p_tip, v_tip = tip_positions(robot, q, qd)
     L = None if hoist is None else np.ascontiguousarray(Lh[::2])
     return ElasticResult(
         t=t, q=q, qd=qd, qdd=qdd, X=X, position=rho.copy(), velocity=Y[:, 3:6].copy(),

@@ -48,6 +48,15 @@ class LiftMetrics:
                 for name, demand, cap in pairs}
 
 
+def time_slack(t: np.ndarray, tension: np.ndarray) -> float:
+    """Time [s] a cable of ``tension (N,)`` [N] at times ``t (N,)`` spent slack (not
+    pulling): the intervals whose first sample is slack (its state held over them)."""
+    t, tension = np.asarray(t), np.asarray(tension)
+    if len(t) < 2:
+        return 0.0
+    return float(np.diff(t)[~(tension[:-1] > 0.0)].sum())
+
+
 def lift_metrics(res, gravity=(0.0, 0.0, -9.81)) -> LiftMetrics:
     """The lift figures of a :class:`~.result.CableResult` or
     :class:`~.elastic.ElasticResult`.
@@ -60,8 +69,7 @@ def lift_metrics(res, gravity=(0.0, 0.0, -9.81)) -> LiftMetrics:
     static = getattr(res, "static_tension", None)
     if static is None:
         static = res.mass * float(np.linalg.norm(gravity))
-    slack = ~(T > 0.0)
-    slack_time = float(np.diff(t)[slack[:-1]].sum()) if len(t) > 1 else 0.0
+    slack_time = time_slack(t, T)
     peak = res.peak_tension() if hasattr(res, "peak_tension") else float(T.max())
     winch = {}
     if res.hoist is not None:

@@ -78,7 +78,7 @@ def lift_off(robot, trajectory, deck, *, ea: float, damping: float = 0.0, hoist=
     from offshore_crane.dynamics.cable.elastic import elastic_inverse_dynamics
     from offshore_crane.dynamics.cable.grid import cable_robot
     from offshore_crane.dynamics.cable.hoist import hoist_grid
-    from offshore_crane.dynamics.constants import cable_arrays
+    from offshore_crane.dynamics.cable.tip import tip_positions
 
     robot = cable_robot(robot)
     t = np.asarray(trajectory.t, dtype=float)
@@ -86,8 +86,7 @@ def lift_off(robot, trajectory, deck, *, ea: float, damping: float = 0.0, hoist=
     m = float(robot.hybrid.cable.mass[-1])
     g = float(np.linalg.norm(gravity))
     B = backends.NUMPY
-    p_tip, v_tip = (np.stack(x, axis=-1) for x in B.tip_state(cable_arrays(robot).kane,
-                                                              q.T, qd.T))
+    p_tip, v_tip = tip_positions(robot, q, qd)
     z, zd, zdd = _deck(deck, t)
     if not z[0] < p_tip[0, 2]:
         raise InputError(f"the deck at {z[0]:.4g} m is not below the tip "
