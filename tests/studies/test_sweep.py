@@ -694,6 +694,76 @@ def test_limiting_hs_and_operability(tmp_path):
     assert op["uncovered_pct"].iloc[0] == pytest.approx(100 * 3 / 12)
 
 
+#: The sweep scene with its payload on a 1 m cable judged by the slack criterion (a
+#: fraction 0.9 of the static tension: crossed by the larger sea state, so that the
+#: "no slack" diagram has a limit inside the grid).
+LIFT_SCENE = SCENE.replace("offset = [0.0, 0.0, -0.05]", """cable_length = 1.0
+sway_damping = 0.25
+[payload.limits]
+tension_ratio_min = 0.9
+sway_max_deg = 45.0""")
+
+
+def test_lift_columns_and_the_no_slack_operability(tmp_path):
+    """Rows carry the lift figures (tension ratios over m g, time slack, the load's
+    utilisations); the verdict's slack utilisation is the limit over the most probable
+    minimum of the tension ratio (the Gumbel fit of its negation, by hand here), the
+    load's worst and the overall worst are the larger ones; the "no slack" operability
+    reads slack_util (a limiting Hs between the swept ones)."""
+    from offshore_crane.studies import sizing
+
+    path = tmp_path / "lift.toml"
+    path.write_text(LIFT_SCENE.format(duration=5.0, rate=50.0))
+    scene = scenes.load_scene(path)
+    df = sweep.run(scene, {"hs": [1.0, 4.0], "seed": [0, 1, 2, 3, 4]})
+    assert (df["status"] == "ok").all()
+    g = 2.0 * 9.81
+    assert np.allclose(df["tension_ratio_min"], df["tension_min"] / g, rtol=1e-15)
+    assert np.allclose(df["tension_ratio_max"], df["tension_max"] / g, rtol=1e-15)
+    assert (df["time_slack_s"] == 0.0).all() and (df["tension_ratio_limit"] == 0.9).all()
+    assert np.allclose(df["slack_util"], 0.9 / df["tension_ratio_min"], rtol=1e-15)
+    assert np.allclose(df["sway_util"], df["sway_max"] / np.radians(45.0), rtol=1e-15)
+    assert np.allclose(df["load_util"], np.maximum(df["slack_util"], df["sway_util"]))
+    assert df["winch_util_pull"].isna().all()             # no winch
+    v = sweep.verdicts(df, scene).set_index("hs")
+    record = 5.0 * np.sqrt(20.0)
+    for hs in (1.0, 4.0):
+        ratio = df.loc[df["hs"] == hs, "tension_ratio_min"]
+        mpm_min = -sizing.most_probable_maximum(-ratio, record)
+        assert v.loc[hs, "tension_ratio_min"] == pytest.approx(mpm_min, rel=1e-12)
+        assert v.loc[hs, "slack_util"] == pytest.approx(0.9 / mpm_min, rel=1e-12)
+        assert v.loc[hs, "load_util"] == max(v.loc[hs, "slack_util"], v.loc[hs, "sway_util"])
+        assert v.loc[hs, "overall_util"] == max(v.loc[hs, "load_util"],
+                                               v.loc[hs, "worst_util"])
+    assert v.loc[1.0, "slack_util"] < 1.0 < v.loc[4.0, "slack_util"]
+    scatter_path = tmp_path / "scatter.csv"
+    scatter_path.write_text("hs_m/tp_s,8\n1.0,1\n3.0,1\n5.0,1\n")
+    op = sweep.operability(v.reset_index(), sweep.load_scatter(scatter_path), scene,
+                           "no slack")
+    limit = sweep.limiting_hs([1.0, 4.0], v["slack_util"])
+    assert 1.0 < limit < 4.0
+    expected = 100.0 * np.mean([h <= limit for h in (1.0, 3.0, 5.0)])
+    assert op["operability_pct"].iloc[-1] == pytest.approx(expected)
+    with pytest.raises(oc_errors().InputError, match="criterion 'slack' is not one of"):
+        sweep.operability(v.reset_index(), sweep.load_scatter(scatter_path), scene, "slack")
+
+
+def test_a_failed_case_is_inoperable_by_every_criterion(tmp_path):
+    path = tmp_path / "lift.toml"
+    path.write_text(LIFT_SCENE.format(duration=5.0, rate=50.0))
+    scene = scenes.load_scene(path)
+    df = sweep.run(scene, {"hs": [1.0, 12.0]})
+    assert list(df["status"]) == ["ok", "failed"]
+    v = sweep.verdicts(df, scene).set_index("hs")
+    for column in sweep.CRITERIA.values():
+        assert np.isfinite(v.loc[1.0, column]) and np.isinf(v.loc[12.0, column])
+
+
+def oc_errors():
+    from offshore_crane import errors
+    return errors
+
+
 @pytest.mark.parametrize("text, match", [
     ("hs_m/tp_s,6,8\n1.0,1,x\n", r"line 2, cell 3: 'x' is not a finite number"),
     ("hs_m/tp_s,6,8\n1.0,1\n", "2 cells, but the header has 3"),
@@ -707,6 +777,23 @@ def test_scatter_errors(tmp_path, text, match):
     path.write_text(text)
     with pytest.raises(InputError, match=match):
         sweep.load_scatter(path)
+
+
+def test_cli_sweep_of_a_hanging_load_draws_the_no_slack_diagram(tmp_path, capsys):
+    path = tmp_path / "lift.toml"
+    path.write_text(LIFT_SCENE.format(duration=5.0, rate=50.0))
+    grid = _grid(tmp_path, "hs = [1.0, 4.0]\ntp = [6.0, 9.0]\n")
+    scatter = tmp_path / "s.csv"
+    scatter.write_text("hs_m/tp_s,6,9\n1.0,3,1\n3.0,1,1\n")
+    plots = tmp_path / "plots"
+    assert main(["sweep", "--scene", str(path), "--grid", str(grid), "--plot", str(plots),
+                 "--scatter", str(scatter), "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    assert "load %" in out and "load: slack" in out
+    assert " no slack (the slack criterion" in out and "actuators and hanging load" in out
+    assert sorted(os.listdir(plots)) == [
+        "operability-all.png", "operability-load.png", "operability-no-slack.png",
+        "operability.png", "utilisation-worst-case.png"]
 
 
 def test_cli_sweep_plots_csv_and_operability(tmp_path, capsys):

@@ -113,16 +113,8 @@ def run(args) -> int:
     exposure = args.exposure * 3600.0
     v = sweep.verdicts(df, scene, exposure)
     keys = sweep.group_keys(df)
-    head = "".join(f"{k:>14}" for k in keys)
-    print(f"{head}{'seeds':>7}{'basis':>10}{'worst %':>9}  governing")
-    for _, r in v.iterrows():
-        worst = r["worst_util"]
-        text = ("failed" if math.isinf(worst) else "—" if math.isnan(worst)
-                else f"{100 * worst:.1f}")
-        who = (f"{r['governing']} {r['governing_capacity']}" if r["governing"] else
-               f"{r['error_type']}: {r['error'][:72]}..." if r["error"] else "")
-        print("".join(f"{r[k]:>14g}" for k in keys)
-              + f"{r['seeds']:>7}{r['basis']:>10}{text:>9}  {who}")
+    criteria = _criteria(v)
+    _print_verdicts(v, keys, "all" in criteria)
     bases = set(v["basis"])
     if "observed" in bases:
         from offshore_crane.studies.sizing import MIN_SEEDS
@@ -130,30 +122,71 @@ def run(args) -> int:
         print(f"(observed: fewer than {MIN_SEEDS} seeds or no sea, the largest observed "
               "peak; gumbel: most probable maximum over "
               f"{args.exposure:g} h full scale)")
-    op = None
+    op = {}
     if scatter is not None:
-        op = sweep.operability(v, scatter, scene)
+        op = {c: sweep.operability(v, scatter, scene, c) for c in criteria}
         print(f"operability over {args.scatter} (a cell is operable below the limiting "
               "Hs of its Tp; headings equally likely overall):")
-        for _, r in op.iterrows():
-            others = {k: r[k] for k in op.columns if k not in
-                      ("heading", "operability_pct", "uncovered_pct")}
-            where = (_label(others) + ", ") if others else ""
-            what = "overall" if math.isnan(r["heading"]) else f"heading {r['heading']:g}°"
-            print(f"  {where}{what}: {r['operability_pct']:.1f} % of the time"
-                  + (f" ({r['uncovered_pct']:.1f} % of the time outside the swept Tp)"
-                     if r["uncovered_pct"] > 0 else ""))
+        for criterion, table in op.items():
+            if len(op) > 1:
+                print(f" {_CRITERION_TEXT[criterion]}:")
+            for _, r in table.iterrows():
+                others = {k: r[k] for k in table.columns if k not in
+                          ("heading", "operability_pct", "uncovered_pct")}
+                where = (_label(others) + ", ") if others else ""
+                what = ("overall" if math.isnan(r["heading"])
+                        else f"heading {r['heading']:g}°")
+                print(f"  {where}{what}: {r['operability_pct']:.1f} % of the time"
+                      + (f" ({r['uncovered_pct']:.1f} % of the time outside the swept Tp)"
+                         if r["uncovered_pct"] > 0 else ""))
     if "--csv" in planned:
         from offshore_crane.io import write_text
 
         write_text(planned["--csv"], df.to_csv(index=False))
         print(f"wrote {args.csv}")
     if plot_dir is not None:
-        _plots(plot_dir, df, v, op, scene, CAPACITIES)
+        _plots(plot_dir, df, v, op, scene, CAPACITIES, criteria)
     return 0
 
 
-def _plots(plot_dir, df, v, op, scene, capacities) -> None:
+#: What each operability criterion judges, as printed and in the diagrams' titles.
+_CRITERION_TEXT = {"actuators": "actuators' capacities", "no slack": "no slack (the "
+                   "slack criterion: smallest tension over the static tension)",
+                   "load": "the hanging load's limits (sway, slack, tension, winch)",
+                   "all": "actuators and hanging load together"}
+
+
+def _criteria(v) -> list[str]:
+    """The operability criteria a verdict table supports: the actuators', and with a
+    hanging load whose limits are given the slack criterion, the load's and all."""
+    out = ["actuators"]
+    if v["load_util"].notna().any():
+        if v["slack_util"].notna().any():
+            out.append("no slack")
+        out += ["load", "all"]
+    return out
+
+
+def _print_verdicts(v, keys: list, load: bool) -> None:
+    """The verdict table: per case its seeds, basis, worst actuator utilisation and what
+    governs it; with a hanging load its worst load criterion too."""
+    def percent(x) -> str:
+        return "failed" if math.isinf(x) else "—" if math.isnan(x) else f"{100 * x:.1f}"
+
+    head = "".join(f"{k:>14}" for k in keys)
+    print(f"{head}{'seeds':>7}{'basis':>10}{'worst %':>9}"
+          + (f"{'load %':>8}" if load else "") + "  governing")
+    for _, r in v.iterrows():
+        who = (f"{r['governing']} {r['governing_capacity']}" if r["governing"] else
+               f"{r['error_type']}: {r['error'][:72]}..." if r["error"] else "")
+        if load and r["load_governing"] and r["load_governing"] != "failed":
+            who += ("; " if who else "") + f"load: {r['load_governing']}"
+        print("".join(f"{r[k]:>14g}" for k in keys)
+              + f"{r['seeds']:>7}{r['basis']:>10}{percent(r['worst_util']):>9}"
+              + (f"{percent(r['load_util']):>8}" if load else "") + f"  {who}")
+
+
+def _plots(plot_dir, df, v, op, scene, capacities, criteria) -> None:
     import numpy as np
 
     from offshore_crane.studies import sweep
@@ -170,18 +203,24 @@ def _plots(plot_dir, df, v, op, scene, capacities) -> None:
     for values, g in combos:
         values = values if isinstance(values, tuple) else (values,)
         label = dict(zip(others, values))
-        name = "operability" + "".join(f"-{k}={val:g}" for k, val in label.items())
-        path = os.path.join(plot_dir, f"{name}.png")
-        percent = None
-        if op is not None:
-            mask = np.ones(len(op), bool)
-            for k, val in label.items():
-                mask &= op[k].to_numpy() == val
-            sel = op[mask & op["heading"].notna().to_numpy()]
-            percent = dict(zip(sel["heading"], sel["operability_pct"]))
-        operability_diagram(path, g, title=f"{scene.name}: worst utilisation"
-                            + (f" ({_label(label)})" if label else ""), operability=percent)
-        print(f"wrote {path}")
+        for criterion in criteria:
+            name = ("operability" + ("" if criterion == "actuators" else
+                                     "-" + criterion.replace(" ", "-"))
+                    + "".join(f"-{k}={val:g}" for k, val in label.items()))
+            path = os.path.join(plot_dir, f"{name}.png")
+            percent = None
+            if criterion in op:
+                o = op[criterion]
+                mask = np.ones(len(o), bool)
+                for k, val in label.items():
+                    mask &= o[k].to_numpy() == val
+                sel = o[mask & o["heading"].notna().to_numpy()]
+                percent = dict(zip(sel["heading"], sel["operability_pct"]))
+            what = "worst utilisation" if criterion == "actuators" else criterion
+            operability_diagram(path, g, title=f"{scene.name}: {what}"
+                                + (f" ({_label(label)})" if label else ""),
+                                operability=percent, criterion=criterion)
+            print(f"wrote {path}")
     ok = df[df["status"] == "ok"]
     if len(ok):
         r = ok.loc[ok["worst_util"].idxmax()]

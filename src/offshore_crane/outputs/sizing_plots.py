@@ -46,15 +46,29 @@ def utilisation_chart(target, utilisation, title: str = "") -> None:
     save_figure(fig, target)
 
 
-def operability_diagram(target, table, title: str = "", operability=None) -> None:
+#: Per operability criterion (:data:`offshore_crane.studies.sweep.CRITERIA`): the verdict
+#: columns of the colour and of the label, and the colour bar's text.
+_SHOWN = {"actuators": ("worst_util", "governing", "worst utilisation over actuators"),
+          "no slack": ("slack_util", None, "slack criterion: limit / (T_min / m g)"),
+          "load": ("load_util", "load_governing", "worst hanging-load utilisation"),
+          "all": ("overall_util", "overall_governing", "worst utilisation, actuators and "
+                  "load")}
+
+
+def operability_diagram(target, table, title: str = "", operability=None,
+                        criterion: str = "actuators") -> None:
     """The operability diagram of one combination of the non-sea parameters.
 
     Args:
         target: The figure file (or an :class:`~offshore_crane.io.Target`).
         table: Verdicts (:func:`offshore_crane.studies.sweep.verdicts`) with columns ``hs``,
-            ``tp``, ``heading``, ``worst_util`` (inf: failed), ``governing``.
+            ``tp``, ``heading`` and the criterion's utilisation (inf: failed) and
+            governing columns.
         title: The figure's title.
         operability: ``{heading: percent}`` to print under each panel, or None.
+        criterion: Which utilisation is drawn: ``"actuators"`` (``worst_util``, labels
+            the governing actuator), ``"no slack"`` (``slack_util``, labels the tension
+            ratio), ``"load"`` or ``"all"``.
     """
     from offshore_crane.outputs.report import save_figure
 
@@ -65,7 +79,8 @@ def operability_diagram(target, table, title: str = "", operability=None) -> Non
     n = len(headings)
     fig, axes = plt.subplots(1, n, figsize=(4.6 * n + 1.2, 4.4), squeeze=False,
                              constrained_layout=True)
-    finite = table["worst_util"].replace([np.inf], np.nan)
+    column, governing, meaning = _SHOWN[criterion]
+    finite = table[column].replace([np.inf], np.nan)
     top = max(2.0, float(np.nanmax(finite)) if finite.notna().any() else 2.0)
     norm = TwoSlopeNorm(vmin=0.0, vcenter=1.0, vmax=top)
     mesh = None
@@ -75,10 +90,13 @@ def operability_diagram(target, table, title: str = "", operability=None) -> Non
         tp = np.sort(h["tp"].unique())
         U = np.full((len(hs), len(tp)), np.nan)
         who = np.full((len(hs), len(tp)), "", dtype=object)
+        failed = np.zeros((len(hs), len(tp)), bool)
         for _, r in h.iterrows():
             i, j = np.searchsorted(hs, r["hs"]), np.searchsorted(tp, r["tp"])
-            U[i, j] = r["worst_util"]
-            who[i, j] = r["governing"]
+            U[i, j] = r[column]
+            failed[i, j] = r.get("failed", 0) > 0
+            who[i, j] = (r[governing] if governing else
+                         f"T_min {r['tension_ratio_min']:.2f} m g")
         shown = np.where(np.isinf(U), top, U)
         if len(hs) > 1 and len(tp) > 1:
             mesh = ax.pcolormesh(tp, hs, shown, shading="nearest", cmap="RdYlGn_r",
@@ -93,7 +111,7 @@ def operability_diagram(target, table, title: str = "", operability=None) -> Non
             for j in range(len(tp)):
                 if math.isnan(U[i, j]):
                     continue
-                label = ("× failed" if np.isinf(U[i, j]) else
+                label = ("× failed" if failed[i, j] else "× slack" if np.isinf(U[i, j]) else
                          f"{who[i, j]}\n{100 * U[i, j]:.0f} %" if who[i, j] else "")
                 ax.annotate(label, (tp[j], hs[i]), ha="center", va="center", fontsize=7)
         ax.set_xlabel("Tp [s] (full scale)")
@@ -104,7 +122,9 @@ def operability_diagram(target, table, title: str = "", operability=None) -> Non
         ax.set_title(sub, fontsize=10)
     if mesh is not None:
         bar = fig.colorbar(mesh, ax=axes[0].tolist(), shrink=0.9)
-        bar.set_label("worst utilisation over actuators (1 = 100 %)")
+        bar.set_label(f"{meaning} (1 = 100 %)")
     fig.suptitle((f"{title}; " if title else "") + "black line: 100 % contour; labels: "
-                 "governing actuator", fontsize=10)
+                 + ("governing actuator" if criterion == "actuators" else
+                    "smallest tension" if criterion == "no slack" else "what governs"),
+                 fontsize=10)
     save_figure(fig, target)

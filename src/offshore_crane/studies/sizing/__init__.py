@@ -37,11 +37,13 @@ seeds no fit is made: the verdict rests on the largest observed peak and says so
 from __future__ import annotations
 
 from offshore_crane.robot.kinematics import actuator_motion
-from offshore_crane.studies.sizing.envelopes import (CAPACITIES, QUANTITIES, CABLE, KINDS,
+from offshore_crane.studies.sizing.envelopes import (CAPACITIES, QUANTITIES, KINDS,
                                                      POSITION_UNITS, SPEED_UNITS, Envelope,
                                                      row_columns, stroke_ranges,
                                                      envelope, conditions)
+from offshore_crane.studies.sizing.loads import (LIFT, LOAD_CRITERIA, WINCH_DEMANDS,
+                                                 load_utilisation, slack_utilisation)
 from offshore_crane.studies.sizing.extremes import (MIN_SEEDS, EXPOSURE, gumbel_fit,
-                                                    most_probable_maximum)
+                                                    most_probable_maximum, most_probable_extreme)
 from offshore_crane.studies.sizing.verdicts import Verdict, verdict
 from offshore_crane.studies.sizing.formatting import format_envelope, format_verdict

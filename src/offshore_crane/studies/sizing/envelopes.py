@@ -13,6 +13,7 @@ import numpy as np
 from offshore_crane.robot.kinematics import actuator_motion
 from offshore_crane.conventions import ACTUATORS, GRAVITY
 from offshore_crane.errors import InputError
+from offshore_crane.studies.sizing.loads import LIFT, load_row, utilisation
 
 
 #: Capacities judged, in the order of the utilisation columns.
@@ -20,8 +21,6 @@ CAPACITIES = ("push", "pull", "speed", "power", "stroke")
 #: Per-actuator quantities of an envelope (``(9,)`` arrays), in row-column order.
 QUANTITIES = ("peak_push", "t_push", "peak_pull", "t_pull", "rms", "peak_speed",
               "peak_power", "mean_abs_power", "stroke_min", "stroke_max")
-#: The hanging load's columns of an envelope (NaN without a cable): [rad], [N], [N].
-CABLE = ("sway_max", "tension_min", "tension_max")
 #: Condition-number kinds of a run (:class:`offshore_crane.dynamics.Result`).
 KINDS = ("leg", "gimbal", "attitude")
 
@@ -52,7 +51,9 @@ class Envelope:
         kappa: ``{kind: worst condition number}`` over :data:`KINDS` (NaN: not measured).
         t_kappa: ``{kind: its time [s]}``.
         sway_max: Largest angle of the cable from the tip's vertical [rad] (NaN: no cable).
-        tension_min, tension_max: The cable's tension range [N] (NaN: no cable).
+        tension_min, tension_max: The cable's tension range [N] (NaN: no cable; an
+            elastic cable's largest refined between samples, its snap's peak).
+        time_slack: Time the cable spent slack [s] (NaN: no cable).
         static_tension: The cable's tension at rest, m·|g| [N] (NaN: no cable).
         winch: ``{"pull" [N], "speed" [m/s], "acceleration" [m/s²], "power" [W]}`` the
             winch's largest demands (empty without a winch).
@@ -82,6 +83,7 @@ class Envelope:
     sway_max: float = math.nan
     tension_min: float = math.nan
     tension_max: float = math.nan
+    time_slack: float = math.nan
     static_tension: float = math.nan
     load_limits: object = None
     winch: dict = field(default_factory=dict)
@@ -107,7 +109,8 @@ class Envelope:
         """One flat row: ``{actuator}_{quantity}`` and ``{actuator}_util_{capacity}``
         for the 9 actuators (NaN where absent), ``{actuator}_util`` (its worst),
         ``kappa_{kind}``, ``duration_s``, ``samples``, ``worst_util``, ``governing``,
-        ``governing_capacity`` (``""`` when none)."""
+        ``governing_capacity`` (``""`` when none), and the hanging load's
+        :data:`~offshore_crane.studies.sizing.loads.LIFT` columns."""
         out: dict = {"duration_s": float(self.duration), "samples": int(self.samples)}
         for k, name in enumerate(ACTUATORS):
             for q in QUANTITIES:
@@ -120,7 +123,7 @@ class Envelope:
             out[f"kappa_{kind}"] = float(self.kappa.get(kind, math.nan))
         worst, who, cap = self.worst()
         out.update(worst_util=float(worst), governing=who or "", governing_capacity=cap or "")
-        out.update({k: float(getattr(self, k)) for k in CABLE})
+        out.update(load_row(self))
         return out
 
 
@@ -135,7 +138,7 @@ def row_columns() -> list[tuple[str, str]]:
     cols += [(f"kappa_{k}", "float64") for k in KINDS]
     cols += [("worst_util", "float64"), ("governing", "string"),
              ("governing_capacity", "string")]
-    cols += [(k, "float64") for k in CABLE]
+    cols += [(k, "float64") for k in LIFT]
     return cols
 
 
@@ -146,17 +149,6 @@ def worst_utilisation(util: np.ndarray):
         return math.nan, None, None
     k, c = np.unravel_index(np.nanargmax(util), util.shape)
     return float(util[k, c]), ACTUATORS[k], CAPACITIES[c]
-
-
-def utilisation(value, capacity):
-    """``value / capacity``: NaN where the capacity is infinite (not given); a zero
-    capacity is a real limit, not a missing one: 1 (no headroom) for a zero demand, inf
-    for any demand."""
-    value = np.asarray(value, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        out = value / capacity
-    out = np.where((capacity == 0) & (value == 0), 1.0, out)
-    return np.where(np.isinf(capacity), np.nan, out)
 
 
 def stroke_ranges(robot) -> np.ndarray:
@@ -268,11 +260,7 @@ def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
         else:
             k = int(np.nanargmax(c))
             kappa[kind], t_kappa[kind] = float(c[k]), float(t[k])
-    hanging = {} if cable is None else dict(
-        sway_max=float(cable.sway_angle.max()), tension_min=float(cable.tension.min()),
-        tension_max=float(cable.tension.max()),
-        static_tension=float(cable.mass * np.linalg.norm(np.asarray(gravity, float))),
-        load_limits=robot.load_limits, **_winch(cable, robot))
+    hanging = {} if cable is None else _hanging(cable, robot, gravity)
     return Envelope(duration=float(t[-1] - t[0]), samples=N, peak_push=peak_push,
                     t_push=t_push, peak_pull=peak_pull, t_pull=t_pull, rms=rms,
                     peak_speed=peak_speed, peak_power=peak_power,
@@ -281,16 +269,20 @@ def envelope(robot, t, q, qd, X, condition=None, arm: bool | None = None,
                     utilisation=util, kappa=kappa, t_kappa=t_kappa, **hanging)
 
 
-def _winch(cable, robot) -> dict:
-    """The envelope's winch fields of a hoisted cable's result (none without)."""
-    if getattr(cable, "hoist", None) is None:
-        return {}
+def _hanging(cable, robot, gravity) -> dict:
+    """The envelope's hanging-load fields of a cable's result
+    (:func:`~offshore_crane.dynamics.cable.lift_metrics`)."""
     from offshore_crane.dynamics.cable import lift_metrics
 
-    m = lift_metrics(cable)
-    return dict(winch={"pull": m.winch_pull, "speed": m.winch_speed,
-                       "acceleration": m.winch_acceleration, "power": m.winch_power},
-                winch_capacities=robot.winch)
+    m = lift_metrics(cable, gravity)
+    out = dict(sway_max=float(np.max(cable.sway_angle)), tension_min=m.tension_min,
+               tension_max=m.tension_max, time_slack=m.time_slack,
+               static_tension=m.static_tension, load_limits=robot.load_limits)
+    if getattr(cable, "hoist", None) is not None:
+        out.update(winch={"pull": m.winch_pull, "speed": m.winch_speed,
+                          "acceleration": m.winch_acceleration, "power": m.winch_power},
+                   winch_capacities=robot.winch)
+    return out
 
 
 def conditions(result) -> dict:

@@ -98,3 +98,14 @@ def most_probable_maximum(maxima, record: float, exposure: float = EXPOSURE) -> 
                          "least one record", name="exposure")
     mu, beta = gumbel_fit(maxima)
     return mu + beta * math.log(exposure / record)
+
+
+def most_probable_extreme(values, record: float, exposure: float, gumbel: bool, sign: float = 1.0) -> float:
+    """The extreme a verdict uses of per-record extremes ``values (n_seeds,)``: the most
+    probable maximum (``sign = 1``) or minimum (``sign = −1``: the maximum of the
+    negated values) over ``exposure`` [s] when ``gumbel`` and every value is finite, else
+    the observed one."""
+    values = sign * np.asarray(values, dtype=float)
+    if gumbel and np.isfinite(values).all():
+        return sign * most_probable_maximum(values, record, exposure)
+    return sign * float(values.max())

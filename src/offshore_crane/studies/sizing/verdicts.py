@@ -11,7 +11,9 @@ import numpy as np
 
 from offshore_crane.errors import InputError
 from offshore_crane.studies.sizing.envelopes import CAPACITIES, utilisation, worst_utilisation
-from offshore_crane.studies.sizing.extremes import EXPOSURE, MIN_SEEDS, most_probable_maximum
+from offshore_crane.studies.sizing.loads import WINCH_DEMANDS, load_utilisation
+from offshore_crane.studies.sizing.extremes import (EXPOSURE, MIN_SEEDS, most_probable_extreme,
+                                                    most_probable_maximum)
 
 
 @dataclass(frozen=True)
@@ -117,10 +119,7 @@ def load_verdict(envelopes, record: float, exposure: float, gumbel: bool):
         return None
 
     def extreme(values, sign: float) -> float:
-        values = sign * np.array(values, dtype=float)
-        if gumbel and np.isfinite(values).all():
-            return sign * most_probable_maximum(values, record, exposure)
-        return sign * float(values.max())
+        return most_probable_extreme(values, record, exposure, gumbel, sign)
 
     observed = {"sway": max(e.sway_max for e in envelopes),
                 "tension_min": min(e.tension_min for e in envelopes),
@@ -129,21 +128,12 @@ def load_verdict(envelopes, record: float, exposure: float, gumbel: bool):
     t_max = extreme([e.tension_max for e in envelopes], 1.0)
     t_min = extreme([e.tension_min for e in envelopes], -1.0)
     lim, static = first.load_limits, first.static_tension
-    ratio = t_min / static if static > 0 else math.nan
-    slack = (math.nan if math.isnan(lim.tension_ratio_min) else
-             math.inf if not ratio > 0 else lim.tension_ratio_min / ratio)
-    util = {"sway": float(utilisation(np.array([sway]), np.array([lim.sway_max]))[0]),
-            "slack": slack,
-            "tension": float(utilisation(np.array([t_max]), np.array([lim.tension_max]))[0])}
     winch = {}
-    if first.winch:                     # the winch's demands, extrapolated like the rest
-        caps = first.winch_capacities
-        for key, cap in (("pull", caps.pull_max), ("speed", caps.speed_max),
-                         ("acceleration", caps.acceleration_max), ("power", caps.power_max)):
-            winch[key] = extreme([e.winch[key] for e in envelopes], 1.0)
-            observed[f"winch {key}"] = max(e.winch[key] for e in envelopes)
-            util[f"winch {key}"] = float(utilisation(np.array([winch[key]]),
-                                                     np.array([cap]))[0])
+    for key in WINCH_DEMANDS if first.winch else ():   # extrapolated like the rest
+        winch[key] = extreme([e.winch[key] for e in envelopes], 1.0)
+        observed[f"winch {key}"] = max(e.winch[key] for e in envelopes)
+    util = load_utilisation(sway, t_min / static if static > 0 else math.nan, t_max, lim,
+                            winch, first.winch_capacities)
     return LoadVerdict(sway=sway, tension_min=t_min, tension_max=t_max, static=static,
                        observed=observed, limits=lim, utilisation=util, winch=winch,
                        winch_capacities=first.winch_capacities)

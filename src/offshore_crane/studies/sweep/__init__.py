@@ -47,6 +47,6 @@ from offshore_crane.studies.sweep.store import (MANIFEST, MANIFEST_FORMAT, scene
                                                 ResultsStore, read_results)
 from offshore_crane.studies.sweep.backends import CONNECT_TIMEOUT, LOCAL_WORKERS, connect
 from offshore_crane.studies.sweep.running import run
-from offshore_crane.studies.sweep.assessment import (VERDICT_COLUMNS, group_keys, verdicts,
+from offshore_crane.studies.sweep.assessment import (VERDICT_COLUMNS, CRITERIA, group_keys, verdicts,
                                                       Scatter, load_scatter, limiting_hs,
                                                       operability)

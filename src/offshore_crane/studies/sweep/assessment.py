@@ -16,7 +16,10 @@ from offshore_crane.studies.sweep.grid import install_hint
 
 #: Columns of :func:`verdicts` besides the parameters and the utilisations.
 VERDICT_COLUMNS = ("seeds", "failed", "record_s", "exposure_s", "basis", "error_type",
-                   "error")
+                   "error", "load_governing", "overall_util", "overall_governing")
+#: The criteria an operability diagram can be drawn for: the verdict column it reads.
+CRITERIA = {"actuators": "worst_util", "no slack": "slack_util", "load": "load_util",
+            "all": "overall_util"}
 
 
 # =========================================================================== verdicts
@@ -46,7 +49,13 @@ def verdicts(df, scene, exposure: float | None = None):
         case failed), ``basis`` (``gumbel``, ``observed`` or ``failed``), ``record_s``,
         ``exposure_s``, ``{actuator}_util`` and ``worst_util`` (inf when a seed failed:
         not operable), ``governing``, ``governing_capacity``, ``error_type`` and
-        ``error`` (of the first failed seed, else empty).
+        ``error`` (of the first failed seed, else empty); with a hanging load
+        (:mod:`offshore_crane.studies.sizing.loads`, NaN without) ``tension_ratio_min``
+        (the most probable minimum of ``T_min / m|g|``), ``{criterion}_util`` of its
+        criteria on the same basis, ``load_util`` their worst and ``load_governing``;
+        ``overall_util`` (the worst of ``worst_util`` and ``load_util``) and
+        ``overall_governing`` (an actuator's ``"{actuator} {capacity}"`` or a load
+        criterion).
     """
     from offshore_crane.conventions import ACTUATORS
     from offshore_crane.studies.sizing import CAPACITIES, EXPOSURE, MIN_SEEDS, most_probable_maximum
@@ -91,8 +100,46 @@ def verdicts(df, scene, exposure: float | None = None):
             k, c = np.unravel_index(np.nanargmax(util), util.shape)
             row.update(worst_util=float(util[k, c]), governing=ACTUATORS[k],
                        governing_capacity=CAPACITIES[c])
+        row.update(_load_columns(ok, len(ok) == n, gumbel, record_s, exposure))
+        actuators = (f"{row['governing']} {row['governing_capacity']}"
+                     if row["governing"] else "")
+        pairs = [(row["worst_util"], actuators), (row["load_util"], row["load_governing"])]
+        judged = [p for p in pairs if not math.isnan(p[0])]
+        row["overall_util"], row["overall_governing"] = (max(judged, key=lambda p: p[0])
+                                                         if judged else (math.nan, ""))
         out.append(row)
     return pd.DataFrame(out)
+
+
+def _load_columns(ok, complete: bool, gumbel: bool, record: float, exposure: float) -> dict:
+    """A group's hanging-load verdict columns from its rows' :data:`LIFT` columns: each
+    utilisation's most probable maximum (or observed), the slack criterion's of the
+    most probable minimum of the tension ratio; every utilisation inf when a seed failed
+    (not operable)."""
+    from offshore_crane.studies.sizing import (LOAD_CRITERIA, most_probable_extreme,
+                                               slack_utilisation)
+    from offshore_crane.studies.sizing.loads import util_column, worst_load
+
+    out = {util_column(c): math.nan for c in LOAD_CRITERIA}
+    out.update(tension_ratio_min=math.nan, load_util=math.nan, load_governing="")
+    if "sway_max" not in ok or (len(ok) and ok["sway_max"].isna().all()):
+        return out                                       # no hanging load
+    if not complete or not len(ok):                      # not operable by any criterion
+        out.update({k: math.inf for k in out if k.endswith("_util")}, load_governing="failed")
+        return out
+
+    def extreme(column: str, sign: float = 1.0) -> float:
+        values = ok[column].to_numpy(dtype=float)
+        return math.nan if np.isnan(values).all() else most_probable_extreme(
+            values, record, exposure, gumbel, sign)
+
+    ratio = extreme("tension_ratio_min", -1.0)
+    util = {c: extreme(util_column(c)) for c in LOAD_CRITERIA if c != "slack"}
+    util["slack"] = slack_utilisation(float(ok["tension_ratio_limit"].iloc[0]), ratio)
+    out.update({util_column(c): u for c, u in util.items()})
+    out["tension_ratio_min"] = ratio
+    out["load_util"], out["load_governing"] = worst_load(util)
+    return out
 
 
 # =========================================================================== operability
@@ -191,11 +238,13 @@ def limiting_hs(hs, util) -> float:
     return float(hs[j - 1] + (1.0 - u0) / (u1 - u0) * (hs[j] - hs[j - 1]))
 
 
-def operability(table, scatter: Scatter, scene):
-    """Operability over a scatter diagram, per heading and overall.
+def operability(table, scatter: Scatter, scene, criterion: str = "actuators"):
+    """Operability over a scatter diagram, per heading and overall, for one of
+    :data:`CRITERIA`: the actuators' capacities (``worst_util``), the slack criterion
+    alone (``"no slack"``), the hanging load's limits (``"load"``) or all of them.
 
     For each heading (and combination of other swept parameters), the limiting Hs of each
-    swept Tp (:func:`limiting_hs` on the worst utilisation of :func:`verdicts`) is
+    swept Tp (:func:`limiting_hs` on the criterion's utilisation of :func:`verdicts`) is
     interpolated linearly in Tp; a scatter cell is operable when its Hs ≤ that limit. Cells
     whose Tp lies outside the swept Tp range are not covered and count as not operable
     (their share is reported). Overall: the mean over the headings (equally likely).
@@ -204,7 +253,13 @@ def operability(table, scatter: Scatter, scene):
         ``pandas.DataFrame``: the other parameters, ``heading``, ``operability_pct``,
         ``uncovered_pct``; and a row with ``heading = NaN`` (overall) per combination.
     """
+    from offshore_crane.errors import InputError
+
     pd = install_hint("pandas", "A sweep's results table")
+    if criterion not in CRITERIA:
+        raise InputError(f"operability: criterion {criterion!r} is not one of "
+                         f"{', '.join(CRITERIA)}", name="criterion")
+    column = CRITERIA[criterion]
     v = table.copy()
     for key in ("hs", "tp", "heading"):
         if key not in v.columns:
@@ -219,7 +274,7 @@ def operability(table, scatter: Scatter, scene):
         for heading, h in g.groupby("heading", sort=True):
             tps = np.sort(h["tp"].unique())
             limits = np.array([limiting_hs(h.loc[h["tp"] == tp, "hs"],
-                                           h.loc[h["tp"] == tp, "worst_util"]) for tp in tps])
+                                           h.loc[h["tp"] == tp, column]) for tp in tps])
             covered = (scatter.tp >= tps[0] - 1e-9) & (scatter.tp <= tps[-1] + 1e-9)
             lim = np.interp(scatter.tp, tps, limits)
             ok = (scatter.hs[:, None] <= lim[None, :] + 1e-12) & covered[None, :]
