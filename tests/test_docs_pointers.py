@@ -23,7 +23,8 @@ FILE_ENDINGS = {"xacro", "urdf", "toml", "py", "md", "json", "csv"}
 WRITTEN = {"bench.csv", "results.csv", "envelope.csv", "run.csv", "_manifest.json",
            "forces.csv", "forces.png", "sway.png", "scene.toml", "my_platform.toml",
            "lab.mjcf", "my_scene.toml", "my_grid.toml", "grid.toml", "motion.csv",
-           "utilisation-worst-case.png", "_lock.json"}
+           "utilisation-worst-case.png", "_lock.json", "operability-no-slack.png",
+           "operability-load.png", "operability-all.png"}
 
 
 def _repository_files() -> list[str]:
