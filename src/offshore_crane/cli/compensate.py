@@ -3,7 +3,8 @@ the arm and the winch, side by side.
 
 The scene's sea moves the platform; its ``[operation]`` is the crane's motion on a still
 ship. The arm then holds the tip over the still-ship point and the winch holds the
-payload's height (docs/cable.md), acting on the platform's motion measured ``--delay``
+payload's height (docs/cable.md) — or, with ``[control] target``, track a point on a
+second vessel's deck in the same sea (ship-to-ship transfer) — acting on the platform's motion measured ``--delay``
 seconds late (the scene's ``[control] delay``). Printed per mode: the payload's residual
 motion (RMS and largest, per axis, base frame), the cable's largest angle, the tension
 against m g, the worst actuator and the winch against their capacities, and the joints
@@ -55,9 +56,18 @@ def run(args) -> int:
     robot = scenes.load_robot(scene)
     record = replace(scene, control={})          # the sea record itself, not yet late
     traj = measured_from(scenes.load_trajectory(record, robot), delay)
-    runs = compare_compensation(robot, traj, scene.cable, scene.gravity, delay=delay)
+    deck = scenes.target_deck(scene)
+    runs = compare_compensation(robot, traj, scene.cable, scene.gravity, delay=delay,
+                                deck=deck)
     say(f"offshore-crane compensate: {scene.name} ({args.scene}), {traj.name}, "
         f"{len(runs[0].residual)} samples, measurement delay {delay:g} s")
+    if deck is not None:
+        deck_point = scene.control["target"]
+        vessel = deck_point.get("vessel", scene.sea.get("vessel", "supply"))
+        say(f"tracking a point on a second vessel's deck: point "
+            f"({', '.join(f'{x:g}' for x in deck_point['point'])}) m full scale, seed "
+            f"{deck_point['seed']}, {vessel}; "
+            f"the residual is the payload's motion relative to that deck")
     say(format_comparison(runs))
     if target is not None:
         from offshore_crane.outputs.report import compensation_plot

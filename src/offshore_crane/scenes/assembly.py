@@ -77,6 +77,26 @@ def sea_trajectory(scene: Scene, robot, check: bool = True):
                          name=f"{section}.{exc.name}") from None
 
 
+def target_deck(scene: Scene):
+    """The ``[control] target`` of a scene: the point on a second vessel's deck
+    (:func:`offshore_crane.motion.sea.deck_motion`: the scene's sea state with the
+    target's seed, point and vessel, on the record's frequency grid), or None."""
+    target = scene.control.get("target")
+    if target is None:
+        return None
+    from offshore_crane.errors import SeaStateError
+    from offshore_crane.motion.sea import deck_motion
+
+    args = {k: v for k, v in sea_arguments(scene).items() if k != "operation"}
+    args.update(target)
+    try:
+        return deck_motion(SEA_DURATION if scene.duration is None else scene.duration,
+                           SEA_RATE if scene.rate is None else scene.rate, **args)
+    except SeaStateError as exc:
+        raise SceneError(f"{scene.where()}: [control] target: {exc}", path=scene.path,
+                         name="control.target") from None
+
+
 def load_robot(scene: Scene, overrides: dict | None = None):
     """The scene's robot; ``overrides`` (dotted names or aliases) are applied on top, for
     a model that differs from the scene's on purpose (a controller's model). Command-line

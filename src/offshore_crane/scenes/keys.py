@@ -28,7 +28,9 @@ OPERATION_KEYS = ("waypoints",)
 SEA_DURATION, SEA_RATE = 60.0, 100.0
 CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error", "noise_q",
                 "noise_qd", "seed", "model", "lower", "upper", "saturation", "anti_sway",
-                "compensation", "delay")
+                "compensation", "delay", "target")
+#: [control] target keys: a point on a second vessel's deck (ship-to-ship transfer).
+TARGET_KEYS = ("point", "seed", "vessel")
 #: [control] keys that are Controller arguments (the others: simulate's).
 CONTROLLER_KEYS = ("law", "kp", "kd", "rate", "lower", "upper", "saturation", "noise_q",
                    "noise_qd", "seed", "anti_sway")

@@ -15,7 +15,7 @@ from offshore_crane.io import toml_value
 from offshore_crane.validation import not_a_number
 from offshore_crane.scenes.keys import (CABLE_KEYS, CONTROLLER_KEYS, CONTROL_KEYS, INERTIA_KEYS,
                                         OPERATION_KEYS, PAYLOAD_KEYS, SEA_KEYS, SECTIONS,
-                                        LOAD_LIMIT_KEYS,
+                                        LOAD_LIMIT_KEYS, TARGET_KEYS,
                                         SUBSYSTEM_KEYS, TOP_KEYS, TRAJECTORY_KEYS, normalised,
                                         same_value, scene_field)
 from offshore_crane.scenes.scene import Scene
@@ -225,17 +225,12 @@ def _sea(where: str, data: dict, base: Path | None) -> dict:
         sea["kind"] = r.string("kind")
     if "vessel" in r.table:
         vessel = r.string("vessel")
-        from offshore_crane.motion.sea import vessel_names
+        sea["vessel"] = _vessel(vessel, base)
+        if sea["vessel"] is None:
+            from offshore_crane.motion.sea import vessel_names
 
-        if vessel not in vessel_names():
-            p = Path(vessel)
-            if not p.is_absolute() and base is not None:
-                p = base / p
-            if not p.is_file():
-                r.fail("vessel", f"neither a shipped vessel ({', '.join(vessel_names())}) "
-                       f"nor a file {p} (relative paths start at the scene file's folder)")
-            vessel = str(p)
-        sea["vessel"] = vessel
+            r.fail("vessel", f"neither a shipped vessel ({', '.join(vessel_names())}) nor "
+                   f"a file {vessel} (relative paths start at the scene file's folder)")
     o = _section(where, data, "operation", OPERATION_KEYS)
     operation = None
     if "waypoints" in o.table:
@@ -250,7 +245,60 @@ def _sea(where: str, data: dict, base: Path | None) -> dict:
     return dict(sea=sea, operation=operation)
 
 
-def _control(where: str, data: dict) -> dict:
+def _target(where: str, value, base: Path | None) -> dict:
+    """``[control] target = {point = [x, y, z], seed = n, vessel = "..."}``: a point on a
+    second vessel's deck, full scale [m] in that vessel's axes from its RAO reference
+    point; its own phases (``seed``, required: another vessel is another record); the
+    scene's vessel unless ``vessel`` names another (a shipped one or a RAO file)."""
+    def fail(problem):
+        raise SceneError(f"{where}: [control] target: {problem}", path=where,
+                         name="control.target")
+
+    if not isinstance(value, dict):
+        fail("must be a table {point = [x, y, z], seed = n} (a point on a second "
+             "vessel's deck [m], full scale, and its record's seed)")
+    unknown = [k for k in value if k not in TARGET_KEYS]
+    if unknown:
+        fail(f"unknown key '{unknown[0]}' (use {', '.join(TARGET_KEYS)})")
+    point = value.get("point")
+    if (not isinstance(point, list) or len(point) != 3 or any(
+            isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x)
+            for x in point)):
+        fail(f"point = {point!r} must be 3 finite numbers [m] (full scale, the second "
+             "vessel's axes from its RAO reference point)")
+    seed = value.get("seed")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        fail(f"seed = {seed!r} must be an integer ≥ 0 (the second vessel's record: give "
+             "another than [sea] seed)")
+    out = {"point": tuple(float(x) for x in point), "seed": seed}
+    if "vessel" in value:
+        vessel = value["vessel"]
+        path = _vessel(vessel, base) if isinstance(vessel, str) else None
+        if path is None:
+            fail(f"vessel = {vessel!r} is {_NOT_A_VESSEL}")
+        out["vessel"] = path
+    return out
+
+
+#: What a ``vessel`` value must be, for messages.
+_NOT_A_VESSEL = ("neither a shipped vessel nor a RAO file (relative paths start at the "
+                 "scene file's folder)")
+
+
+def _vessel(vessel: str, base: Path | None) -> str | None:
+    """A shipped vessel's name, or the RAO file it names (relative to the scene's
+    folder) as a path; None when it is neither."""
+    from offshore_crane.motion.sea import vessel_names
+
+    if vessel in vessel_names():
+        return vessel
+    p = Path(vessel)
+    if not p.is_absolute() and base is not None:
+        p = base / p
+    return str(p) if p.is_file() else None
+
+
+def _control(where: str, data: dict, base: Path | None = None) -> dict:
     """The ``[control]`` section of ``offshore-crane simulate``: checked values, as a dict
     of :func:`controller`'s and :func:`offshore_crane.simulation.rigid.simulate`'s arguments."""
     from offshore_crane.simulation.control import LAWS, Controller
@@ -286,6 +334,8 @@ def _control(where: str, data: dict) -> dict:
         out["compensation"] = r.string("compensation", choices=MODES)
     if "delay" in r.table:
         out["delay"] = r.number("delay", unit="s", minimum=0.0)
+    if "target" in r.table:
+        out["target"] = _target(where, r.get("target"), base)
     if "step" in r.table:
         out["step"] = r.number("step", unit="s", positive=True)
     if "integrator" in r.table:
@@ -356,7 +406,7 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
     top = _Reader(where, None, {k: v for k, v in data.items() if k not in SECTIONS},
                   TOP_KEYS)
     sub = _section(where, data, "subsystems", SUBSYSTEM_KEYS)
-    control = _control(where, data)
+    control = _control(where, data, base)
     cable = _cable(where, data)
     return Scene(                       # Scene checks how the parts fit (check_scene)
         name=top.string("name", Path(where).stem),

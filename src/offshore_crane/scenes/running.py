@@ -113,7 +113,8 @@ def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, check
 def _compensated(scene: Scene, robot, traj, options: dict):
     """The scene's ``[control] compensation`` applied to its sea record: the arm's (and
     the winch's) commands (:func:`offshore_crane.simulation.compensation.compensated_motion`)
-    on the platform's motion measured ``[control] delay`` late (:func:`load_trajectory`
+    towards the still-ship point or the ``[control] target`` deck, on the platform's
+    motion measured ``[control] delay`` late (:func:`load_trajectory`
     starts the record once the first measurement has arrived), the payload starting still
     unless ``[cable] initial`` says otherwise. Returns ``(trajectory, cable options)``.
 
@@ -134,7 +135,10 @@ def _compensated(scene: Scene, robot, traj, options: dict):
                          "[cable] winch and the hoist column", path=scene.path,
                          name="control.compensation")
     delay = float(scene.control.get("delay", 0.0))     # load_trajectory starts it late
-    comp = compensated_motion(robot, traj, scene.compensation, delay)
+    from offshore_crane.scenes.assembly import target_deck
+
+    comp = compensated_motion(robot, traj, scene.compensation, delay, target_deck(scene),
+                              scene.gravity)
     options = dict(options)
     if comp.hoist is not None:
         options["hoist"] = comp.hoist_function()

@@ -113,8 +113,9 @@ class Scene:
     @property
     def simulated(self) -> bool:
         """True when the scene is run forward under a controller (a ``[control]`` law);
-        ``compensation`` and ``delay`` alone prescribe a compensated lift instead."""
-        return bool(set(self.control) - {"compensation", "delay"})
+        ``compensation``, ``delay`` and ``target`` alone prescribe a compensated lift
+        instead."""
+        return bool(set(self.control) - {"compensation", "delay", "target"})
 
     @property
     def compensation(self) -> str:
@@ -142,9 +143,9 @@ class Scene:
         files = [self.robot_description or str(default_description())]
         if self.trajectory not in ("table1", "sea"):
             files.append(self.trajectory)
-        vessel = self.sea.get("vessel")
-        if vessel is not None and os.path.isfile(str(vessel)):
-            files.append(str(vessel))
+        for vessel in (self.sea.get("vessel"), self.control.get("target", {}).get("vessel")):
+            if vessel is not None and os.path.isfile(str(vessel)):
+                files.append(str(vessel))
         return files
 
     def inputs(self) -> list[str]:
@@ -255,7 +256,13 @@ def _check_sea(scene: "Scene") -> None:
              "length L): set [cable] winch = true to hoist the load")
     if hoisted and min(row[4] for row in scene.operation) <= 0.0:
         fail("operation.waypoints", "[operation] the hoist column L must stay > 0 m")
+    if "target" in scene.control and scene.compensation == "none":
+        fail("control.target", "[control] target is tracked by the motion compensation: "
+             "set [control] compensation = \"arm\" or \"arm+winch\"")
     if scene.trajectory != "sea":
+        if "target" in scene.control:
+            fail("control.target", "[control] target is a point on a second vessel in the "
+                 "scene's sea: it needs [trajectory] source = \"sea\"")
         if scene.sea:
             fail("sea", f"[sea] applies to [trajectory] source = \"sea\", not "
                  f"{toml_value(scene.trajectory)}")
@@ -282,6 +289,12 @@ def _check_sea(scene: "Scene") -> None:
         if exc.name == "waypoints":
             fail("operation.waypoints", f"[operation] {exc}")
         fail(f"sea.{exc.name}", f"[sea] {exc}")
+    if "target" in scene.control:                       # the second vessel's record
+        args = {**sea_arguments(scene), **scene.control["target"]}
+        try:
+            check_arguments(**args)
+        except SeaStateError as exc:
+            fail("control.target", f"[control] target: {exc}")
 
 
 def sea_arguments(scene: "Scene") -> dict:

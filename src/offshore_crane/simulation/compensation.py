@@ -30,6 +30,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from offshore_crane.conventions import GRAVITY
 from offshore_crane.dynamics.cable.tip import BLOCK, tip_positions
 from offshore_crane.errors import InputError
 
@@ -39,6 +40,11 @@ MODES = ("none", "arm", "arm+winch")
 IK_TOLERANCE, IK_ITERATIONS = 1e-12, 30
 #: Order of the finite differences giving the commanded rates and accelerations.
 FD_ORDER = 6
+#: Passes of the arm's solve and the winch's length when tracking a deck with the winch:
+#: the tip's aim moves with the length along the tilted cable (``L u_xy``, |u_xy| ≲ a/g)
+#: and the length with the tip's height; each pass shrinks the change by that factor
+#: times the platform's tilt (≲ 1e-2): three leave it below 1e-12 m.
+AIM_PASSES = 3
 
 
 @dataclass
@@ -49,12 +55,16 @@ class Compensated:
         mode: One of :data:`MODES`.
         trajectory: The robot's motion with the arm's commanded q7..q9 (and their rates,
             accelerations).
-        target: ``(N, 3)`` the tip's still-ship position, base frame [m].
+        target: ``(N, 3)`` where the tip is to be, base frame [m]: its still-ship
+            position, plus the target deck's displacement when one is tracked.
         tip: ``(N, 3)`` the tip's position under the compensated motion [m].
         hoist: ``(N, 3)`` the cable length L [m], L̇, L̈ with the winch, else None.
         held: ``{joint: (samples held at a limit, first time [s])}`` for joints that met
             their limits.
         length: The cable's length on the still ship [m].
+        deck: ``(N, 3)`` the tracked deck point's displacement [m], base axes, or None.
+        aim, aim_velocity: ``(N, 3)`` where the payload is to be [m] and its velocity
+            [m/s], base frame: ``length`` below the still-ship tip, moved with the deck.
     """
 
     mode: str
@@ -64,6 +74,9 @@ class Compensated:
     hoist: np.ndarray | None
     length: float
     held: dict = field(default_factory=dict)
+    deck: np.ndarray | None = None
+    aim: np.ndarray | None = None
+    aim_velocity: np.ndarray | None = None
 
     def hoist_function(self):
         """The winch's ``hoist(t) -> (L, L̇, L̈)`` at any times of the record (quintic
@@ -77,15 +90,19 @@ class Compensated:
 
 
 def still_start(robot, comp: Compensated, gravity, ea: float | None = None) -> dict:
-    """The payload hanging still at the start of a compensated motion ``comp``: straight
-    down along g on the cable's starting length (the winch's, else the still ship's), at
-    rest in the base frame as far as the cable allows.
+    """The payload at the start of a compensated motion ``comp``: at its aim (still
+    below the still-ship tip, or moving with the target deck), on the cable's starting
+    length (the winch's, else the still ship's) pointing from the tip towards the aim,
+    with the aim's velocity as far as the cable allows; uncompensated (``"none"``)
+    hanging along g at rest in the base frame.
 
     Returns:
         Rigid cable: ``{"initial": (φ1, φ2), "initial_rate": (φ̇1, φ̇2)}`` [rad, rad/s]
-        (the cable along g in the tip's axes; the rates that cancel the tip's velocity
-        across the cable). Elastic of stiffness ``ea`` [N]: ``{"initial": ρ0,
-        "initial_velocity": −v_tip}`` [m, m/s], base axes, ρ0 at the static stretch.
+        (the cable's direction in the tip's axes; the rates that give the payload the
+        aim's velocity across the cable). Elastic of stiffness ``ea`` [N]: ``{"initial":
+        ρ0, "initial_velocity": v}`` [m, m/s], base axes, ρ0 at the static stretch, v
+        the aim's velocity from the tip's across the cable and the winch's rate along
+        it (no axial ringing from the start).
     """
     from offshore_crane.dynamics import backends
     from offshore_crane.dynamics.constants import cable_arrays
@@ -93,29 +110,36 @@ def still_start(robot, comp: Compensated, gravity, ea: float | None = None) -> d
     trajectory = comp.trajectory
     length = comp.length if comp.hoist is None else float(comp.hoist[0, 0])
     g = np.asarray(gravity, dtype=float)
-    down = g / np.linalg.norm(g)
     q0, qd0, qdd0 = (np.asarray(x, dtype=float)[:1] for x in (trajectory.q, trajectory.qd,
                                                                trajectory.qdd))
-    v_tip = tip_positions(robot, q0, qd0)[1][0]
+    p_tip, v_tip = (x[0] for x in tip_positions(robot, q0, qd0))
+    if comp.mode == "none":                              # hanging still below its tip
+        toward, v_rel = g / np.linalg.norm(g), -v_tip
+    else:
+        toward = comp.aim[0] - p_tip
+        toward = toward / np.linalg.norm(toward)
+        v_rel = comp.aim_velocity[0] - v_tip             # the payload's, from the tip's
+    rate = 0.0 if comp.hoist is None else float(comp.hoist[0, 1])
+    v_rel = v_rel + (rate - v_rel @ toward) * toward     # along the cable: the winch's
     if ea is not None:
         stretch = 1.0 + float(robot.hybrid.cable.mass[-1]) * np.linalg.norm(g) / ea
-        return {"initial": down * length * stretch, "initial_velocity": -v_tip}
+        return {"initial": toward * length * stretch, "initial_velocity": v_rel}
     B, C = backends.NUMPY, cable_arrays(robot).kane
     Rt, w = B.tip_motion(C, q0.T, qd0.T, qdd0.T)[:2]
     Rt = np.array([[float(np.asarray(x)[0]) for x in row] for row in Rt])
     w = np.array([float(np.asarray(x)[0]) for x in w])
-    e = Rt.T @ down                                       # the cable along g, tip axes
+    e = Rt.T @ toward                                     # the cable, tip axes
     p2 = float(np.arcsin(np.clip(-e[0], -1.0, 1.0)))
     p1 = float(np.arctan2(e[1], -e[2]))
     _, e1, e2 = (np.array(v, dtype=float) for v in B.sway_direction(p1, p2))
-    # the payload at rest: L ė (tip axes) = −Rtᵀ v_tip − (Rtᵀ ω) × (L e), across the cable
-    edot = -(Rt.T @ v_tip) / length - np.cross(Rt.T @ w, e)
+    # L ė (tip axes) = Rtᵀ (v_payload − v_tip) − (Rtᵀ ω) × (L e), across the cable
+    edot = (Rt.T @ v_rel) / length - np.cross(Rt.T @ w, e)
     return {"initial": (p1, p2),
             "initial_rate": (float(edot @ e1 / (e1 @ e1)), float(edot @ e2))}
 
 
 def compensated_motion(robot, trajectory, mode: str = "arm+winch",
-                       delay: float = 0.0) -> Compensated:
+                       delay: float = 0.0, deck=None, gravity=GRAVITY) -> Compensated:
     """The arm's (and the winch's) commands that cancel the ship's motion at the tip.
 
     Args:
@@ -127,6 +151,13 @@ def compensated_motion(robot, trajectory, mode: str = "arm+winch",
             cancel the platform's pose at ``t − delay`` (the record's analytic source
             must reach that far back: :func:`measured_from`; without a source the first
             sample is held).
+        deck: A moving target (ship-to-ship transfer): ``deck(t) -> (x, v, a)``, the
+            displacement of a point on a second vessel's deck, each ``(n, 3)`` [m, m/s,
+            m/s²] at model-scale times, base axes
+            (:class:`~offshore_crane.motion.sea.DeckMotion`); the tip tracks the still-ship
+            point moved with it and the winch the deck's height, both as measured
+            ``delay`` late. None: a fixed point.
+        gravity: ``(3,)`` [m/s²]: the cable's direction under a moving target.
 
     Raises:
         InputError: an unknown mode, a robot without arm or cable, a record too short
@@ -148,15 +179,33 @@ def compensated_motion(robot, trajectory, mode: str = "arm+winch",
     t, q = trajectory.t, np.array(trajectory.q, dtype=float)
     still = q.copy()
     still[:, :6] = robot.home_pose()[:6]
-    target = tip_positions(robot, still)[0]
+    still_qd = np.array(trajectory.qd, dtype=float)
+    still_qd[:, :6] = 0.0
     length = float(robot.hybrid.cable_length)
+    g = np.asarray(gravity, dtype=float)
+    down = g / np.linalg.norm(g)
+    still_tip, still_v = tip_positions(robot, still, still_qd)
+    aim, aim_v = still_tip + length * down, still_v          # the payload's aim
+    seen_aim, seen_a, moved = aim, np.zeros_like(aim), None
+    if deck is not None:
+        moved, moved_v, _ = (np.asarray(x, dtype=float) for x in deck(t))
+        seen_x, _, seen_a = (np.asarray(x, dtype=float) for x in deck(t - delay))
+        aim, aim_v, seen_aim = aim + moved, aim_v + moved_v, aim + seen_x
+    # the cable along the pull that gives the payload the deck's acceleration (flat output)
+    up = (seen_a - g) / np.linalg.norm(seen_a - g, axis=1, keepdims=True)
     if mode == "none":
-        return Compensated(mode, trajectory, target, tip_positions(robot, q)[0], None,
-                           length)
+        return Compensated(mode, trajectory, seen_aim + length * up,
+                           tip_positions(robot, q)[0], None, length, deck=moved, aim=aim,
+                           aim_velocity=aim_v)
     limits = limits_of(robot.hybrid).arm[:3]
     held: dict = {}
     seen = _delayed(trajectory, delay)              # the platform as measured
-    solved, stuck = _solve_arm(robot, seen, still[:, 6:9], target[:, :2], limits)
+    L = np.full(len(t), length)
+    for _ in range(AIM_PASSES if mode == "arm+winch" and deck is not None else 1):
+        target = seen_aim + L[:, None] * up
+        solved, stuck = _solve_arm(robot, seen, still[:, 6:9], target[:, :2], limits)
+        if mode == "arm+winch":                     # the tip's height sets the length
+            L = (tip_positions(robot, solved)[0][:, 2] - seen_aim[:, 2]) / up[:, 2]
     q[:, 6:9] = solved[:, 6:9]
     for j, name in enumerate(("arm_joint1", "arm_joint2", "arm_slide")):
         if stuck[:, j].any():
@@ -166,7 +215,6 @@ def compensated_motion(robot, trajectory, mode: str = "arm+winch",
     tip = tip_positions(robot, q)[0]
     hoist = None
     if mode == "arm+winch":
-        L = length + tip_positions(robot, solved)[0][:, 2] - target[:, 2]
         if not (L > 0).all():
             k = int(np.argmax(~(L > 0)))
             raise InputError(f"compensation: the winch would need a cable length of "
@@ -176,7 +224,7 @@ def compensated_motion(robot, trajectory, mode: str = "arm+winch",
         hoist = np.column_stack([L, Ld, Ldd])
     traj = replace(trajectory, name=f"{trajectory.name}, compensated ({mode})", q=q, qd=qd,
                    qdd=qdd, source=None)
-    return Compensated(mode, traj, target, tip, hoist, length, held)
+    return Compensated(mode, traj, target, tip, hoist, length, held, moved, aim, aim_v)
 
 
 def measured_from(trajectory, delay: float):

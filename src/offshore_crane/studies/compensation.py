@@ -18,7 +18,8 @@ class CompensationRun:
     Attributes:
         mode: ``"none"``, ``"arm"`` or ``"arm+winch"``.
         residual: ``(N, 3)`` the payload's position minus the still-ship payload's
-            (hanging straight below the still-ship tip), base frame [m].
+            (hanging straight below the still-ship tip, moved with the target deck when
+            one is tracked), base frame [m].
         rms, peak: ``(3,)`` RMS and largest |residual| per axis x, y, z [m].
         sway_max_deg: Largest angle of the cable from the vertical [deg].
         lift: :class:`~offshore_crane.dynamics.cable.LiftMetrics`.
@@ -60,7 +61,7 @@ def payload_positions(robot, res) -> np.ndarray:
 
 def compare_compensation(robot, trajectory, cable: dict | None = None, gravity=GRAVITY,
                          modes=("none", "arm", "arm+winch"),
-                         delay: float = 0.0) -> list[CompensationRun]:
+                         delay: float = 0.0, deck=None) -> list[CompensationRun]:
     """The same sea and operation lifted under each compensation mode.
 
     Args:
@@ -76,6 +77,8 @@ def compare_compensation(robot, trajectory, cable: dict | None = None, gravity=G
         gravity: ``(3,)`` [m/s²].
         modes: Out of :data:`offshore_crane.simulation.compensation.MODES`.
         delay: The measurement's delay [s] the compensation acts on.
+        deck: A moving target (:class:`~offshore_crane.motion.sea.DeckMotion`, a point on
+            a second vessel's deck), or None: the still-ship point.
 
     Raises:
         The errors of :func:`~offshore_crane.simulation.compensation.compensated_motion`
@@ -93,7 +96,7 @@ def compare_compensation(robot, trajectory, cable: dict | None = None, gravity=G
     down = g / np.linalg.norm(g)
     runs = []
     for mode in modes:
-        comp = compensated_motion(robot, trajectory, mode, delay)
+        comp = compensated_motion(robot, trajectory, mode, delay, deck, g)
         tr = comp.trajectory
         args = dict(t=tr.t, gravity=g, hoist=comp.hoist_function(),
                     reference=tr.reference if tr.source is not None else None)
@@ -105,7 +108,7 @@ def compare_compensation(robot, trajectory, cable: dict | None = None, gravity=G
         else:
             res = inverse_dynamics(robot, tr.q, tr.qd, tr.qdd, **args, **{**start, **cable})
         p = payload_positions(robot, res)
-        residual = p - (comp.target + comp.length * down)
+        residual = p - comp.aim
         rel = p - comp.tip
         cosang = np.clip(rel @ down / np.linalg.norm(rel, axis=1), -1.0, 1.0)
         env = envelope(robot, tr.t, tr.q, tr.qd, res.X)

@@ -54,6 +54,10 @@ round the circle). The packaged ``"supply"`` vessel is the MSS toolbox's supply 
 transfer of the linear theory: ``x_P = x + θ × r`` with ``θ = (roll, pitch, yaw)``
 (small angles, consistent with linear RAOs), applied to the complex amplitudes.
 
+**A second vessel's deck** (:func:`deck_motion`, ship-to-ship transfer): the same sea
+state and transfer to a point of a vessel with its own seed, the displacement of that
+point scaled like the platform's translations.
+
 **Froude scaling** (:func:`platform_trajectory`): lengths / λ, times / √λ, angles
 unchanged; hence linear velocities / √λ, linear accelerations unchanged, angular rates
 × √λ, angular accelerations × λ. ``q1..q3 = home + x_P / λ``,
@@ -71,10 +75,10 @@ from offshore_crane.motion.sea.raos import RAO_COLUMNS, VESSELS, RAOTable, load_
 from offshore_crane.motion.sea.synthesis import (ShipMotion, check_arguments, vessel_names,
                                                  sea_state, response_spectrum, welch, ship_motion)
 from offshore_crane.motion.sea.scaling import (SCALE_RTOL, SeaMotion, sea_motion,
-                                               platform_trajectory)
+                                               platform_trajectory, DeckMotion, deck_motion)
 
 __all__ = ["DOFS", "SPECTRA", "RAO_COLUMNS", "VESSELS", "DEFAULT_DIRECTIONS",
            "spectrum", "default_gamma", "jonswap_normalisation", "spreading_directions",
            "response_spectrum",
            "RAOTable", "load_raos", "vessel_raos", "ShipMotion", "sea_state", "ship_motion",
-           "SeaMotion", "sea_motion", "platform_trajectory"]
+           "SeaMotion", "sea_motion", "platform_trajectory", "DeckMotion", "deck_motion"]

@@ -67,16 +67,7 @@ class SeaMotion:
         """
         t, scalar = as_times(t)
         root = math.sqrt(self.scale)
-        end = self.ship.repetition_period / root
-        outside = (t < 0.0) | (t > end)
-        if outside.any():
-            k = int(np.argmax(outside))
-            raise SeaStateError(
-                f"t[{k}] = {float(t[k]):.9g} s is outside [0, {end:.9g}] s, the model-scale "
-                f"span on which this sea does not repeat (record {self.duration:g} s at "
-                f"scale {self.scale:g}): build the motion for a longer duration",
-                name="t", index=k)
-        x, v, a = self.ship(t * root)
+        x, v, a = _full_scale(self.ship, self.scale, self.duration, t)
         n = t.size
         q = np.empty((n, 9))
         qd = np.empty((n, 9))
@@ -122,6 +113,73 @@ class SeaMotion:
         """
         traj = self.trajectory() if trajectory is None else trajectory
         _check_scaled(robot, traj.t, traj.q, self.home, self.scale)
+
+
+def _full_scale(ship: ShipMotion, scale: float, duration: float, t: np.ndarray):
+    """``ship``'s ``(x, v, a)`` at model-scale times ``t (n,)`` [s] (full scale ``t √λ``).
+
+    Raises:
+        SeaStateError: a time outside ``[0, repetition period / √λ]``, the model-scale
+            span on which the sea does not repeat.
+    """
+    root = math.sqrt(scale)
+    end = ship.repetition_period / root
+    outside = (t < 0.0) | (t > end)
+    if outside.any():
+        k = int(np.argmax(outside))
+        raise SeaStateError(
+            f"t[{k}] = {float(t[k]):.9g} s is outside [0, {end:.9g}] s, the model-scale "
+            f"span on which this sea does not repeat (record {duration:g} s at scale "
+            f"{scale:g}): build the motion for a longer duration", name="t", index=k)
+    return ship(t * root)
+
+
+@dataclass(frozen=True, eq=False)
+class DeckMotion:
+    """A point on a second vessel's deck in the same sea state, at model scale λ: its
+    displacement from its mean position, base axes (the second vessel's axes taken
+    parallel to the first's: x forward, y port, z up), for a crane landing a load on it
+    (ship-to-ship transfer). ``x, v, a = deck(t)`` at model-scale times: each ``(n, 3)``
+    [m], [m/s], [m/s²] — ``x_P(t√λ)/λ``, ``v_P/√λ``, ``a_P`` (Froude). Build it with
+    :func:`deck_motion`.
+
+    Attributes:
+        ship: The second vessel's full-scale :class:`ShipMotion` at the deck point.
+        scale: λ. duration: The model-scale record it was built for [s].
+    """
+
+    ship: ShipMotion
+    scale: float
+    duration: float
+
+    def __call__(self, t):
+        t, scalar = as_times(t)
+        x, v, a = _full_scale(self.ship, self.scale, self.duration, t)
+        out = (x[:, :3] / self.scale, v[:, :3] / math.sqrt(self.scale), a[:, :3])
+        return tuple(o[0] for o in out) if scalar else out
+
+
+def deck_motion(duration, rate, hs, tp, heading_deg, scale, *, vessel="supply", seed=0,
+                point=(0.0, 0.0, 0.0), kind: str = "jonswap", gamma=None, spreading=None,
+                directions: int = DEFAULT_DIRECTIONS, highpass=None) -> DeckMotion:
+    """The motion of a point on a second vessel's deck (:class:`DeckMotion`): the
+    vessel's RAOs (``vessel``) in the sea state ``hs, tp, heading_deg`` with its own
+    random phases (``seed``: another vessel elsewhere in the same sea), transferred to
+    ``point`` [m] (full scale, the vessel's axes from its RAO reference point), on the
+    frequency grid of a model-scale record of ``duration`` [s] at ``rate`` [Hz].
+
+    Raises:
+        SeaStateError: bad arguments (the checks of :func:`sea_state`).
+    """
+    from offshore_crane.motion.trajectories import time_grid
+
+    time_grid(duration, rate)
+    scale = real(scale, "scale", "-", SCALE_HINT, low=0.0)
+    root = math.sqrt(scale)
+    ship = sea_state(hs, tp, heading_deg, duration * root, rate / root, vessel=vessel,
+                     seed=seed, point=point, kind=kind, gamma=gamma, spreading=spreading,
+                     directions=directions, highpass=highpass)
+    return DeckMotion(ship, scale, float(duration))
 
 
 def _violation(robot, q, t):
