@@ -18,6 +18,13 @@ stays the still ship's:
   sixth-order finite differences of the solution on the uniform sample grid (the sea
   record at 100 Hz: relative error ~1e-9).
 
+With a moving target (a point on a second vessel's deck, ``deck``: ship-to-ship
+transfer) the load's aim moves with the deck, and the load's position is used as the
+pendulum's flat output (Fliess, Lévine, Martin, Rouchon, Int. J. Control 61(6), 1995):
+the cable must lie along ``u = (a − g)/|a − g|`` for the load to have the deck's
+acceleration ``a``, so the tip is aimed at ``p_aim + L u`` and the winch sets
+``L = (z_tip − z_aim)/u_z`` (:data:`AIM_PASSES` passes of arm and length).
+
 Compensation of the motion the *arm* introduces (the classic source, after W. Küchler,
 O. Sawodny et al., *Active control for an offshore crane using prediction of the
 vessel's motion*, IEEE/ASME Trans. Mechatronics 16(2), 2011: the winch compensates the
