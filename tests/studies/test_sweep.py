@@ -25,7 +25,7 @@ import offshore_crane
 from offshore_crane import scenes
 from offshore_crane.studies import sweep
 from offshore_crane.cli import main                           # noqa: E402
-from offshore_crane.errors import GridError, ResultsDirectoryError  # noqa: E402
+from offshore_crane.errors import GridError, InputError, ResultsDirectoryError  # noqa: E402
 
 #: Where the package the tests import lives (the source tree, or the installed copy in
 #: CI): subprocesses import the same one, whose compiled kernels are already cached.
@@ -744,7 +744,7 @@ def test_lift_columns_and_the_no_slack_operability(tmp_path):
     assert 1.0 < limit < 4.0
     expected = 100.0 * np.mean([h <= limit for h in (1.0, 3.0, 5.0)])
     assert op["operability_pct"].iloc[-1] == pytest.approx(expected)
-    with pytest.raises(oc_errors().InputError, match="criterion 'slack' is not one of"):
+    with pytest.raises(InputError, match="criterion 'slack' is not one of"):
         sweep.operability(v.reset_index(), sweep.load_scatter(scatter_path), scene, "slack")
 
 
@@ -757,11 +757,6 @@ def test_a_failed_case_is_inoperable_by_every_criterion(tmp_path):
     v = sweep.verdicts(df, scene).set_index("hs")
     for column in sweep.CRITERIA.values():
         assert np.isfinite(v.loc[1.0, column]) and np.isinf(v.loc[12.0, column])
-
-
-def oc_errors():
-    from offshore_crane import errors
-    return errors
 
 
 @pytest.mark.parametrize("text, match", [

@@ -125,20 +125,7 @@ def run(args) -> int:
     op = {}
     if scatter is not None:
         op = {c: sweep.operability(v, scatter, scene, c) for c in criteria}
-        print(f"operability over {args.scatter} (a cell is operable below the limiting "
-              "Hs of its Tp; headings equally likely overall):")
-        for criterion, table in op.items():
-            if len(op) > 1:
-                print(f" {_CRITERION_TEXT[criterion]}:")
-            for _, r in table.iterrows():
-                others = {k: r[k] for k in table.columns if k not in
-                          ("heading", "operability_pct", "uncovered_pct")}
-                where = (_label(others) + ", ") if others else ""
-                what = ("overall" if math.isnan(r["heading"])
-                        else f"heading {r['heading']:g}°")
-                print(f"  {where}{what}: {r['operability_pct']:.1f} % of the time"
-                      + (f" ({r['uncovered_pct']:.1f} % of the time outside the swept Tp)"
-                         if r["uncovered_pct"] > 0 else ""))
+        _print_operability(op, args.scatter)
     if "--csv" in planned:
         from offshore_crane.io import write_text
 
@@ -149,7 +136,7 @@ def run(args) -> int:
     return 0
 
 
-#: What each operability criterion judges, as printed and in the diagrams' titles.
+#: What each operability criterion judges, as printed.
 _CRITERION_TEXT = {"actuators": "actuators' capacities", "no slack": "no slack (the "
                    "slack criterion: smallest tension over the static tension)",
                    "load": "the hanging load's limits (sway, slack, tension, winch)",
@@ -184,6 +171,24 @@ def _print_verdicts(v, keys: list, load: bool) -> None:
         print("".join(f"{r[k]:>14g}" for k in keys)
               + f"{r['seeds']:>7}{r['basis']:>10}{percent(r['worst_util']):>9}"
               + (f"{percent(r['load_util']):>8}" if load else "") + f"  {who}")
+
+
+def _print_operability(op: dict, scatter: str) -> None:
+    """``{criterion: operability table}`` per heading and overall, a block per criterion
+    when there are several."""
+    print(f"operability over {scatter} (a cell is operable below the limiting Hs of its "
+          "Tp; headings equally likely overall):")
+    for criterion, table in op.items():
+        if len(op) > 1:
+            print(f" {_CRITERION_TEXT[criterion]}:")
+        for _, r in table.iterrows():
+            others = {k: r[k] for k in table.columns if k not in
+                      ("heading", "operability_pct", "uncovered_pct")}
+            where = (_label(others) + ", ") if others else ""
+            what = "overall" if math.isnan(r["heading"]) else f"heading {r['heading']:g}°"
+            print(f"  {where}{what}: {r['operability_pct']:.1f} % of the time"
+                  + (f" ({r['uncovered_pct']:.1f} % of the time outside the swept Tp)"
+                     if r["uncovered_pct"] > 0 else ""))
 
 
 def _plots(plot_dir, df, v, op, scene, capacities, criteria) -> None:
