@@ -29,3 +29,14 @@ def random_states(robot, n: int, seed: int, speed: float = 1.0, accel: float = 5
     qd = rng.uniform(-speed, speed, size=q.shape)
     qdd = rng.uniform(-accel, accel, size=q.shape)
     return q, qd, qdd
+
+
+def held_at_home(robot, duration: float, rate: float):
+    """The robot held at home for ``duration`` [s] at ``rate`` [Hz] (a frozen crane):
+    ``t (N,), q, qd, qdd (N, 9)`` with q3 the home height, everything else zero."""
+    from offshore_crane.motion.trajectories import time_grid
+
+    t = time_grid(duration, rate)
+    q = np.zeros((len(t), 9))
+    q[:, 2] = robot.home_height
+    return t, q, np.zeros_like(q), np.zeros_like(q)

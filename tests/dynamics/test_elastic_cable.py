@@ -14,6 +14,7 @@ import offshore_crane as oc
 from offshore_crane.dynamics import backends, cable
 from offshore_crane.dynamics.constants import cable_arrays
 from offshore_crane.errors import InputError
+from problems import held_at_home
 from offshore_crane.motion.trajectories import table1, time_grid
 
 G = 9.81
@@ -25,14 +26,6 @@ def crane():
     return oc.load_robot(overrides={"payload.mass": MASS, "payload.cable_length": LENGTH})
 
 
-def frozen(robot, duration, rate):
-    """The robot held at home: ``t, q, qd, qdd``."""
-    t = time_grid(duration, rate)
-    q = np.zeros((len(t), 9))
-    q[:, 2] = robot.home_height
-    return t, q, np.zeros_like(q), np.zeros_like(q)
-
-
 def test_the_snap_load_of_a_dropped_payload_is_the_closed_form(crane):
     """Released from rest with h = 5 cm of slack onto an undamped cable (EA 2e4 N, k =
     2e4 N/m), crane frozen, sampled at 1 kHz: free fall while slack (RK4 is exact on a
@@ -41,7 +34,7 @@ def test_the_snap_load_of_a_dropped_payload_is_the_closed_form(crane):
     ``m g (1 + √(1 + 2 k h / (m g)))`` = 218.68 N within 1e-4 relative (the issue's bound;
     measured 1.3e-6; the crossing 1.7e-7 s from √(2h/g))."""
     ea, h = 2e4, 0.05
-    t, q, qd, qdd = frozen(crane, 0.3, 1000.0)
+    t, q, qd, qdd = held_at_home(crane, 0.3, 1000.0)
     res = cable.elastic_inverse_dynamics(crane, q, qd, qdd, t=t, ea=ea,
                                          initial=(0.0, 0.0, -(LENGTH - h)))
     k = ea / LENGTH
@@ -67,7 +60,7 @@ def test_energy_is_conserved_through_slack_and_snap(crane):
     ½ k s² stay constant to 1e-6 of m g L over 3 s at 1 kHz (measured 2.4e-8: RK4 at 80
     steps an axial period, the 14 slack/taut steps redone)."""
     ea = 5e3
-    t, q, qd, qdd = frozen(crane, 3.0, 1000.0)
+    t, q, qd, qdd = held_at_home(crane, 3.0, 1000.0)
     res = cable.elastic_inverse_dynamics(crane, q, qd, qdd, t=t, ea=ea,
                                          initial=(0.3, 0.0, -0.8),
                                          initial_velocity=(0.0, 1.5, 0.5))
@@ -81,7 +74,7 @@ def test_damping_takes_energy_out(crane):
     """With c = 20 N·s/m the same throw loses energy at every step (the damper's power
     c ṡ² ≥ 0 while taut; up to RK4's round-off where it is idle: 1e-9 J)."""
     ea = 5e3
-    t, q, qd, qdd = frozen(crane, 2.0, 1000.0)
+    t, q, qd, qdd = held_at_home(crane, 2.0, 1000.0)
     res = cable.elastic_inverse_dynamics(crane, q, qd, qdd, t=t, ea=ea, damping=20.0,
                                          initial=(0.3, 0.0, -0.8),
                                          initial_velocity=(0.0, 1.5, 0.5))
@@ -129,7 +122,7 @@ def test_at_rest_x_is_the_welded_payloads(crane):
     """Hanging at its static stretch under a frozen crane: tension m g, no motion, and X
     equal to the robot with the payload welded below the tip (its weight acts on the same
     vertical line) to 1e-12 relative."""
-    t, q, qd, qdd = frozen(crane, 0.5, 100.0)
+    t, q, qd, qdd = held_at_home(crane, 0.5, 100.0)
     res = cable.elastic_inverse_dynamics(crane, q, qd, qdd, t=t, ea=1e4)
     assert np.abs(res.tension - MASS * G).max() <= 1e-9 * MASS * G
     assert np.abs(res.velocity).max() <= 1e-12
@@ -141,7 +134,7 @@ def test_at_rest_x_is_the_welded_payloads(crane):
 def test_the_step_follows_the_cable_stiffness(crane):
     """The default step puts STEPS_PER_PERIOD RK4 steps in the axial period
     2π √(m L / EA): 100 Hz samples on EA 1.25e4 N (period 79.5 ms) take 7 substeps."""
-    t, q, qd, qdd = frozen(crane, 0.1, 100.0)
+    t, q, qd, qdd = held_at_home(crane, 0.1, 100.0)
     res = cable.elastic_inverse_dynamics(crane, q, qd, qdd, t=t, ea=1.25e4)
     assert res.axial_period == pytest.approx(2 * np.pi * np.sqrt(MASS * LENGTH / 1.25e4))
     assert res.substeps == int(np.ceil(0.01 * cable.elastic.STEPS_PER_PERIOD
@@ -157,6 +150,6 @@ def test_the_step_follows_the_cable_stiffness(crane):
     (dict(ea=1e4, substeps=0), "substeps = 0 must be an integer >= 1"),
 ])
 def test_bad_cable_arguments(crane, kwargs, match):
-    t, q, qd, qdd = frozen(crane, 0.1, 100.0)
+    t, q, qd, qdd = held_at_home(crane, 0.1, 100.0)
     with pytest.raises(InputError, match=match):
         cable.elastic_inverse_dynamics(crane, q, qd, qdd, t=t, **kwargs)

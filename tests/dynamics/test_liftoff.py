@@ -14,7 +14,8 @@ import offshore_crane as oc
 from offshore_crane.dynamics import cable
 from offshore_crane.dynamics.cable.tip import tip_positions
 from offshore_crane.errors import InputError
-from offshore_crane.motion.trajectories import Trajectory, time_grid
+from problems import held_at_home
+from offshore_crane.motion.trajectories import Trajectory
 
 G = 9.81
 MASS, EA = 2.0, 2e4
@@ -24,11 +25,9 @@ MASS, EA = 2.0, 2e4
 def held():
     """A frozen crane for 4 s at 1 kHz, its tip height, and its robot."""
     robot = oc.load_robot(overrides={"payload.mass": MASS, "payload.cable_length": 1.0})
-    t = time_grid(4.0, 1000.0)
-    q = np.zeros((len(t), 9))
-    q[:, 2] = robot.home_height
+    t, q, qd, qdd = held_at_home(robot, 4.0, 1000.0)
     tip = tip_positions(robot, q[:1])[0][0]
-    return robot, Trajectory("held", t, q, 0 * q, 0 * q), float(tip[2])
+    return robot, Trajectory("held", t, q, qd, qdd), float(tip[2])
 
 
 def still(z):

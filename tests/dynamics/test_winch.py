@@ -14,6 +14,7 @@ import pytest
 import offshore_crane as oc
 from offshore_crane.dynamics import cable
 from offshore_crane.errors import InputError
+from problems import held_at_home
 from offshore_crane.motion.trajectories import table1, time_grid
 
 G = 9.81
@@ -23,14 +24,6 @@ MASS, LENGTH = 2.0, 1.0
 @pytest.fixture(scope="module")
 def crane():
     return oc.load_robot(overrides={"payload.mass": MASS, "payload.cable_length": LENGTH})
-
-
-def held(robot, duration, rate):
-    """The robot held at home (a frozen crane): ``t, q, qd, qdd``."""
-    t = time_grid(duration, rate)
-    q = np.zeros((len(t), 9))
-    q[:, 2] = robot.home_height
-    return t, q, np.zeros_like(q), np.zeros_like(q)
 
 
 def test_hoisted_right_hand_side_equals_pinocchios(crane):
@@ -104,7 +97,7 @@ def test_the_winchs_work_is_the_payloads_energy(crane):
     ∫ −Fw L̇ dt (Simpson's rule on the samples), equals the change of the payload's
     kinetic + potential energy to 1e-8 of the gross work ∫ |Fw L̇| dt (the issue's bound;
     measured ~1e-12: RK4's and Simpson's errors at 1 ms)."""
-    t, q, qd, qdd = held(crane, 60.0, 1000.0)
+    t, q, qd, qdd = held_at_home(crane, 60.0, 1000.0)
     hoist = cable.hoist_profile([(0.0, 1.0), (10.0, 0.5), (20.0, 1.4), (34.0, 0.6),
                                  (46.0, 1.2), (58.0, 0.8)])
     res = cable.inverse_dynamics(crane, q, qd, qdd, t=t, initial=(0.3, 0.2), hoist=hoist)
@@ -149,7 +142,7 @@ def test_hoist_profile_rates_are_its_derivatives():
      r"gives L = nan m"),
 ])
 def test_bad_hoists_are_named(crane, hoist, match):
-    t, q, qd, qdd = held(crane, 2.0, 100.0)
+    t, q, qd, qdd = held_at_home(crane, 2.0, 100.0)
     with pytest.raises(InputError, match=match):
         cable.inverse_dynamics(crane, q, qd, qdd, t=t, hoist=hoist)
 
