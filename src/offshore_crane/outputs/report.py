@@ -138,7 +138,38 @@ def elastic_summary(cable, winch=None) -> str:
              f"{cable.refined} slack/taut steps redone)",
              f"payload: max {down[k]:.4g}° from the vertical below the tip at t = {t[k]:.2f} s;"
              f" max stretch {1e3 * cable.stretch[j]:.4g} mm at t = {t[j]:.2f} s"]
-    return "\n".join(lines + lift_lines(cable, winch))
+    return "\n".join(lines + event_lines(cable.event) + lift_lines(cable, winch))
+
+
+def event_lines(event) -> list[str]:
+    """A ``[lift]`` scene's critical instant: the lift-off (and a re-hit) or the
+    set-down, with the relative vertical speeds [m/s]; none without an event."""
+    from offshore_crane.dynamics.cable import LiftOff, SetDown
+
+    if isinstance(event, LiftOff):
+        if event.t_liftoff != event.t_liftoff:
+            return ["lift-off: the load never leaves the deck (the cable never carries "
+                    "its weight and the deck's motion)"]
+        if event.flight is None:
+            return [f"lift-off at t = {event.t_liftoff:.4g} s, at the record's end"]
+        return [f"lift-off at t = {event.t_liftoff:.4g} s; " + (
+            f"RE-HIT: the deck catches the load again at t = {event.t_rehit:.4g} s, "
+            f"closing at {abs(event.rehit_speed):.3g} m/s (after it the deck's contact is "
+            "not modelled: the load flies on)" if event.rehit else
+            f"no re-hit, least clearance {1e3 * event.clearance_min:.4g} mm above the deck")
+            + " (the lift's figures below are from lift-off on)"]
+    if isinstance(event, SetDown):
+        if event.t_contact != event.t_contact:
+            return ["set-down: the load does not reach the deck in the record"]
+        after = event.after
+        then = ("then resting where it landed" if after is None or after.t_liftoff
+                != after.t_liftoff else f"RE-LIFT: the cable lifts it off again at t = "
+                f"{after.t_liftoff:.4g} s" + (f", the deck catching it at t = "
+                                             f"{after.t_rehit:.4g} s" if after.rehit else ""))
+        return [f"set-down: first contact at t = {event.t_contact:.4g} s, landing at "
+                f"{abs(event.speed):.3g} m/s relative to the deck; {then} (the lift's "
+                "figures below are up to the contact)"]
+    return []
 
 
 def pyplot(purpose: str = "--plot"):

@@ -82,19 +82,39 @@ def target_deck(scene: Scene):
     (:func:`offshore_crane.motion.sea.deck_motion`: the scene's sea state with the
     target's seed, point and vessel, on the record's frequency grid), or None."""
     target = scene.control.get("target")
-    if target is None:
-        return None
+    return None if target is None else _second_vessel(scene, target, "[control] target")
+
+
+def _second_vessel(scene: Scene, point: dict, what: str):
+    """:func:`offshore_crane.motion.sea.deck_motion` of ``point`` (``{point, seed,
+    vessel}``) in the scene's sea, its errors named as ``what``'s."""
     from offshore_crane.errors import SeaStateError
     from offshore_crane.motion.sea import deck_motion
 
     args = {k: v for k, v in sea_arguments(scene).items() if k != "operation"}
-    args.update(target)
+    args.update(point)
     try:
         return deck_motion(SEA_DURATION if scene.duration is None else scene.duration,
                            SEA_RATE if scene.rate is None else scene.rate, **args)
     except SeaStateError as exc:
-        raise SceneError(f"{scene.where()}: [control] target: {exc}", path=scene.path,
-                         name="control.target") from None
+        raise SceneError(f"{scene.where()}: {what}: {exc}", path=scene.path,
+                         name=what.replace("[", "").replace("] ", ".")) from None
+
+
+def lift_deck(scene: Scene):
+    """The ``[lift]`` deck under the load: ``deck(t) -> (z, ż, z̈)`` [m, m/s, m/s²], base
+    frame — ``deck_height`` plus the heave of ``[lift] deck`` (a point on a second vessel
+    in the scene's sea), or still at ``deck_height``."""
+    height = float(scene.lift["deck_height"])
+    point = scene.lift.get("deck")
+    if point is None:
+        return lambda t: (np.full(len(t), height), np.zeros(len(t)), np.zeros(len(t)))
+    heave = _second_vessel(scene, point, "[lift] deck")
+
+    def deck(t):
+        x, v, a = heave(t)
+        return height + x[:, 2], v[:, 2], a[:, 2]
+    return deck
 
 
 def load_robot(scene: Scene, overrides: dict | None = None):

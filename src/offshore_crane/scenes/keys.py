@@ -10,7 +10,7 @@ from offshore_crane.io import toml_value
 
 
 SECTIONS = ("robot", "subsystems", "payload", "cable", "actuators", "trajectory", "sea",
-            "operation", "control")
+            "operation", "control", "lift")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
 PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length", "sway_damping", "limits")
@@ -29,6 +29,10 @@ SEA_DURATION, SEA_RATE = 60.0, 100.0
 CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error", "noise_q",
                 "noise_qd", "seed", "model", "lower", "upper", "saturation", "anti_sway",
                 "compensation", "delay", "target")
+#: [lift] keys: a lift-off from or a set-down onto a deck (docs/cable.md).
+LIFT_KEYS = ("event", "deck_height", "deck")
+#: [lift] events.
+LIFT_EVENTS = ("lift-off", "set-down")
 #: [control] target keys: a point on a second vessel's deck (ship-to-ship transfer).
 TARGET_KEYS = ("point", "seed", "vessel")
 #: [control] keys that are Controller arguments (the others: simulate's).

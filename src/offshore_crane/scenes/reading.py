@@ -15,7 +15,8 @@ from offshore_crane.io import toml_value
 from offshore_crane.validation import not_a_number
 from offshore_crane.scenes.keys import (CABLE_KEYS, CONTROLLER_KEYS, CONTROL_KEYS, INERTIA_KEYS,
                                         OPERATION_KEYS, PAYLOAD_KEYS, SEA_KEYS, SECTIONS,
-                                        LOAD_LIMIT_KEYS, TARGET_KEYS,
+                                        LOAD_LIMIT_KEYS, TARGET_KEYS, LIFT_KEYS,
+                                        LIFT_EVENTS,
                                         SUBSYSTEM_KEYS, TOP_KEYS, TRAJECTORY_KEYS, normalised,
                                         same_value, scene_field)
 from offshore_crane.scenes.scene import Scene
@@ -245,14 +246,32 @@ def _sea(where: str, data: dict, base: Path | None) -> dict:
     return dict(sea=sea, operation=operation)
 
 
-def _target(where: str, value, base: Path | None) -> dict:
+def _lift(where: str, data: dict, base: Path | None) -> dict:
+    """``[lift]``: ``event`` (``"lift-off"`` or ``"set-down"``), ``deck_height`` [m]
+    (model scale, base frame: the deck's mean height under the load; required), ``deck`` (a point
+    on a second vessel heaving in the scene's sea, as ``[control] target``; none: a still
+    deck)."""
+    r = _section(where, data, "lift", LIFT_KEYS)
+    if not r.table:
+        return {}
+    out = {"event": r.string("event", None, LIFT_EVENTS)}
+    if out["event"] is None:
+        r.fail_key("event", f"[lift] needs event = one of {', '.join(LIFT_EVENTS)}")
+    if "deck_height" in r.table:
+        out["deck_height"] = r.number("deck_height", unit="m")
+    if "deck" in r.table:
+        out["deck"] = _target(where, r.get("deck"), base, "[lift] deck")
+    return out
+
+
+def _target(where: str, value, base: Path | None, what: str = "[control] target") -> dict:
     """``[control] target = {point = [x, y, z], seed = n, vessel = "..."}``: a point on a
     second vessel's deck, full scale [m] in that vessel's axes from its RAO reference
     point; its own phases (``seed``, required: another vessel is another record); the
     scene's vessel unless ``vessel`` names another (a shipped one or a RAO file)."""
     def fail(problem):
-        raise SceneError(f"{where}: [control] target: {problem}", path=where,
-                         name="control.target")
+        raise SceneError(f"{where}: {what}: {problem}", path=where,
+                         name=what.replace("[", "").replace("] ", "."))
 
     if not isinstance(value, dict):
         fail("must be a table {point = [x, y, z], seed = n} (a point on a second "
@@ -417,7 +436,8 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
         gravity=top.vector("gravity", 3, GRAVITY, "m/s²"),
         outputs=top.names("outputs", ACTUATORS),
         methods=top.names("methods", METHODS) or ("kane",), control=control, cable=cable,
-        **_trajectory(where, data, base), **_sea(where, data, base))
+        lift=_lift(where, data, base), **_trajectory(where, data, base),
+        **_sea(where, data, base))
 
 
 def load_scene(path) -> Scene:

@@ -88,6 +88,8 @@ def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, check
                              "pull_max, speed_max, acceleration_max, power_max ([actuators."
                              "winch] in the scene)", path=scene.path, name="cable.winch")
         options["hoist"] = hoist_profile(waypoints)
+    if scene.lift:
+        return _lift_event(scene, robot, traj, method, options.get("hoist"), checked)
     if "ea" in scene.cable:
         if method != "kane":
             raise SceneError(f"{scene.where()}: the elastic cable ([cable] ea) has Kane's "
@@ -108,6 +110,38 @@ def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, check
     return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
                   condition=res.condition, gimbal=None, attitude=None,
                   backend="numba" if method == "kane" else "pinocchio", cable=res)
+
+
+def _lift_event(scene: Scene, robot, traj, method: str, hoist, checked: dict):
+    """A ``[lift]`` scene: the load lifted off the deck (resting on it, then flying:
+    :func:`offshore_crane.dynamics.cable.lift_off`) or lowered onto it (flying, then
+    resting where it landed: :func:`~offshore_crane.dynamics.cable.set_down`), on the
+    elastic cable; the :class:`~offshore_crane.dynamics.Result` holds the record and its event."""
+    from dataclasses import replace as swap
+
+    from offshore_crane.dynamics import Result
+    from offshore_crane.dynamics.cable import SetDown, lift_off, set_down
+    from offshore_crane.errors import SceneError
+    from offshore_crane.scenes.assembly import lift_deck
+
+    if method != "kane":
+        raise SceneError(f"{scene.where()}: [lift] runs on the elastic cable, Kane's path "
+                         f"only: use methods = [\"kane\"], not {method!r}", path=scene.path,
+                         name="methods")
+    deck = lift_deck(scene)
+    cable = dict(ea=scene.cable["ea"], damping=scene.cable.get("damping", 0.0), hoist=hoist,
+                 gravity=checked["gravity"], substeps=scene.cable.get("substeps"))
+    checks = {k: checked[k] for k in ("limits", "checks", "thresholds")}
+    if scene.lift["event"] == "lift-off":
+        event = lift_off(robot, traj, deck, **cable, **checks)
+        res = swap(event.result, event=event)
+    else:
+        t_contact, speed, res = set_down(robot, traj, deck, **cable, **checks)
+        if res.event is None:
+            res = swap(res, event=SetDown(t_contact, speed))
+    return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
+                  condition=np.full(len(res.t), np.nan), gimbal=None, attitude=None,
+                  backend="numba", cable=res)
 
 
 def _compensated(scene: Scene, robot, traj, options: dict):

@@ -77,6 +77,10 @@ class Scene:
         outputs: Actuators wanted, or None for all that exist.
         methods: Methods to run; the first one's result is reported, the others are
             compared with it.
+        control: ``[control]``: a controller (simulate), or a compensation.
+        cable: ``[cable]``: the hanging load's options.
+        lift: ``[lift]``: ``{"event": "lift-off" | "set-down", "deck_height": [m],
+            "deck": {point, seed, vessel}}`` or empty.
     """
 
     name: str = "default"
@@ -100,6 +104,7 @@ class Scene:
     methods: tuple = ("kane",)
     control: dict = field(default_factory=dict)
     cable: dict = field(default_factory=dict)
+    lift: dict = field(default_factory=dict)
     #: Where the scene comes from, for messages (the file, or the file with the
     #: command-line options applied).
     origin: str | None = field(default=None, compare=False, repr=False)
@@ -128,7 +133,8 @@ class Scene:
         elastic cable, a winch, a compensation's winch or arm): ``["[cable] ea", ...]``,
         empty for none — what the forward simulation and the pictures do not handle."""
         return [f"[cable] {k}" for k in ("ea", "winch") if k in self.cable] + (
-            ["[control] compensation"] if self.compensation != "none" else [])
+            ["[control] compensation"] if self.compensation != "none" else []) + (
+            ["[lift]"] if self.lift else [])
 
     def where(self) -> str:
         """Where the scene comes from, for messages."""
@@ -143,7 +149,8 @@ class Scene:
         files = [self.robot_description or str(default_description())]
         if self.trajectory not in ("table1", "sea"):
             files.append(self.trajectory)
-        for vessel in (self.sea.get("vessel"), self.control.get("target", {}).get("vessel")):
+        for vessel in (self.sea.get("vessel"), self.control.get("target", {}).get("vessel"),
+                       self.lift.get("deck", {}).get("vessel")):
             if vessel is not None and os.path.isfile(str(vessel)):
                 files.append(str(vessel))
         return files
@@ -256,6 +263,8 @@ def _check_sea(scene: "Scene") -> None:
              "length L): set [cable] winch = true to hoist the load")
     if hoisted and min(row[4] for row in scene.operation) <= 0.0:
         fail("operation.waypoints", "[operation] the hoist column L must stay > 0 m")
+    if scene.lift:
+        _check_lift(scene, fail)
     if "target" in scene.control and scene.compensation == "none":
         fail("control.target", "[control] target is tracked by the motion compensation: "
              "set [control] compensation = \"arm\" or \"arm+winch\"")
@@ -289,12 +298,33 @@ def _check_sea(scene: "Scene") -> None:
         if exc.name == "waypoints":
             fail("operation.waypoints", f"[operation] {exc}")
         fail(f"sea.{exc.name}", f"[sea] {exc}")
-    if "target" in scene.control:                       # the second vessel's record
-        args = {**sea_arguments(scene), **scene.control["target"]}
-        try:
-            check_arguments(**args)
-        except SeaStateError as exc:
-            fail("control.target", f"[control] target: {exc}")
+    for name, point in (("[control] target", scene.control.get("target")),
+                        ("[lift] deck", scene.lift.get("deck"))):
+        if point is not None:                           # a second vessel's record
+            try:
+                check_arguments(**{**sea_arguments(scene), **point})
+            except SeaStateError as exc:
+                fail(name.replace("[", "").replace("] ", "."), f"{name}: {exc}")
+
+
+def _check_lift(scene: "Scene", fail) -> None:
+    """``[lift]`` against the rest: an elastic cable (the load leaves or meets the deck
+    on it), a set-down's deck height, a heaving deck's sea, no compensation."""
+    event = scene.lift.get("event")
+    if event not in ("lift-off", "set-down"):
+        fail("lift.event", f"[lift] event = {event!r}: use \"lift-off\" or \"set-down\"")
+    if "ea" not in scene.cable:
+        fail("lift", f"[lift] {event} needs an elastic cable: set [cable] ea (and damping)")
+    if "deck_height" not in scene.lift:
+        fail("lift.deck_height", f"[lift] {event} needs deck_height [m], the deck's (mean) "
+             "height in the base frame under the load (model scale; the tip's height less "
+             "the cable's length is where a hanging load would touch it)")
+    if scene.compensation != "none":
+        fail("lift", "[lift] and [control] compensation together are not modelled: drop "
+             "one of them")
+    if "deck" in scene.lift and scene.trajectory != "sea":
+        fail("lift.deck", "[lift] deck is a point on a second vessel in the scene's sea: "
+             "it needs [trajectory] source = \"sea\"")
 
 
 def sea_arguments(scene: "Scene") -> dict:

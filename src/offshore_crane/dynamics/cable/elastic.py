@@ -59,6 +59,11 @@ class ElasticResult:
         static_tension: ``m |g|`` [N], what the ratios are taken against.
         step: RK4's step [s]; substeps: steps a sample interval; refined: steps redone
         at a slack ↔ taut change; axial_period: the shortest ``2π √(m L / EA)`` [s].
+        airborne: ``(first, stop)`` the samples with the load off the deck,
+            ``first ≤ k < stop`` (a lift-off's record rests on it before, a set-down's
+            after; its cable is neither slack nor judged there).
+        event: The lift's critical instant (:class:`~.liftoff.LiftOff`,
+            :class:`~.liftoff.SetDown`), or None.
     """
 
     t: np.ndarray
@@ -83,6 +88,8 @@ class ElasticResult:
     substeps: int
     refined: int
     axial_period: float
+    airborne: tuple = (0, None)
+    event: object = None
 
     def __len__(self) -> int:
         return len(self.t)
@@ -113,8 +120,9 @@ class ElasticResult:
 
     def peak_tension(self) -> float:
         """The largest tension [N], refined between samples by the parabola through the
-        largest sample and its neighbours (the snap's peak falls between samples)."""
-        T = self.tension
+        largest sample and its neighbours (the snap's peak falls between samples), once
+        the load is airborne."""
+        T = self.tension[slice(*self.airborne)]
         k = int(np.argmax(T))
         if 0 < k < len(T) - 1:
             a, b, c = T[k - 1], T[k], T[k + 1]

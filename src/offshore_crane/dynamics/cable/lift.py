@@ -59,13 +59,15 @@ def time_slack(t: np.ndarray, tension: np.ndarray) -> float:
 
 def lift_metrics(res, gravity=(0.0, 0.0, -9.81)) -> LiftMetrics:
     """The lift figures of a :class:`~.result.CableResult` or
-    :class:`~.elastic.ElasticResult`.
+    :class:`~.elastic.ElasticResult` (tension and slack while the load is off a deck,
+    the winch throughout).
 
     Args:
         gravity: ``(3,)`` [m/s²] for the static tension of a rigid cable's result (an
             elastic result carries its own).
     """
-    T, t = np.asarray(res.tension), np.asarray(res.t)
+    air = slice(*getattr(res, "airborne", (0, None)))    # judged while off the deck
+    T, t = np.asarray(res.tension)[air], np.asarray(res.t)[air]
     static = getattr(res, "static_tension", None)
     if static is None:
         static = res.mass * float(np.linalg.norm(gravity))
@@ -73,9 +75,9 @@ def lift_metrics(res, gravity=(0.0, 0.0, -9.81)) -> LiftMetrics:
     peak = res.peak_tension() if hasattr(res, "peak_tension") else float(T.max())
     winch = {}
     if res.hoist is not None:
-        H = np.asarray(res.hoist)
-        winch = dict(winch_pull=float(T.max()), winch_speed=float(np.abs(H[:, 1]).max()),
+        H, Tw = np.asarray(res.hoist), np.asarray(res.tension)   # the winch: throughout
+        winch = dict(winch_pull=float(Tw.max()), winch_speed=float(np.abs(H[:, 1]).max()),
                      winch_acceleration=float(np.abs(H[:, 2]).max()),
-                     winch_power=float(np.abs(T * H[:, 1]).max()))
+                     winch_power=float(np.abs(Tw * H[:, 1]).max()))
     return LiftMetrics(static, float(T.min()), peak, float(T.min()) / static,
                        peak / static, slack_time, **winch)
