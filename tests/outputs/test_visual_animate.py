@@ -12,7 +12,7 @@ import offshore_crane as oc
 from offshore_crane.__main__ import main
 from offshore_crane.outputs.visual import animate as an
 from offshore_crane.outputs.visual import motion as mo
-from offshore_crane.outputs.visual import poses, render
+from offshore_crane.outputs.visual import colours, poses, render
 
 from PIL import Image as PIL
 
@@ -92,7 +92,7 @@ def test_mp4_frames(robot, tmp_path):
 
 def test_legs_coloured_by_force(robot):
     """Push (> 0) red, pull blue: the colour map against hand-picked values."""
-    assert np.allclose(render.diverging(np.array([-1.0, 0.0, 1.0])),
+    assert np.allclose(colours.diverging(np.array([-1.0, 0.0, 1.0])),
                        [[0.1, 0.3, 0.9], [0.85, 0.85, 0.85], [0.9, 0.15, 0.1]])
     X = np.zeros((2, 9))
     X[:, 3:] = [[100, -50, 0, 0, 0, 0], [-200, 0, 0, 0, 0, 0]]
@@ -248,12 +248,12 @@ def _lab(rgb) -> np.ndarray:
 def test_a_force_gif_shows_the_scales_ends_in_every_frame(tmp_path):
     """The README's headline picture, short: one palette for every frame, and in every
     frame the colour bar's pull end (blue) and push end (red) within ΔE (CIE76) ≤ 10 of
-    their definitions (render.diverging(∓1)); a pushing leg's red hue is kept. Each frame
+    their definitions (colours.diverging(∓1)); a pushing leg's red hue is kept. Each frame
     once had its own 64-colour palette, where pull came out grey or near-black."""
     out = tmp_path / "run.gif"
     assert main(["animate", "--scene", str(SCENES / "sea_state_crane.toml"),
                  "--color-by", "force", "--duration", "3", "--out", str(out)]) == 0
-    blue, red = render.diverging(np.array([-1.0, 1.0])) * 255.0
+    blue, red = colours.diverging(np.array([-1.0, 1.0])) * 255.0
     gif = PIL.open(out)
     assert gif.n_frames == 31                             # 10 fps, the GIF default
     W, w = 640, 120
@@ -281,7 +281,7 @@ def test_the_gif_palette_holds_the_scale_and_the_bodies(robot):
     palette = np.array(an.gif_palette(r, picture, len(times), "force").getpalette()[:768]
                        ).reshape(-1, 3)
     have = {tuple(c) for c in palette.tolist()}
-    ramp = render.diverging(np.linspace(-1.0, 1.0, an.GIF_SCALE_STEPS)) * 255.0
+    ramp = colours.diverging(np.linspace(-1.0, 1.0, an.GIF_SCALE_STEPS)) * 255.0
     assert {tuple(c) for c in np.clip(ramp, 0, 255).astype(np.uint8).tolist()} <= have
     bodies = np.unique(np.round(r.geo.rgb, 6), axis=0)
     full = np.clip(bodies * (render.AMBIENT + render.DIFFUSE) * 255, 0, 255).astype(np.uint8)
@@ -329,3 +329,64 @@ def test_the_still_water_line_is_drawn_at_the_scenes_model_scale_level(robot, tm
 
     assert water_pixels(None) == 0
     assert water_pixels(robot.home_height) > 300          # four sides of a square, 2 px
+
+
+# --------------------------------------------------------------------------- a varying cable
+def test_a_load_given_by_position_is_drawn_where_the_sway_puts_it():
+    """poses.link_poses(load=...): the cable joints take the load's direction (the sway
+    convention inverted) and the payload sits at the tip plus the load: on a rigid swing
+    (offshore_crane.dynamics.cable's run along Table 1) the same poses as from its sway
+    angles, to 1e-12 m, and a load 20 % farther puts the payload 20 % farther."""
+    from offshore_crane.dynamics import cable
+    from offshore_crane.dynamics.cable.tip import payload_positions, tip_positions
+    from offshore_crane.motion.trajectories import table1, time_grid
+
+    robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 0.5})
+    t = time_grid(3.0, 50.0)
+    res = cable.inverse_dynamics(robot, *table1(t), reference=table1, initial=(0.4, -0.3),
+                                 t=t)
+    load = payload_positions(robot, res) - tip_positions(robot, res.q)[0]
+    by_sway = poses.link_poses(robot, res.q, res.sway)
+    by_load = poses.link_poses(robot, res.q, load=load)
+    assert np.abs(by_sway.p - by_load.p).max() <= 1e-12
+    longer = poses.link_poses(robot, res.q, load=1.2 * load)
+    tip, pay = longer.index("arm_tip"), longer.index("payload")
+    reach = np.linalg.norm(longer.p[:, pay] - longer.p[:, tip], axis=1)
+    assert np.abs(reach - 0.6).max() <= 1e-12
+
+
+def test_a_slack_cable_is_dashed_and_the_lifts_deck_drawn(tmp_path, capsys):
+    """animate --scene of a lift (scenes/deck_lift.toml): the varying cable is drawn as
+    a line from the tip to the payload (the URDF's fixed-length rod hidden), dashed while
+    slack — fewer cable pixels than the same frame drawn taut — and the deck as a plate
+    under the load; view still refuses such a scene in one line."""
+    from offshore_crane import scenes
+    from offshore_crane.outputs.visual.animate import painter
+
+    scene = scenes.load_scene(SCENES / "deck_lift.toml")
+    robot = scenes.load_robot(scene)
+    run = scenes.run_swing(scene, robot, scenes.load_trajectory(scene, robot), "kane")
+    motion = mo.varying_cable(robot, run.cable, "lift", None, scenes.lift_deck(scene))
+    k = int(np.argmax(motion.slack))                   # resting: the cable slack
+    shown = mo.at(motion, motion.t[[k, k]])
+    taut = mo.at(motion, motion.t[[k, k]])
+    taut = type(taut)(**{**taut.__dict__, "slack": np.array([False, False])})
+
+    def dark(m) -> int:
+        a = np.asarray(painter(robot, m, width=320, height=240)[1](0)).astype(int)
+        return int((a.max(axis=-1) < 60).sum())
+
+    def plate(m) -> int:
+        a = np.asarray(painter(robot, m, width=320, height=240)[1](0)).astype(int)
+        return int((np.abs(a - np.array(render.DECK_RGB)).max(axis=-1) <= 3).sum())
+    assert dark(shown) < dark(taut)
+    assert plate(shown) > 100
+    out = tmp_path / "lift.gif"
+    assert main(["animate", "--scene", str(SCENES / "deck_lift.toml"), "--out", str(out),
+                 "--duration", "1"]) == 0
+    assert PIL.open(out).n_frames == 11
+    capsys.readouterr()
+    assert main(["view", "--scene", str(SCENES / "deck_lift.toml"), "--port", "0"]) == 2
+    err = capsys.readouterr().err
+    assert "the browser viewer draws the rigid cable at its fixed length only" in err
+    assert len(err.strip().splitlines()) == 1

@@ -181,8 +181,8 @@ def test_quaternions_against_rotation_matrices():
 
 def test_the_viewer_colours_the_legs_as_animate_does(robot):
     """--color-by in the viewer: at each shown frame every leg's meshes take animate's
-    colour for that frame (render.diverging of the leg's force over the run's scale)."""
-    from offshore_crane.outputs.visual.render import diverging
+    colour for that frame (colours.diverging of the leg's force over the run's scale)."""
+    from offshore_crane.outputs.visual.colours import diverging
     from offshore_crane.outputs.visual.viewer import Viewer
 
     traj = oc.motion.trajectories.load("table1", duration=2.0, rate=50.0)

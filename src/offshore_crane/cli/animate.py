@@ -56,25 +56,35 @@ def inputs_of(args, scene) -> list:
     return [args.scene, args.run_csv, *scene.inputs()]
 
 
-def load_motion(args, scene):
-    """``(robot, motion)`` of the scene, or of ``--from``."""
+def load_motion(args, scene, varying: bool = False):
+    """``(robot, motion)`` of the scene, or of ``--from``. A scene whose cable varies (a
+    winch, an elastic cable, a compensation, a lift) is run first
+    (:func:`offshore_crane.scenes.run_swing`) when ``varying`` (the pictures draw it),
+    else refused."""
     from offshore_crane import scenes
     from offshore_crane.outputs.visual import motion as mo
 
     from dataclasses import replace
 
     later = scene.varying_cable
-    if later:
-        raise InputError(f"{', '.join(later)}: the pictures draw the rigid cable at its "
-                         "fixed length only (a varying or slack cable is not drawn yet); "
-                         "run offshore-crane id or compensate for its figures",
-                         name="--scene")
+    if later and (not varying or args.run_csv is not None):
+        what = ("the browser viewer draws the rigid cable at its fixed length only"
+                if not varying else "--from reads a rigid cable's run only")
+        raise InputError(f"{', '.join(later)}: {what} (a varying or slack cable is drawn "
+                         "by offshore-crane animate --scene); run offshore-crane id or "
+                         "compensate for its figures", name="--scene")
     robot = scenes.load_robot(scene)
+    water = scenes.still_water_level(scene, robot)
+    if later:
+        traj = scenes.load_trajectory(scene, robot)
+        run = scenes.run_swing(scene, robot, traj, "kane")
+        return robot, mo.varying_cable(robot, run.cable, f"{scene.name} ({traj.name})",
+                                       water, scenes.lift_deck(scene) if scene.lift else None)
     if args.run_csv is not None:
         motion = mo.read_run(args.run_csv)
     else:
         motion = mo.from_trajectory(scenes.load_trajectory(scene, robot))
-    return robot, replace(motion, water=scenes.still_water_level(scene, robot))
+    return robot, replace(motion, water=water)
 
 
 def parse_size(text: str) -> tuple[int, int]:
@@ -129,7 +139,7 @@ def run(args) -> int:
                            {"--out": an.FORMATS})
     target = outputs["--out"]
     fmt = an.output_format(args.out)
-    robot, motion = load_motion(args, scene)
+    robot, motion = load_motion(args, scene, varying=True)
     if args.color_by is not None and motion.X is None:
         print(f"offshore-crane animate: computing the actuator forces for --color-by "
               f"({len(motion.t)} samples)")

@@ -42,23 +42,6 @@ class CompensationRun:
     result: object
 
 
-def payload_positions(robot, res) -> np.ndarray:
-    """``(N, 3)`` the payload in the base frame [m] of a rigid or elastic cable's result."""
-    if hasattr(res, "payload"):
-        return np.asarray(res.payload)
-    from offshore_crane.dynamics import backends
-    from offshore_crane.dynamics.constants import cable_arrays
-    from offshore_crane.dynamics.cable.tip import tip_positions
-
-    B, C = backends.NUMPY, cable_arrays(robot).kane
-    Rt = B.tip_motion(C, res.q.T, res.qd.T, res.qdd.T)[0]
-    Rt = np.array([[np.asarray(x) for x in row] for row in Rt])          # (3, 3, N)
-    e = np.array(B.sway_direction(res.sway[:, 0], res.sway[:, 1])[0])     # (3, N)
-    length = res.length if res.hoist is None else res.hoist[:, 0]
-    return tip_positions(robot, res.q)[0] + np.einsum("ijn,jn->ni", Rt, e) * np.reshape(
-        length, (-1, 1))
-
-
 def compare_compensation(robot, trajectory, cable: dict | None = None, gravity=GRAVITY,
                          modes=("none", "arm", "arm+winch"),
                          delay: float = 0.0, deck=None) -> list[CompensationRun]:
@@ -86,6 +69,7 @@ def compare_compensation(robot, trajectory, cable: dict | None = None, gravity=G
     """
     from offshore_crane.dynamics.cable import (elastic_inverse_dynamics, inverse_dynamics,
                                                lift_metrics)
+    from offshore_crane.dynamics.cable.tip import payload_positions
     from offshore_crane.simulation.compensation import compensated_motion, still_start
     from offshore_crane.studies.sizing.envelopes import envelope, worst_utilisation
 

@@ -26,3 +26,19 @@ def tip_positions(robot, q: np.ndarray, qd: np.ndarray | None = None) -> tuple:
         pb, vb = backends.NUMPY.tip_state(C, q[b].T, qd[b].T)
         p[b], v[b] = np.stack(pb, axis=-1), np.stack(vb, axis=-1)
     return p, v
+
+
+def payload_positions(robot, res) -> np.ndarray:
+    """``(N, 3)`` the payload in the base frame [m] of a rigid or elastic cable's result."""
+    if hasattr(res, "payload"):
+        return np.asarray(res.payload)
+    from offshore_crane.dynamics import backends
+    from offshore_crane.dynamics.constants import cable_arrays
+
+    B, C = backends.NUMPY, cable_arrays(robot).kane
+    Rt = B.tip_motion(C, res.q.T, res.qd.T, res.qdd.T)[0]
+    Rt = np.array([[np.asarray(x) for x in row] for row in Rt])          # (3, 3, N)
+    e = np.array(B.sway_direction(res.sway[:, 0], res.sway[:, 1])[0])     # (3, N)
+    length = res.length if res.hoist is None else res.hoist[:, 0]
+    return tip_positions(robot, res.q)[0] + np.einsum("ijn,jn->ni", Rt, e) * np.reshape(
+        length, (-1, 1))

@@ -91,7 +91,7 @@ class Written:
 
 def _legend(color_by: str, scale: float):
     """An overlay drawing the legs' colour bar, top right."""
-    from offshore_crane.outputs.visual.render import colour_scale
+    from offshore_crane.outputs.visual.colours import colour_scale
 
     def draw(d, r, k):
         ss = r.ss
@@ -141,7 +141,8 @@ def painter(robot, shown, *, width: int = 640, height: int = 480, camera=None,
     Args:
         robot: From :func:`offshore_crane.load_robot`.
         shown: :class:`~offshore_crane.outputs.visual.motion.Motion` at the frames' times (its
-            ``X`` needed with ``color_by``, its ``sway`` with a cable).
+            ``X`` needed with ``color_by``, its ``sway`` with a cable, or its ``load`` and
+            ``slack`` with one of varying length).
         color_by: None, ``"force"`` or ``"utilisation"`` (the legs' colour).
         caption: Printed after the time stamp.
 
@@ -150,10 +151,12 @@ def painter(robot, shown, *, width: int = 640, height: int = 480, camera=None,
     """
     from offshore_crane.outputs.visual import motion as mo
     from offshore_crane.outputs.visual.poses import link_poses
-    from offshore_crane.outputs.visual.render import Renderer, colour_scale, leg_face_colours
+    from offshore_crane.outputs.visual.colours import colour_scale, leg_face_colours
+    from offshore_crane.outputs.visual.render import Renderer
 
-    P = link_poses(robot, shown.q, shown.sway)
-    r = Renderer(robot, P, width, height, camera, supersample, water=shown.water)
+    P = link_poses(robot, shown.q, shown.sway, shown.load)
+    r = Renderer(robot, P, width, height, camera, supersample, water=shown.water,
+                 slack=shown.slack, deck=shown.deck)
     values, scale, overlay = None, None, None
     if color_by is not None:
         if shown.X is None:
@@ -176,7 +179,7 @@ def gif_palette(renderer, picture, n_frames: int, color_by: str | None = None):
     (background, text, edges)."""
     from PIL import Image
 
-    from offshore_crane.outputs.visual.render import colour_scale
+    from offshore_crane.outputs.visual.colours import colour_scale
 
     fixed = []
     if color_by is not None:

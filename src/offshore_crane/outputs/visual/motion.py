@@ -58,6 +58,10 @@ class Motion:
         source: ``source(t (n,)) -> (q, qd, qdd)`` exact at any time, or None.
         water: Height of the still water line in the base frame [m] (model scale), or
             None (no sea).
+        load: ``(N, 3)`` the payload from the tip [m], base axes, of a cable of varying
+            length (a winch, an elastic cable), or None.
+        slack: ``(N,)`` bool, the cable slack (with ``load``), or None.
+        deck: ``(N, 3)`` the centre of a lift's deck under the load [m], or None.
     """
 
     name: str
@@ -69,6 +73,9 @@ class Motion:
     sway: np.ndarray | None = None
     source: object = None
     water: float | None = None
+    load: np.ndarray | None = None
+    slack: np.ndarray | None = None
+    deck: np.ndarray | None = None
 
 
 def from_trajectory(traj) -> Motion:
@@ -167,9 +174,9 @@ def read_run(path) -> Motion:
                   block(list(Q_COLUMNS)), qd, qdd, X, block(list(SWAY_COLUMNS)))
 
 
-#: Numbers held per frame: its time, and q, q̇, q̈, X and the sway (35 columns)
-#: interpolated at it with two temporaries each.
-FRAME_COLUMNS = 1 + 3 * 35
+#: Numbers held per frame: its time, and q, q̇, q̈, X, the sway and a varying cable's
+#: load, slack and deck (42 columns) interpolated at it with two temporaries each.
+FRAME_COLUMNS = 1 + 3 * 42
 
 
 def frame_times(motion: Motion, fps: float, speed: float = 1.0,
@@ -225,7 +232,18 @@ def at(motion: Motion, times: np.ndarray) -> Motion:
         qdd = None if motion.qdd is None else _lerp(motion.t, motion.qdd, times)
     X = None if motion.X is None else _lerp(motion.t, motion.X, times)
     sway = None if motion.sway is None else _lerp(motion.t, motion.sway, times)
-    return Motion(motion.name, times, q, qd, qdd, X, sway, motion.source, motion.water)
+    load = None if motion.load is None else _lerp(motion.t, motion.load, times)
+    slack = None if motion.slack is None else _held(motion.t, motion.slack, times)
+    deck = None if motion.deck is None else _lerp(motion.t, motion.deck, times)
+    return Motion(motion.name, times, q, qd, qdd, X, sway, motion.source, motion.water,
+                  load, slack, deck)
+
+
+def _held(t: np.ndarray, flags: np.ndarray, times: np.ndarray) -> np.ndarray:
+    """``flags (N,)`` at ``times``: each sample's held over its interval (as
+    :func:`offshore_crane.dynamics.cable.lift.time_slack` counts it)."""
+    i = np.clip(np.searchsorted(t, times, side="right") - 1, 0, len(t) - 1)
+    return np.asarray(flags, dtype=bool)[i]
 
 
 def with_rates(motion: Motion, order: int = 4) -> Motion:
@@ -244,6 +262,30 @@ def cable_length(robot) -> float:
     return float(getattr(robot.spec, "cable_length", 0.0) or 0.0) if robot.spec else 0.0
 
 
+def varying_cable(robot, result, name: str, water: float | None = None,
+                  deck=None) -> Motion:
+    """The motion of a scene whose cable varies (a winch, an elastic cable, a
+    compensation: :func:`offshore_crane.scenes.run_swing`'s ``cable``, a
+    :class:`~offshore_crane.dynamics.cable.CableResult` with a hoist or an
+    :class:`~offshore_crane.dynamics.cable.ElasticResult`): the robot's motion as run (the
+    compensated arm's), X, and the payload from the tip with the slack samples; ``deck``
+    a lift's ``deck(t) -> (z, ż, z̈)`` (:func:`offshore_crane.scenes.lift_deck`), drawn
+    under the load where it rests (a lift-off's start, a set-down's contact)."""
+    from offshore_crane.dynamics.cable.tip import payload_positions, tip_positions
+
+    load = payload_positions(robot, result) - tip_positions(robot, result.q)[0]
+    plate = None
+    if deck is not None:
+        at_rest = getattr(result.event, "t_contact", result.t[0])
+        k = 0 if at_rest != at_rest else int(np.searchsorted(result.t, at_rest))
+        payload = payload_positions(robot, result)
+        plate = np.column_stack([np.full(len(result.t), payload[k, 0]),
+                                 np.full(len(result.t), payload[k, 1]),
+                                 deck(result.t)[0]])
+    return Motion(name, result.t, result.q, result.qd, result.qdd, result.X, water=water,
+                  load=load, slack=np.asarray(result.slack, dtype=bool), deck=plate)
+
+
 def hanging_load(robot, motion: Motion, gravity, options: dict | None = None) -> Motion:
     """The one place where the hanging load (issue 14) enters the pictures.
 
@@ -259,7 +301,7 @@ def hanging_load(robot, motion: Motion, gravity, options: dict | None = None) ->
         non-uniform time axis, ...).
     """
     L = cable_length(robot)
-    if L <= 0.0 or motion.sway is not None:
+    if L <= 0.0 or motion.sway is not None or motion.load is not None:
         return motion
     from offshore_crane.dynamics import cable
 

@@ -198,13 +198,17 @@ def tree_poses(description, values: dict, N: int) -> Poses:
     return Poses(links, p, R)
 
 
-def link_poses(robot, q, sway=None) -> Poses:
+def link_poses(robot, q, sway=None, load=None) -> Poses:
     """Every link's pose in the base frame along ``q`` (and the sway of a hanging load).
 
     Args:
         robot: From :func:`offshore_crane.load_robot`.
         q: ``(N, 9)`` or ``(9,)`` [m, rad].
         sway: ``(N, 2)`` [rad], with a cable only (see :func:`joint_values`).
+        load: ``(N, 3)`` the payload from the tip [m], base axes, for a cable of varying
+            length (a winch, an elastic cable): the cable joints take its direction
+            (``R_base_tip Rx(φ1) Ry(φ2) (0, 0, −1)``) and the payload sits at the tip plus
+            ``load``. Instead of ``sway``.
 
     Returns:
         :class:`Poses` with N samples (one for ``q (9,)``).
@@ -213,6 +217,8 @@ def link_poses(robot, q, sway=None) -> Poses:
         The errors of :func:`joint_values`; NumericalError: a pose is not finite (the legs
         cannot reach ``q``: a leg through its U-joint centre), naming the sample.
     """
+    if load is not None:
+        sway = _sway_along(robot, q, np.atleast_2d(np.asarray(load, dtype=float)))
     values = joint_values(robot, q, sway)
     N = len(next(iter(values.values())))
     poses = tree_poses(robot.description, values, N)
@@ -221,4 +227,18 @@ def link_poses(robot, q, sway=None) -> Poses:
         k = int(np.argmax(bad))
         raise NumericalError(f"sample {k}: the link poses are not finite (a leg passes "
                              "through its U-joint centre): check q there", index=k)
+    if load is not None:
+        poses.p[:, poses.index("payload")] = poses.p[:, poses.index("arm_tip")] + load
     return poses
+
+
+def _sway_along(robot, q, load: np.ndarray) -> np.ndarray:
+    """``(N, 2)`` the sway angles (φ1, φ2) [rad] that point the cable along ``load``
+    ``(N, 3)`` (base axes): its direction in the tip's axes ``e = (−sin φ2, sin φ1 cos φ2,
+    −cos φ1 cos φ2)`` inverted."""
+    zero = np.zeros((len(load), 2))
+    tip = tree_poses(robot.description, joint_values(robot, q, zero), len(load))
+    R = tip.R[:, tip.index("arm_tip")]
+    e = np.einsum("nji,nj->ni", R, load / np.linalg.norm(load, axis=1, keepdims=True))
+    return np.column_stack([np.arctan2(e[:, 1], -e[:, 2]),
+                            np.arcsin(np.clip(-e[:, 0], -1.0, 1.0))])

@@ -191,15 +191,25 @@ class Geometry:
         return np.isin(self.flink, cols)
 
 
-def geometry(robot, links: tuple) -> Geometry:
-    """Tessellate the robot's visuals (see the module docstring)."""
+#: Links whose visuals are not drawn for a cable of varying length: its rod.
+VARYING_HIDDEN = ("cable_link2",)
+#: A slack cable's dashes and gaps [pixels at supersample 1].
+DASH = (6, 5)
+#: Side of the square drawn for a lift's deck [m] (drawing only: a plate under the load).
+DECK_SIDE = 0.2
+DECK_RGB = (70, 110, 120)
+
+
+def geometry(robot, links: tuple, hidden: tuple = ()) -> Geometry:
+    """Tessellate the robot's visuals (see the module docstring), but those of the
+    links ``hidden``."""
     from offshore_crane.outputs.visual.poses import has_cable
 
     desc = robot.description
     Vs, vlinks, faces, flinks, normals, centroids, rgbs = [], [], [], [], [], [], []
     nv = 0
     for col, link in enumerate(links):
-        shapes = list(desc.visuals.get(link, []))
+        shapes = [] if link in hidden else list(desc.visuals.get(link, []))
         items = []
         for v in shapes:
             if v.shape == "box":
@@ -294,6 +304,12 @@ class Renderer:
             fastest, 2 for stills).
         water: Height of the still water line in the base frame [m] (model scale, a
             scene with a sea: :func:`offshore_crane.scenes.still_water_level`), or None.
+        slack: ``(N,)`` bool per sample of a cable of varying length: True draws the
+            cable dashed (slack); None: a rigid cable of the URDF's length (its rod
+            drawn), or no cable.
+        deck: ``(N, 3)`` the centre of a deck the load is lifted from or set onto
+            (``[lift]``), base frame [m], drawn as a square plate of :data:`DECK_SIDE`;
+            or None.
 
     Raises:
         InputError: a size out of range, a bad camera or supersample.
@@ -302,7 +318,7 @@ class Renderer:
 
     def __init__(self, robot, poses, width: int = 640, height: int = 480,
                  camera: Camera | None = None, supersample: int = 1,
-                 water: float | None = None):
+                 water: float | None = None, slack=None, deck=None):
         from offshore_crane.errors import require
 
         self._pil = require("PIL.Image", "pillow", "Drawing the robot")
@@ -316,8 +332,11 @@ class Renderer:
                              name="supersample")
         self.width, self.height, self.ss = int(width), int(height), int(supersample)
         self.camera = camera or Camera()
-        self.geo = geometry(robot, poses.links)
+        # a cable of varying length is the line alone (the URDF's rod has one length)
+        self.geo = geometry(robot, poses.links, () if slack is None else VARYING_HIDDEN)
         self.poses = poses
+        self.slack = None if slack is None else np.asarray(slack, dtype=bool)
+        self.deck = None if deck is None else np.asarray(deck, dtype=float)
         g = self.geo
         # every vertex of the whole motion, on a sub-sample of at most 200 frames
         step = max(1, len(poses) // 200)
@@ -381,6 +400,29 @@ class Renderer:
             xy = self.focal * c[:, :2] / z[:, None] + self.centre
         return xy, z
 
+    def _plate(self, draw, centre: np.ndarray) -> None:
+        """The deck: a horizontal square of :data:`DECK_SIDE` at ``centre`` (base frame)."""
+        h = DECK_SIDE / 2.0
+        corners = centre + np.array([[-h, -h, 0.0], [h, -h, 0.0], [h, h, 0.0], [-h, h, 0.0]])
+        xy, depth = self.project(corners)
+        if (depth > 1e-6).all():
+            draw.polygon([tuple(p) for p in xy.tolist()], fill=DECK_RGB)
+
+    def _cable(self, draw, xy: list, dashed: bool) -> None:
+        """The cable from the tip to the payload: a line, dashed (:data:`DASH`) when
+        slack."""
+        fill, width = tuple(int(255 * x) for x in CABLE_RGB), max(1, 2 * self.ss)
+        if not dashed:
+            draw.line(xy, fill=fill, width=width)
+            return
+        a, b = np.array(xy[:2], dtype=float), np.array(xy[2:], dtype=float)
+        length = float(np.linalg.norm(b - a))
+        on, off = DASH[0] * self.ss, DASH[1] * self.ss
+        for s0 in np.arange(0.0, length, on + off):
+            s1 = min(s0 + on, length)
+            p0, p1 = a + (b - a) * (s0 / length), a + (b - a) * (s1 / length)
+            draw.line([tuple(p0), tuple(p1)], fill=fill, width=width)
+
     def frame(self, k: int, face_rgb: np.ndarray | None = None, text: str | None = None,
               overlay=None):
         """The picture of sample ``k`` (a ``PIL.Image`` in RGB).
@@ -419,15 +461,16 @@ class Renderer:
             a, b = p[g.cable[0]], p[g.cable[1]]
             (cxy, cz) = self.project(np.array([a, b]))
             cable = (float(cz.mean()), cxy.ravel().tolist())
+        dashed = self.slack is not None and bool(self.slack[k])
+        if self.deck is not None:
+            self._plate(draw, self.deck[k])
         for f in order.tolist():
             if cable is not None and depth[f] < cable[0]:
-                draw.line(cable[1], fill=tuple(int(255 * x) for x in CABLE_RGB),
-                          width=max(1, 2 * self.ss))
+                self._cable(draw, cable[1], dashed)
                 cable = None
             draw.polygon([pts[i] for i in faces[f]], fill=cols[f])
         if cable is not None:
-            draw.line(cable[1], fill=tuple(int(255 * x) for x in CABLE_RGB),
-                      width=max(1, 2 * self.ss))
+            self._cable(draw, cable[1], dashed)
         if overlay is not None:
             overlay(draw, self, k)
         if text:
@@ -442,47 +485,3 @@ class Renderer:
         from PIL import ImageFont
 
         return ImageFont.load_default(size=size * self.ss)
-
-
-# ------------------------------------------------------------------ colouring by force
-#: Leg links coloured by force or utilisation.
-LEG_LINKS = tuple((f"leg{i}_lower", f"leg{i}_upper") for i in range(1, 7))
-
-
-def diverging(x: np.ndarray) -> np.ndarray:
-    """``x`` in [-1, 1] to RGB 0..1: blue (-1, pull) - light grey (0) - red (+1, push)."""
-    x = np.clip(x, -1.0, 1.0)[..., None]
-    grey, blue, red = np.array([0.85, 0.85, 0.85]), np.array([0.1, 0.3, 0.9]), \
-        np.array([0.9, 0.15, 0.1])
-    return np.where(x < 0, grey + (blue - grey) * -x, grey + (red - grey) * x)
-
-
-def sequential(x: np.ndarray) -> np.ndarray:
-    """``x`` in [0, 1] to RGB 0..1: grey (0) - yellow (0.5) - red (1); above 1 dark red
-    (beyond capacity)."""
-    x = np.asarray(x, dtype=float)[..., None]
-    grey, yellow, red = np.array([0.8, 0.8, 0.8]), np.array([0.98, 0.85, 0.1]), \
-        np.array([0.9, 0.1, 0.05])
-    lo = grey + (yellow - grey) * np.clip(2 * x, 0, 1)
-    hi = yellow + (red - yellow) * np.clip(2 * x - 1, 0, 1)
-    out = np.where(x <= 0.5, lo, hi)
-    return np.where(x > 1.0, np.array([0.45, 0.0, 0.0]), out)
-
-
-def colour_scale(color_by: str):
-    """The legs' colour map and its domain: ``"force"`` → :func:`diverging` on [-1, 1],
-    ``"utilisation"`` → :func:`sequential` on [0, 1] (the one choice animate, its legend,
-    the GIF palette and the viewer share)."""
-    return (diverging, (-1.0, 1.0)) if color_by == "force" else (sequential, (0.0, 1.0))
-
-
-#: Leg index 0..5 of each leg link.
-LEG_OF_LINK = {link: i for i, pair in enumerate(LEG_LINKS) for link in pair}
-
-
-def leg_face_colours(geo: Geometry, leg_rgb: np.ndarray) -> np.ndarray:
-    """``(nf, 3)`` face colours with the faces of leg i painted ``leg_rgb[i]`` ``(6, 3)``."""
-    out = geo.rgb.copy()
-    for i, pair in enumerate(LEG_LINKS):
-        out[geo.faces_of(pair)] = leg_rgb[i]
-    return out

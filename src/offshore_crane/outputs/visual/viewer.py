@@ -103,7 +103,8 @@ class Viewer:
                  color_by: str | None = None):
         from offshore_crane.errors import require
         from offshore_crane.outputs.visual.poses import link_poses
-        from offshore_crane.outputs.visual.render import LEG_OF_LINK, geometry
+        from offshore_crane.outputs.visual.colours import LEG_OF_LINK
+        from offshore_crane.outputs.visual.render import geometry
 
         viser = require("viser", "offshore-crane[view]", "The browser viewer")
         check_port(host, port)
@@ -200,7 +201,7 @@ class Viewer:
         if color_by is None:
             return None
         from offshore_crane.outputs.visual import motion as mo
-        from offshore_crane.outputs.visual.render import colour_scale
+        from offshore_crane.outputs.visual.colours import colour_scale
 
         if shown.X is None:
             raise InputError("--color-by needs the actuator forces", name="--color-by")
