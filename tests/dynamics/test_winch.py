@@ -159,7 +159,8 @@ def test_bad_hoist_waypoints(waypoints, match):
 
 def test_the_shipped_winch_lift_runs_from_the_command_line(tmp_path, capsys):
     """scenes/winch_lift.toml (elastic cable, winch): `id` prints the lift's tension
-    against m g and the winch's demand as shares of its capacities, and the CSV carries
+    against m g and the winch's demand as shares of its capacities, the winch's line pull
+    Fw as a tenth row of the actuator table, and the CSV carries
     the payload's position, tension, L, L̇ and Fw; the same scene on a rigid cable (no
     ea) agrees between Kane and Pinocchio with the winch (1e-9 relative, the CLI's
     limit) and with the elastic run within 10 % of the peak tension (measured 5.2 %: the
@@ -176,6 +177,7 @@ def test_the_shipped_winch_lift_runs_from_the_command_line(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "elastic cable, EA 1.25e+04 N" in text
     assert "× m g" in text and "winch: peak pull" in text and "of its capacities" in text
+    fw = [line.split() for line in text.splitlines() if line.startswith("Fw ")]
     head = out.read_text().splitlines()[0].split(",")
     assert head[-7:] == ["rho_x_m", "rho_y_m", "rho_z_m", "tension_N", "L_m", "Ld_m_s",
                          "Fw_N"]
@@ -183,6 +185,11 @@ def test_the_shipped_winch_lift_runs_from_the_command_line(tmp_path, capsys):
     waypoints = scenes.hoist_waypoints(scenes.load_scene(scene))
     hoist = cable.hoist_profile(waypoints)
     assert np.array_equal(data[:, -3], hoist(data[:, 0])[0])
+    # the winch is the table's tenth actuator: its peak line pull, when, and its RMS
+    assert fw and fw[0][1] == "N"
+    k = int(np.argmax(data[:, -1]))
+    assert float(fw[0][2]) == pytest.approx(data[k, -1], abs=5e-5)
+    assert float(fw[0][3]) == pytest.approx(data[k, 0], abs=5e-3)
     rigid = scenes.load_scene(scene)
     from dataclasses import replace
 

@@ -110,8 +110,12 @@ def run(args) -> int:
     say(f"model: {'exact' if not res.approximations else 'APPROXIMATE: ' + '; '.join(res.approximations)}"
         + (f"; skipped: {'; '.join(res.pruned)}" if res.pruned else ""))
     cols = [k for k, name in enumerate(ACTUATORS) if name in res.outputs]
-    say(format_summary(summary_rows(t, X[:, cols], [ACTUATORS[k] for k in cols],
-                                    [ACTUATOR_UNITS[k] for k in cols])))
+    table, names = X[:, cols], [ACTUATORS[k] for k in cols]
+    units = [ACTUATOR_UNITS[k] for k in cols]
+    if cable is not None and cable.hoist is not None:      # the winch: a tenth actuator
+        table = np.column_stack([table, cable.tension])
+        names, units = names + ["Fw"], units + ["N"]
+    say(format_summary(summary_rows(t, table, names, units)))
     for kind, kappa, k in res.worst():
         say(f"worst {kind} condition number: {kappa:.4g} at t = {t[k]:.2f} s (sample {k})")
     if cable is not None:
