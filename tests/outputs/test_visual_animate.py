@@ -359,7 +359,7 @@ def test_a_slack_cable_is_dashed_and_the_lifts_deck_drawn(tmp_path, capsys):
     """animate --scene of a lift (scenes/deck_lift.toml): the varying cable is drawn as
     a line from the tip to the payload (the URDF's fixed-length rod hidden), dashed while
     slack — fewer cable pixels than the same frame drawn taut — and the deck as a plate
-    under the load; view still refuses such a scene in one line."""
+    under the load; --from a run's CSV with such a scene is refused in one line."""
     from offshore_crane import scenes
     from offshore_crane.outputs.visual.animate import painter
 
@@ -386,7 +386,10 @@ def test_a_slack_cable_is_dashed_and_the_lifts_deck_drawn(tmp_path, capsys):
                  "--duration", "1"]) == 0
     assert PIL.open(out).n_frames == 11
     capsys.readouterr()
-    assert main(["view", "--scene", str(SCENES / "deck_lift.toml"), "--port", "0"]) == 2
+    run_csv = tmp_path / "run.csv"
+    run_csv.write_text("t_s,q1_m\n0,0\n")
+    assert main(["animate", "--scene", str(SCENES / "deck_lift.toml"), "--from",
+                 str(run_csv), "--out", str(tmp_path / "x.gif")]) == 2
     err = capsys.readouterr().err
-    assert "the browser viewer draws the rigid cable at its fixed length only" in err
+    assert "--from reads a rigid cable's run only" in err
     assert len(err.strip().splitlines()) == 1

@@ -220,3 +220,33 @@ def test_the_viewer_draws_the_floor_and_the_still_water_line(robot):
         assert v.references["floor"].position[2] < 0.3
     finally:
         v.close()
+
+
+def test_the_viewer_draws_a_varying_cable_and_the_lifts_deck():
+    """A lift (scenes/deck_lift.toml) in the browser viewer: the payload where the lift
+    puts it (the tip plus its load, to 1e-12 m), the cable's line paler while slack, the
+    deck's plate moved to its height of the frame."""
+    from pathlib import Path
+
+    from offshore_crane import scenes
+    from offshore_crane.outputs.visual import motion as mo
+    from offshore_crane.outputs.visual.viewer import CABLE_RGB, SLACK_RGB, Viewer
+
+    path = Path(__file__).resolve().parents[2] / "scenes" / "deck_lift.toml"
+    scene = scenes.load_scene(path)
+    robot = scenes.load_robot(scene)
+    run = scenes.run_swing(scene, robot, scenes.load_trajectory(scene, robot), "kane")
+    motion = mo.varying_cable(robot, run.cable, "lift", None, scenes.lift_deck(scene))
+    shown = mo.at(motion, motion.t[::50])
+    v = Viewer(robot, shown, port=0, play=False)
+    try:
+        P = v.poses
+        tip, pay = P.index("arm_tip"), P.index("payload")
+        assert np.abs(P.p[:, pay] - P.p[:, tip] - shown.load).max() <= 1e-12
+        for k in (int(np.argmax(shown.slack)), int(np.argmin(shown.slack))):
+            v.show(float(shown.t[k]))
+            want = SLACK_RGB if shown.slack[k] else CABLE_RGB
+            assert tuple(np.asarray(v.cable[1].colors).reshape(-1, 3)[0]) == want
+            assert np.allclose(v.deck[1].position, shown.deck[k])
+    finally:
+        v.close()

@@ -56,23 +56,20 @@ def inputs_of(args, scene) -> list:
     return [args.scene, args.run_csv, *scene.inputs()]
 
 
-def load_motion(args, scene, varying: bool = False):
+def load_motion(args, scene):
     """``(robot, motion)`` of the scene, or of ``--from``. A scene whose cable varies (a
     winch, an elastic cable, a compensation, a lift) is run first
-    (:func:`offshore_crane.scenes.run_swing`) when ``varying`` (the pictures draw it),
-    else refused."""
+    (:func:`offshore_crane.scenes.run_swing`); ``--from`` with one is refused."""
     from offshore_crane import scenes
     from offshore_crane.outputs.visual import motion as mo
 
     from dataclasses import replace
 
     later = scene.varying_cable
-    if later and (not varying or args.run_csv is not None):
-        what = ("the browser viewer draws the rigid cable at its fixed length only"
-                if not varying else "--from reads a rigid cable's run only")
-        raise InputError(f"{', '.join(later)}: {what} (a varying or slack cable is drawn "
-                         "by offshore-crane animate --scene); run offshore-crane id or "
-                         "compensate for its figures", name="--scene")
+    if later and args.run_csv is not None:
+        raise InputError(f"{', '.join(later)}: --from reads a rigid cable's run only (a "
+                         "varying or slack cable is drawn from --scene, its lift run "
+                         "first)", name="--from")
     robot = scenes.load_robot(scene)
     water = scenes.still_water_level(scene, robot)
     if later:
@@ -139,7 +136,7 @@ def run(args) -> int:
                            {"--out": an.FORMATS})
     target = outputs["--out"]
     fmt = an.output_format(args.out)
-    robot, motion = load_motion(args, scene, varying=True)
+    robot, motion = load_motion(args, scene)
     if args.color_by is not None and motion.X is None:
         print(f"offshore-crane animate: computing the actuator forces for --color-by "
               f"({len(motion.t)} samples)")

@@ -75,6 +75,10 @@ def check_port(host: str, port: int) -> None:
                               f"({exc.strerror}): {why}", host=host, port=port) from None
 
 
+#: The cable's colour, taut and slack (a varying cable: the line drawn paler while slack).
+CABLE_RGB, SLACK_RGB = (25, 25, 25), (170, 170, 170)
+
+
 class Viewer:
     """A viser server showing a motion.
 
@@ -104,15 +108,16 @@ class Viewer:
         from offshore_crane.errors import require
         from offshore_crane.outputs.visual.poses import link_poses
         from offshore_crane.outputs.visual.colours import LEG_OF_LINK
-        from offshore_crane.outputs.visual.render import geometry
+        from offshore_crane.outputs.visual.render import VARYING_HIDDEN, geometry
 
         viser = require("viser", "offshore-crane[view]", "The browser viewer")
         check_port(host, port)
         self.t = np.asarray(shown.t, dtype=float)
-        P = link_poses(robot, shown.q, shown.sway)
+        P = link_poses(robot, shown.q, shown.sway, shown.load)
         self.poses = P
         self.wxyz = quaternions(P.R)                           # (F, L, 4)
-        geo = geometry(robot, P.links)
+        geo = geometry(robot, P.links, () if shown.load is None else VARYING_HIDDEN)
+        self.slack = None if shown.slack is None else np.asarray(shown.slack, dtype=bool)
         server = viser.ViserServer(host=host, port=port, label=title, verbose=False)
         self.server = server
         self.port = server.get_port()
@@ -159,6 +164,9 @@ class Viewer:
         self.cable = None
         if geo.cable is not None:
             self.cable = (geo.cable, None)
+        self.deck = None
+        if shown.deck is not None:                       # a lift's deck: a plate
+            self.deck = (np.asarray(shown.deck, dtype=float), self._plate())
         with server.gui.add_folder("motion"):
             self.playing = server.gui.add_checkbox("play", initial_value=play)
             self.slider = server.gui.add_slider(
@@ -172,6 +180,20 @@ class Viewer:
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._play, daemon=True, name="viewer-play")
         self._thread.start()
+
+    def _plate(self):
+        """The lift's deck: a square of ``render.DECK_SIDE`` under a frame that
+        :meth:`show` moves."""
+        from offshore_crane.outputs.visual.render import DECK_RGB, DECK_SIDE
+
+        frame = self.server.scene.add_frame("/deck", show_axes=False)
+        h = DECK_SIDE / 2.0
+        corners = np.array([[-h, -h, 0.0], [h, -h, 0.0], [h, h, 0.0], [-h, h, 0.0]],
+                           dtype=np.float32)
+        self.server.scene.add_mesh_simple("/deck/plate", corners,
+                                          np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32),
+                                          color=DECK_RGB, side="double")
+        return frame
 
     def _references(self, geo, P, water) -> None:
         """The floor under the base and, with a sea, the still water line (model
@@ -230,12 +252,17 @@ class Viewer:
             if self.cable is not None:
                 (a, b), line = self.cable
                 pts = np.array([[p[a], p[b]]], dtype=np.float32)
+                slack = self.slack is not None and bool(self.slack[k])
+                colours = np.full((1, 2, 3), SLACK_RGB if slack else CABLE_RGB, np.uint8)
                 if line is None:
                     line = self.server.scene.add_line_segments(
-                        "/cable", pts, colors=(25, 25, 25), line_width=2.0)
+                        "/cable", pts, colors=colours, line_width=2.0)
                     self.cable = ((a, b), line)
                 else:
                     line.points = pts
+                    line.colors = colours
+            if self.deck is not None:
+                self.deck[1].position = tuple(self.deck[0][k])
         return k
 
     def _play(self) -> None:
