@@ -135,13 +135,6 @@ def test_compensation_needs_a_cable(lift):
         compensated_motion(oc.load_robot(), traj, "arm")
 
 
-def test_simulate_refuses_what_it_does_not_run(capsys):
-    assert main(["simulate", "--scene", str(SCENE), "--duration", "1"]) == 2
-    err = capsys.readouterr().err
-    assert "[control] compensation: use offshore-crane id or compensate" in err
-    assert len(err.strip().splitlines()) == 1
-
-
 # --------------------------------------------------------------------------- a moving target
 SHIP_TO_SHIP = SCENE.parent / "ship_to_ship.toml"
 

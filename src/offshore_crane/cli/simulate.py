@@ -15,6 +15,8 @@ from offshore_crane.errors import InputError
 CSV_HEADER = ",".join(["t_s", *Q_COLUMNS, *(coordinate_column(k, tag="_ref") for k in range(9)),
                        *(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS,
                                                                        ACTUATOR_UNITS))])
+#: Columns added on an elastic cable: the payload (base frame), the tension, the length.
+ELASTIC_COLUMNS = "payload_x_m,payload_y_m,payload_z_m,tension_N,L_m"
 
 
 def add_parser(sub) -> None:
@@ -99,12 +101,13 @@ def run(args) -> int:
     if flags:
         controller = replace(controller, _arrays={}, **flags)
     c = scene.control
-    later = scene.varying_cable
-    if later:
-        raise InputError(f"simulate runs the rigid cable at a fixed length without "
-                         f"compensation; {', '.join(later)}: use offshore-crane id or "
-                         "compensate (inverse dynamics of the prescribed lift)",
-                         name="--scene")
+    elastic = None
+    if scene.varying_cable:             # the elastic cable (a winch, a compensation)
+        traj, elastic = scenes.elastic_simulation(scene, robot, traj)
+        if args.initial_sway is not None:
+            raise InputError("--initial-sway: the sway angles of a rigid cable; on an "
+                             "elastic one the payload starts hanging at its static "
+                             "stretch", name="--initial-sway")
     step = args.step if args.step is not None else c.get("step", 1e-3)
     span = float(traj.t[-1] - traj.t[0])
     duration = args.duration if args.duration is not None else span
@@ -117,7 +120,9 @@ def run(args) -> int:
     if error is not None:
         q0 += np.asarray(error, dtype=float)
     swing = {}
-    if robot.hybrid.cable is not None:
+    if elastic is not None:
+        pass
+    elif robot.hybrid.cable is not None:
         swing = {k: v for k, v in scene.cable.items() if k in ("initial", "initial_rate")}
         if args.initial_sway is not None:
             swing["initial"] = tuple(args.initial_sway)
@@ -127,10 +132,19 @@ def run(args) -> int:
                          name="--initial-sway")
     stopped = None
     try:
-        res = simulate(robot, duration, traj.reference, q0=q0, qd0=qd0, controller=controller,
-                       gravity=scene.gravity, step=step, rate=args.rate,
-                       integrator=args.integrator or c.get("integrator", "rk4"),
-                       limits=not args.no_limits, t0=float(traj.t[0]), **swing)
+        if elastic is not None:
+            from offshore_crane.simulation.elastic import simulate_elastic
+
+            res = simulate_elastic(robot, duration, traj.reference, q0=q0, qd0=qd0,
+                                   controller=controller, gravity=scene.gravity, step=step,
+                                   rate=args.rate, limits=not args.no_limits,
+                                   t0=float(traj.t[0]), **elastic)
+        else:
+            res = simulate(robot, duration, traj.reference, q0=q0, qd0=qd0,
+                           controller=controller, gravity=scene.gravity, step=step,
+                           rate=args.rate,
+                           integrator=args.integrator or c.get("integrator", "rk4"),
+                           limits=not args.no_limits, t0=float(traj.t[0]), **swing)
     except SimulationError as exc:
         res, stopped = exc.result, exc
         if res is None or len(res) == 0:         # nothing to report, write or plot
@@ -144,7 +158,11 @@ def run(args) -> int:
         from offshore_crane.io import write_csv
         from offshore_crane.outputs.report import CABLE_COLUMNS
 
-        if res.sway is None:
+        if "payload" in res.info:                      # the elastic cable
+            write_csv(outputs["--out"], f"{CSV_HEADER},{ELASTIC_COLUMNS}",
+                      np.column_stack([res.t, res.q, res.q_ref, res.X, res.info["payload"],
+                                       res.tension, res.info["length"]]))
+        elif res.sway is None:
             write_csv(outputs["--out"], CSV_HEADER,
                       np.column_stack([res.t, res.q, res.q_ref, res.X]))
         else:
@@ -189,6 +207,13 @@ def summary(res, controller=None) -> str:
     for k, (name, unit) in enumerate(zip(ACTUATORS, ACTUATOR_UNITS)):
         lines.append(f"{name:<9}{unit:<5}{np.abs(res.X[:, k]).max():>11.2f}"
                      f"{res.saturated[:, k].sum() * dt:>15.3f}")
+    if "payload" in res.info and len(res.t):
+        T = res.tension
+        slack = float(np.diff(res.t)[~(T[:-1] > 0.0)].sum()) if len(T) > 1 else 0.0
+        lines.append(f"payload on an elastic cable: tension {T.min():.4g}..{T.max():.4g} N, "
+                     f"slack for {slack:.3g} s; cable length "
+                     f"{res.info['length'].min():.4g}..{res.info['length'].max():.4g} m "
+                     f"(axial period {1e3 * res.info['axial_period']:.3g} ms)")
     if res.sway is not None and len(res.t):
         angle = np.arccos(np.clip(np.cos(res.sway[:, 0]) * np.cos(res.sway[:, 1]), -1, 1))
         k = int(np.argmax(angle))

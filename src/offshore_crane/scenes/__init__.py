@@ -97,7 +97,8 @@ from offshore_crane.scenes.assembly import (controller, deck_pose, sea_trajector
                                             still_water_level, target_deck, lift_deck,
                                             with_robot_overrides, load_trajectory,
                                             with_trajectory, with_overrides)
-from offshore_crane.scenes.running import SceneRun, CABLE_METHODS, compare_methods, run, run_swing
+from offshore_crane.scenes.running import (SceneRun, CABLE_METHODS, compare_methods, run, run_swing,
+                                          elastic_simulation)
 from offshore_crane.scenes.fidelity import Fidelity, compare_fidelity, format_fidelity
 from offshore_crane.scenes.keys import (SECTIONS, TOP_KEYS, SUBSYSTEM_KEYS, PAYLOAD_KEYS,
                                         CABLE_KEYS, INERTIA_KEYS, TRAJECTORY_KEYS, SEA_KEYS,

@@ -112,6 +112,40 @@ def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, check
                   backend="numba" if method == "kane" else "pinocchio", cable=res)
 
 
+def elastic_simulation(scene: Scene, robot, traj) -> tuple:
+    """What ``simulate`` runs for a scene whose cable is elastic (``[cable] ea``): the
+    reference (the compensated arm's commands under ``[control] compensation``) and the
+    keyword arguments of :func:`offshore_crane.simulation.elastic.simulate_elastic` (the
+    cable, the winch's profile — the hoist column, or the compensation's —, the payload's
+    start). Returns ``(reference trajectory, options)``.
+
+    Raises:
+        SceneError: a rigid cable with a winch or a compensation (simulated on an elastic
+            cable only), a ``[lift]`` (the deck's contact is not simulated).
+    """
+    from offshore_crane.dynamics.cable import hoist_profile
+    from offshore_crane.errors import SceneError
+
+    where = scene.where()
+    if scene.lift:
+        raise SceneError(f"{where}: [lift]: simulate does not model the deck's contact; "
+                         "use offshore-crane id for the lift-off or set-down",
+                         path=scene.path, name="lift")
+    if "ea" not in scene.cable:
+        raise SceneError(f"{where}: {', '.join(scene.varying_cable)}: simulate runs a winch "
+                         "or a compensation on an elastic cable: set [cable] ea (and "
+                         "damping), or use offshore-crane id / compensate", path=scene.path,
+                         name="cable.ea")
+    options = {"ea": scene.cable["ea"], "damping": scene.cable.get("damping", 0.0)}
+    waypoints = hoist_waypoints(scene)
+    if waypoints is not None:
+        options["hoist"] = hoist_profile(waypoints)
+    if scene.compensation != "none":
+        traj, extra = _compensated(scene, robot, traj, {})
+        options.update(extra)
+    return traj, options
+
+
 def _lift_event(scene: Scene, robot, traj, method: str, hoist, checked: dict):
     """A ``[lift]`` scene: the load lifted off the deck (resting on it, then flying:
     :func:`offshore_crane.dynamics.cable.lift_off`) or lowered onto it (flying, then
