@@ -393,3 +393,29 @@ def test_a_slack_cable_is_dashed_and_the_lifts_deck_drawn(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "--from reads a rigid cable's run only" in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_the_ship_to_ship_target_is_drawn_where_the_load_should_be(tmp_path):
+    """animate --scene scenes/ship_to_ship.toml: the plate is the compensation's moving
+    aim (the load's place above the second deck) and is drawn."""
+    from dataclasses import replace
+
+    from offshore_crane import scenes
+    from offshore_crane.cli.animate import load_motion
+    from offshore_crane.outputs.visual.animate import painter
+    from offshore_crane.simulation.compensation import compensated_motion
+
+    path = SCENES / "ship_to_ship.toml"
+    scene = scenes.load_scene(path)
+    args = type("Args", (), {"run_csv": None})()
+    robot, motion = load_motion(args, scene)
+    traj = scenes.load_trajectory(scene, robot)
+    comp = compensated_motion(robot, traj, "arm+winch", 0.02, scenes.target_deck(scene),
+                              scene.gravity)
+    assert np.array_equal(motion.deck, comp.aim)
+    shown = mo.at(motion, motion.t[:1])
+    a = np.asarray(painter(robot, shown, width=320, height=240)[1](0)).astype(int)
+    assert (np.abs(a - np.array(render.DECK_RGB)).max(axis=-1) <= 3).sum() > 50
+    bare = replace(shown, deck=None)
+    b = np.asarray(painter(robot, bare, width=320, height=240)[1](0)).astype(int)
+    assert (np.abs(b - np.array(render.DECK_RGB)).max(axis=-1) <= 3).sum() == 0

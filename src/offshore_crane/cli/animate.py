@@ -59,7 +59,8 @@ def inputs_of(args, scene) -> list:
 def load_motion(args, scene):
     """``(robot, motion)`` of the scene, or of ``--from``. A scene whose cable varies (a
     winch, an elastic cable, a compensation, a lift) is run first
-    (:func:`offshore_crane.scenes.run_swing`); ``--from`` with one is refused."""
+    (:func:`offshore_crane.scenes.run_swing`), a lift's deck or a ship-to-ship target's
+    moving aim drawn as a plate; ``--from`` with one is refused."""
     from offshore_crane import scenes
     from offshore_crane.outputs.visual import motion as mo
 
@@ -75,8 +76,16 @@ def load_motion(args, scene):
     if later:
         traj = scenes.load_trajectory(scene, robot)
         run = scenes.run_swing(scene, robot, traj, "kane")
-        return robot, mo.varying_cable(robot, run.cable, f"{scene.name} ({traj.name})",
-                                       water, scenes.lift_deck(scene) if scene.lift else None)
+        motion = mo.varying_cable(robot, run.cable, f"{scene.name} ({traj.name})", water,
+                                  scenes.lift_deck(scene) if scene.lift else None)
+        if "target" in scene.control:              # ship-to-ship: the load's moving aim
+            from offshore_crane.simulation.compensation import compensated_motion
+
+            comp = compensated_motion(robot, traj, scene.compensation,
+                                      float(scene.control.get("delay", 0.0)),
+                                      scenes.target_deck(scene), scene.gravity)
+            motion = replace(motion, deck=comp.aim)
+        return robot, motion
     if args.run_csv is not None:
         motion = mo.read_run(args.run_csv)
     else:

@@ -308,8 +308,8 @@ class Renderer:
             cable dashed (slack); None: a rigid cable of the URDF's length (its rod
             drawn), or no cable.
         deck: ``(N, 3)`` the centre of a deck the load is lifted from or set onto
-            (``[lift]``), base frame [m], drawn as a square plate of :data:`DECK_SIDE`;
-            or None.
+            (``[lift]``), or of a ship-to-ship target (the load's moving aim), base frame
+            [m], drawn as a square plate of :data:`DECK_SIDE`; or None.
 
     Raises:
         InputError: a size out of range, a bad camera or supersample.
