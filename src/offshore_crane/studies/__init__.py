@@ -1,12 +1,13 @@
 """Studies over runs: :mod:`.sizing` (envelopes against the actuators' capacities,
-extreme-value fits, verdicts) and :mod:`.sweep` (grids of cases on joblib or Dask,
-resumable results, operability)."""
+extreme-value fits, verdicts), :mod:`.sweep` (grids of cases on joblib or Dask,
+resumable results, operability) and :mod:`.identification` (the regressor and the base
+parameters of the built platform)."""
 
 from __future__ import annotations
 
 import importlib
 
-__all__ = ["sizing", "sweep"]
+__all__ = ["identification", "sizing", "sweep"]
 
 
 def __getattr__(name: str):
