@@ -7,13 +7,19 @@ in the bodies' inertial parameters, ``X = Y(q, q̇, q̈) π``.
 - :func:`base_parameters`: the identifiable combinations ``β = K π`` from a pivoted QR of
   the regressor stacked over :func:`random_states` (numerical rank at
   :data:`RANK_TOLERANCE`), each writable as its combination (:meth:`BaseParameters.describe`).
+- :func:`fourier_excitation`: a finite Fourier series motion inside the workspace;
+  :func:`fit_base`: the base parameters from a record by weighted least squares, with
+  their standard deviations.
 
 docs/identification.md has the formulas, the groupings and the checks.
 """
 
 from offshore_crane.studies.identification._regressor import FRICTION, Regressor, regressor
 from offshore_crane.studies.identification._base import (RANK_TOLERANCE, BaseParameters,
-                                                        base_parameters, random_states)
+                                                         base_parameters, random_states)
+from offshore_crane.studies.identification._excitation import Fourier, fourier_excitation
+from offshore_crane.studies.identification._fit import Fit, fit_base
 
-__all__ = ["FRICTION", "RANK_TOLERANCE", "BaseParameters", "Regressor", "base_parameters",
-           "random_states", "regressor"]
+__all__ = ["FRICTION", "RANK_TOLERANCE", "BaseParameters", "Fit", "Fourier", "Regressor",
+           "base_parameters", "fit_base", "fourier_excitation", "random_states",
+           "regressor"]
