@@ -153,3 +153,81 @@ def test_a_noise_free_simulated_log_gives_the_true_base_parameters(robot):
     assert np.abs(fit.residual).max() <= 1e-9 * np.abs(res.X).max()
     nominal = B.K @ R.pi
     assert np.abs(nominal - truth).max() > 1e-2 * np.abs(truth).max()   # it moved
+
+
+def test_a_noisy_log_identifies_within_its_sigmas_and_predicts_another_motion(robot):
+    """The issue's second acceptance, but physical consistency: the true robot along a
+    60 s Fourier excitation (10 harmonics of 10 s) logged at 200 Hz with noise of 1 % of
+    each actuator's peak force on X and 1e-5 m / rad on q (q only: q̇, q̈ from the log by
+    a zero-phase Butterworth at 5 Hz and central differences): ≥ 95 % of the base
+    parameters within 3 σ of the truth (measured 100 %), and the identified model
+    predicts X on a second motion (another seed, 5 harmonics of 15 s) with an RMS error
+    ≤ 1.2× the noise's per actuator (measured 0.98..1.02×; the nominal model: up to 6×)."""
+    from offshore_crane.simulation.control import Controller
+    from offshore_crane.simulation.rigid import simulate
+
+    true = true_robot(robot)
+    B = ident.base_parameters(robot, n=100, seed=0)
+    ct = Controller(law="computed-torque")
+    rng = np.random.default_rng(0)
+
+    def run(traj, duration):
+        return simulate(true, duration, traj.reference, controller=ct, step=1e-3, rate=200.0)
+
+    res = run(ident.fourier_excitation(robot, 60.0, 200.0, harmonics=10, period=10.0,
+                                       speed=1.0, seed=1), 60.0)
+    noise = 0.01 * np.abs(res.X).max(axis=0)
+    X = res.X + rng.normal(size=res.X.shape) * noise
+    keep, q, qd, qdd = ident.log_derivatives(res.t, res.q + rng.normal(size=res.q.shape)
+                                             * 1e-5, cutoff=5.0)
+    fit = ident.fit_base(B.base_regressor(ident.regressor(robot, q[keep], qd[keep],
+                                                          qdd[keep]).Y), X[keep])
+    truth = B.K @ ident.regressor(true, res.q[:1], res.qd[:1], res.qdd[:1]).pi
+    assert np.mean(np.abs(fit.beta - truth) <= 3.0 * fit.sigma) >= 0.95
+    other = run(ident.fourier_excitation(robot, 30.0, 200.0, harmonics=5, period=15.0,
+                                         seed=2), 30.0)
+    X2 = other.X + rng.normal(size=other.X.shape) * noise
+    Yb = B.base_regressor(ident.regressor(robot, other.q, other.qd, other.qdd).Y)
+    ratio = np.sqrt(np.mean((X2 - Yb @ fit.beta) ** 2, axis=0)) / noise
+    assert (ratio <= 1.2).all()
+
+
+def test_log_errors():
+    t = np.linspace(0.0, 1.0, 101)
+    q = np.zeros((101, 9))
+    with pytest.raises(InputError, match=r"cutoff = 60.0 Hz: give a frequency in \(0, 50\)"):
+        ident.log_derivatives(t, q, 60.0)
+    with pytest.raises(InputError, match="the times must be uniform"):
+        ident.log_derivatives(np.r_[t[:-1], 1.5], q, 5.0)
+    with pytest.raises(InputError, match="give a longer log or a higher cut-off"):
+        ident.log_derivatives(t, q, 0.5)
+
+
+def test_excite_writes_an_optimised_excitation_inside_every_limit(robot, tmp_path, capsys):
+    """``offshore-crane excite``: the CSV reads back as a trajectory with its analytic
+    derivatives; inside the workspace and the speed and force capacities; its base
+    regressor's condition number ≥ 10× smaller than Table 1's (the issue's bound;
+    measured ~1200× with these settings)."""
+    from offshore_crane.__main__ import main
+    from offshore_crane.motion.trajectories import load
+
+    out = tmp_path / "excite.csv"
+    assert main(["excite", "--duration", "10", "--out", str(out), "--seeds", "2",
+                 "--iterations", "10"]) == 0
+    assert "condition number" in capsys.readouterr().out
+    traj = load(str(out))
+    f = ident.fourier_excitation(robot, 10.0, 100.0, harmonics=10, period=10.0, seed=0)
+    assert traj.q.shape == f.q.shape
+    assert ident.within_limits(robot, traj, oc.GRAVITY)
+    B = ident.base_parameters(robot)
+    assert (ident.excitation_condition(robot, load("table1"), B)
+            >= 10.0 * ident.excitation_condition(robot, traj, B))
+
+
+def test_excite_bad_inputs_one_line(capsys, tmp_path):
+    from offshore_crane.__main__ import main
+
+    assert main(["excite", "--duration", "-1", "--out", str(tmp_path / "e.csv")]) == 2
+    err = capsys.readouterr().err
+    assert "--duration -1: give a finite number > 0" in err and err.count("\n") == 1
+    assert not (tmp_path / "e.csv").exists()

@@ -17,9 +17,13 @@ docs/identification.md has the formulas, the groupings and the checks.
 from offshore_crane.studies.identification._regressor import FRICTION, Regressor, regressor
 from offshore_crane.studies.identification._base import (RANK_TOLERANCE, BaseParameters,
                                                          base_parameters, random_states)
-from offshore_crane.studies.identification._excitation import Fourier, fourier_excitation
-from offshore_crane.studies.identification._fit import Fit, fit_base
+from offshore_crane.studies.identification._excitation import (Fourier, excitation_condition,
+                                                               fourier_excitation,
+                                                               optimise_excitation,
+                                                               within_limits)
+from offshore_crane.studies.identification._fit import Fit, fit_base, log_derivatives
 
 __all__ = ["FRICTION", "RANK_TOLERANCE", "BaseParameters", "Fit", "Fourier", "Regressor",
-           "base_parameters", "fit_base", "fourier_excitation", "random_states",
-           "regressor"]
+           "base_parameters", "excitation_condition", "fit_base", "fourier_excitation",
+           "log_derivatives", "optimise_excitation", "random_states", "regressor",
+           "within_limits"]

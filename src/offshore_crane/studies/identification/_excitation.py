@@ -84,3 +84,94 @@ def fourier_excitation(robot, duration: float, rate: float = 100.0, harmonics: i
                           *f(t), source=f)
     raise InputError(f"fourier_excitation: no scale of the seed-{seed} coefficients stays "
                      "in the workspace: lower speed", name="speed")
+
+
+#: Samples of an excitation the optimiser evaluates its condition number on (evenly
+#: spread: the regressor costs a Pinocchio call a sample).
+OPTIMISE_SAMPLES = 300
+
+
+def excitation_condition(robot, traj, base, samples: int = OPTIMISE_SAMPLES) -> float:
+    """The condition number of the base regressor (columns scaled to unit norm) on
+    ``samples`` evenly spread samples of ``traj``."""
+    from offshore_crane.studies.identification._regressor import regressor
+
+    k = np.unique(np.linspace(0, len(traj.t) - 1, min(samples, len(traj.t))).astype(int))
+    W = base.base_regressor(regressor(robot, traj.q[k], traj.qd[k], traj.qdd[k]).Y)
+    W = W.reshape(-1, W.shape[-1])
+    norms = np.linalg.norm(W, axis=0)
+    s = np.linalg.svd(W / np.where(norms > 0, norms, 1.0), compute_uv=False)
+    return float(s[0] / s[-1]) if s[-1] > 0 else math.inf
+
+
+def within_limits(robot, traj, gravity) -> bool:
+    """Every sample inside the workspace (strokes, U-joints, sphere heights, arm limits)
+    and every actuator's speed and force within the description's capacities (the
+    nominal robot's inverse dynamics)."""
+    from offshore_crane.dynamics import inverse_dynamics
+    from offshore_crane.errors import OffshoreCraneError
+    from offshore_crane.robot.kinematics import actuator_motion, check_workspace
+
+    try:
+        check_workspace(robot, traj.q, traj.t)
+        X = inverse_dynamics(robot, traj.q, traj.qd, traj.qdd, gravity=gravity)
+    except OffshoreCraneError:
+        return False
+    caps = robot.capacities
+    v = actuator_motion(robot, traj.q, traj.qd)[1]
+    return bool((np.abs(v) <= np.asarray(caps.speed_max)).all()
+                and (X <= np.asarray(caps.push_max)).all()
+                and (-X <= np.asarray(caps.pull_max)).all())
+
+
+def optimise_excitation(robot, base, duration: float, rate: float = 100.0,
+                        harmonics: int = 10, period: float = 10.0, seeds=range(4),
+                        iterations: int = 60, gravity=None):
+    """An excitation whose base regressor is well conditioned, inside every limit
+    (:func:`within_limits`): the best of :func:`fourier_excitation`'s seeds, then its nine
+    coordinates' amplitudes scaled by factors ``exp(s_j)`` optimised with SciPy's
+    Nelder–Mead on ``log cond`` (an excitation out of limits scores inf).
+
+    Returns:
+        ``(trajectory, condition)``.
+
+    Raises:
+        InputError: no seed gives an excitation inside the limits.
+    """
+    from scipy.optimize import minimize
+
+    from offshore_crane.conventions import GRAVITY
+    from offshore_crane.errors import InputError
+    from offshore_crane.motion.trajectories import Trajectory
+
+    g = GRAVITY if gravity is None else gravity
+    best = None
+    for seed in seeds:
+        traj = fourier_excitation(robot, duration, rate, harmonics, period, seed, speed=1.0)
+        if not within_limits(robot, traj, g):
+            continue
+        c = excitation_condition(robot, traj, base)
+        if best is None or c < best[1]:
+            best = (traj, c)
+    if best is None:
+        raise InputError("optimise_excitation: no seed's excitation stays within the "
+                         "robot's limits and capacities: lower the harmonics or lengthen "
+                         "the period", name="seeds")
+    f0 = best[0].source
+
+    def scaled(s):
+        f = Fourier(f0.centre, f0.a * np.exp(s)[:, None], f0.b * np.exp(s)[:, None],
+                    f0.period)
+        return Trajectory(best[0].name + ", optimised", best[0].t, *f(best[0].t), source=f)
+
+    def cost(s):
+        traj = scaled(s)
+        if not within_limits(robot, traj, g):
+            return math.inf
+        return math.log(excitation_condition(robot, traj, base))
+
+    out = minimize(cost, np.zeros(9), method="Nelder-Mead",
+                   options={"maxfev": iterations})
+    s = out.x if math.isfinite(out.fun) and out.fun < math.log(best[1]) else np.zeros(9)
+    traj = scaled(s)
+    return traj, excitation_condition(robot, traj, base)

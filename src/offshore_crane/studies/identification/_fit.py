@@ -60,3 +60,47 @@ def fit_base(Yb: np.ndarray, X: np.ndarray) -> Fit:
     cov = np.linalg.pinv(Ww.T @ Ww)
     return Fit(beta, np.sqrt(np.clip(np.diag(cov), 0.0, None)), noise, residual,
                float(np.linalg.cond(Ww)))
+
+
+#: Order of the zero-phase Butterworth filter on a log's positions (applied forward and
+#: backward: twice the order, no phase lag).
+FILTER_ORDER = 4
+#: Samples dropped at each end of a filtered log, in time constants of the cut-off
+#: (the filter's start-up transients).
+EDGE_TIME_CONSTANTS = 3.0
+
+
+def log_derivatives(t: np.ndarray, q: np.ndarray, cutoff: float):
+    """A log's positions ``q (N, 9)`` at uniform times ``t`` [s] low-passed (zero-phase
+    Butterworth of :data:`FILTER_ORDER`, ``cutoff`` [Hz]) and differentiated twice
+    (second-order central differences): ``(keep, q, q̇, q̈)``, ``keep`` the slice of the
+    samples away from the ends, where the filter's transients last
+    (:data:`EDGE_TIME_CONSTANTS` time constants ``1 / (2π cutoff)``).
+
+    Raises:
+        InputError: non-uniform times, a cut-off not below the Nyquist frequency, a log
+            shorter than the filter needs.
+    """
+    import math
+
+    from scipy.signal import butter, filtfilt
+
+    from offshore_crane.errors import InputError
+
+    t, q = np.asarray(t, dtype=float), np.asarray(q, dtype=float)
+    dt = np.diff(t)
+    if len(t) < 3 or not np.allclose(dt, dt[0], rtol=1e-9, atol=0.0):
+        raise InputError("log: the times must be uniform (at least 3 samples)", name="t")
+    rate = 1.0 / float(dt[0])
+    if not (0.0 < cutoff < rate / 2.0):
+        raise InputError(f"cutoff = {cutoff!r} Hz: give a frequency in (0, {rate / 2:g}) "
+                         f"Hz, below the log's Nyquist frequency", name="cutoff")
+    b, a = butter(FILTER_ORDER, cutoff / (rate / 2.0))
+    edge = int(math.ceil(EDGE_TIME_CONSTANTS * rate / (2.0 * math.pi * cutoff))) + 1
+    if len(t) <= 2 * edge + 9:
+        raise InputError(f"log: {len(t)} samples; the filter's ends take {edge} at each "
+                         "end: give a longer log or a higher cut-off", name="t")
+    qf = filtfilt(b, a, q, axis=0)
+    qd = np.gradient(qf, float(dt[0]), axis=0)
+    qdd = np.gradient(qd, float(dt[0]), axis=0)
+    return slice(edge, len(t) - edge), qf, qd, qdd
