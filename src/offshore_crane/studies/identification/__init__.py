@@ -9,7 +9,8 @@ in the bodies' inertial parameters, ``X = Y(q, q̇, q̈) π``.
   :data:`RANK_TOLERANCE`), each writable as its combination (:meth:`BaseParameters.describe`).
 - :func:`fourier_excitation`: a finite Fourier series motion inside the workspace;
   :func:`fit_base`: the base parameters from a record by weighted least squares, with
-  their standard deviations.
+  their standard deviations; :func:`consistent_parameters`: every body's ten parameters,
+  physically consistent (log-Cholesky least squares), closest to them.
 
 docs/identification.md has the formulas, the groupings and the checks.
 """
@@ -22,8 +23,10 @@ from offshore_crane.studies.identification._excitation import (Fourier, excitati
                                                                optimise_excitation,
                                                                within_limits)
 from offshore_crane.studies.identification._fit import Fit, fit_base, log_derivatives
+from offshore_crane.studies.identification._consistent import (PRIOR_WEIGHT, consistent,
+                                                               consistent_parameters)
 
-__all__ = ["FRICTION", "RANK_TOLERANCE", "BaseParameters", "Fit", "Fourier", "Regressor",
-           "base_parameters", "excitation_condition", "fit_base", "fourier_excitation",
+__all__ = ["FRICTION", "PRIOR_WEIGHT", "RANK_TOLERANCE", "BaseParameters", "Fit", "Fourier", "Regressor",
+           "base_parameters", "consistent", "consistent_parameters", "excitation_condition", "fit_base", "fourier_excitation",
            "log_derivatives", "optimise_excitation", "random_states", "regressor",
            "within_limits"]

@@ -23,6 +23,7 @@ class Fit(NamedTuple):
         noise: ``(9,)`` each actuator's estimated noise standard deviation [N, N·m].
         residual: ``(N, 9)`` X minus the fitted forces [N, N·m].
         condition: The weighted base regressor's condition number (columns unscaled).
+        covariance: ``(r, r)`` of β̂.
     """
 
     beta: np.ndarray
@@ -30,6 +31,7 @@ class Fit(NamedTuple):
     noise: np.ndarray
     residual: np.ndarray
     condition: float
+    covariance: np.ndarray
 
 
 def fit_base(Yb: np.ndarray, X: np.ndarray) -> Fit:
@@ -59,7 +61,7 @@ def fit_base(Yb: np.ndarray, X: np.ndarray) -> Fit:
     residual = X - Yb @ beta
     cov = np.linalg.pinv(Ww.T @ Ww)
     return Fit(beta, np.sqrt(np.clip(np.diag(cov), 0.0, None)), noise, residual,
-               float(np.linalg.cond(Ww)))
+               float(np.linalg.cond(Ww)), cov)
 
 
 #: Order of the zero-phase Butterworth filter on a log's positions (applied forward and
