@@ -24,7 +24,8 @@ SUBCOMMANDS = ("offshore_crane.cli.id", "offshore_crane.cli.motion",
                "offshore_crane.cli.size", "offshore_crane.cli.sweep",
                "offshore_crane.cli.animate", "offshore_crane.cli.show",
                "offshore_crane.cli.view", "offshore_crane.cli.export",
-               "offshore_crane.cli.compensate", "offshore_crane.cli.excite")
+               "offshore_crane.cli.compensate", "offshore_crane.cli.excite",
+               "offshore_crane.cli.identify")
 
 
 class _Parser(argparse.ArgumentParser):

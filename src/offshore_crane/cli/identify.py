@@ -1,0 +1,98 @@
+"""``offshore-crane identify``: the robot's inertial parameters from a logged run.
+
+The log is a run's CSV (``t_s``, q1..q9, optionally their rates and accelerations, and
+the actuator forces ``T1_Nm..Fl6_N``: what ``simulate --out`` writes, or a test rig's
+record in the same columns). Without rates in the log, or with ``--cutoff``, the
+positions are low-passed (zero-phase Butterworth) and differentiated. Fitted: the base
+parameters by weighted least squares with their σ, lifted to every body's physically
+consistent parameters (docs/identification.md). Printed: the fit's residual and noise per
+actuator, the bodies whose parameters moved most, and with ``--validate`` the prediction
+error on a second log.
+"""
+
+from __future__ import annotations
+
+import os
+
+from offshore_crane.errors import InputError
+
+
+def add_parser(sub) -> None:
+    from offshore_crane.cli.common import add_robot_options
+
+    doc = __doc__.splitlines()
+    p = sub.add_parser("identify", help="inertial parameters from a logged run",
+                       description=doc[0].split(": ", 1)[1])
+    p.add_argument("--log", required=True, metavar="RUN.csv",
+                   help="the logged run: t_s, q1..q9 [, qd, qdd], T1_Nm..Fl6_N")
+    p.add_argument("--validate", metavar="RUN.csv",
+                   help="a second log: the identified robot's prediction error on it")
+    p.add_argument("--cutoff", type=float, metavar="HZ",
+                   help="low-pass the positions at this frequency and differentiate them "
+                   "(default: the log's own rates if it has them, else 5 Hz)")
+    add_robot_options(p)
+    p.set_defaults(run=run)
+
+
+#: The positions' low-pass when the log has no rates [Hz].
+DEFAULT_CUTOFF = 5.0
+
+
+def _log(path: str, what: str, robot, cutoff):
+    """``(t, q, qd, qdd, X)`` of a log, the filtered ends dropped."""
+    from offshore_crane.outputs.visual.motion import read_run
+    from offshore_crane.studies import identification as ident
+
+    if not os.path.isfile(path):
+        raise InputError(f"{what} {path}: no such file (a run's CSV: t_s, q1..q9, "
+                         "T1_Nm..Fl6_N)", name=what)
+    m = read_run(path)
+    if m.X is None:
+        raise InputError(f"{what} {path}: the log has no actuator forces (columns "
+                         "T1_Nm..Fl6_N): identification needs them", name=what)
+    if m.qd is not None and m.qdd is not None and cutoff is None:
+        return m.t, m.q, m.qd, m.qdd, m.X
+    keep, q, qd, qdd = ident.log_derivatives(m.t, m.q, cutoff or DEFAULT_CUTOFF)
+    return m.t[keep], q[keep], qd[keep], qdd[keep], m.X[keep]
+
+
+def run(args) -> int:
+    import numpy as np
+
+    from offshore_crane import scenes
+    from offshore_crane.cli.common import robot_scene
+    from offshore_crane.conventions import ACTUATOR_UNITS, ACTUATORS
+    from offshore_crane.studies import identification as ident
+
+    if args.cutoff is not None and not (args.cutoff > 0 and args.cutoff < float("inf")):
+        raise InputError(f"--cutoff {args.cutoff:g}: give a frequency > 0 [Hz]",
+                         name="--cutoff")
+    scene = robot_scene(args, scenes.Scene())
+    robot = scenes.load_robot(scene)
+    t, q, qd, qdd, X = _log(args.log, "--log", robot, args.cutoff)
+    base = ident.base_parameters(robot, gravity=scene.gravity)
+    R = ident.regressor(robot, q, qd, qdd, gravity=scene.gravity)
+    fit = ident.fit_base(base.base_regressor(R.Y), X)
+    pi, misfit = ident.consistent_parameters(base.K, fit.beta, fit.covariance, R.pi)
+    print(f"offshore-crane identify: {args.log}, {len(t)} samples, t = {t[0]:.2f}.."
+          f"{t[-1]:.2f} s; {base.rank} base parameters of {len(R.pi)} (condition number "
+          f"{fit.condition:.4g}); every body physically consistent: "
+          f"{'yes' if ident.consistent(pi) else 'NO'} (base misfit {misfit:.3g} σ RMS)")
+    print(f"{'actuator':<9}{'unit':<6}{'noise σ':>12}{'residual RMS':>14}")
+    for k, (a, u) in enumerate(zip(ACTUATORS, ACTUATOR_UNITS)):
+        print(f"{a:<9}{u:<6}{fit.noise[k]:>12.4g}"
+              f"{np.sqrt(np.mean(fit.residual[:, k] ** 2)):>14.4g}")
+    masses = [(n.split(".")[0], R.pi[j], pi[j]) for j, n in enumerate(R.names)
+              if n.endswith(".m")]
+    print("masses [kg], nominal → identified (a body's mass alone may not be "
+          "identifiable: docs/identification.md):")
+    for body, m0, m1 in masses:
+        print(f"  {body:<14}{m0:>9.4g} → {m1:.4g}")
+    if args.validate:
+        t2, q2, qd2, qdd2, X2 = _log(args.validate, "--validate", robot, args.cutoff)
+        pred = ident.regressor(robot, q2, qd2, qdd2, gravity=scene.gravity).Y @ pi
+        err = np.sqrt(np.mean((X2 - pred) ** 2, axis=0))
+        print(f"validation on {args.validate} ({len(t2)} samples): RMS error per actuator "
+              + ", ".join(f"{a} {e:.4g}" for a, e in zip(ACTUATORS, err))
+              + f" [N·m, N]; largest {err.max() / np.abs(X2).max():.3g} of the peak force")
+    return 0
