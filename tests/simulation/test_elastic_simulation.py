@@ -58,7 +58,7 @@ def test_a_step_too_long_for_the_cable_and_other_refusals():
     with pytest.raises(InputError, match="an exact, noise-free computed torque"):
         simulate_elastic(robot, 1.0, table1, ea=EA,
                          controller=Controller(law="computed-torque", anti_sway=0.1))
-    with pytest.raises(InputError, match=r"cable ea = -1\.0: give a finite number > 0"):
+    with pytest.raises(InputError, match=r"cable ea = -1\.0 N: give a finite number > 0"):
         simulate_elastic(robot, 1.0, table1, ea=-1.0)
 
 

@@ -154,7 +154,7 @@ def _lift_event(scene: Scene, robot, traj, method: str, hoist, checked: dict):
     from dataclasses import replace as swap
 
     from offshore_crane.dynamics import Result
-    from offshore_crane.dynamics.cable import SetDown, lift_off, set_down
+    from offshore_crane.dynamics.cable import lift_off, set_down
     from offshore_crane.errors import SceneError
     from offshore_crane.scenes.assembly import lift_deck
 
@@ -170,9 +170,7 @@ def _lift_event(scene: Scene, robot, traj, method: str, hoist, checked: dict):
         event = lift_off(robot, traj, deck, **cable, **checks)
         res = swap(event.result, event=event)
     else:
-        t_contact, speed, res = set_down(robot, traj, deck, **cable, **checks)
-        if res.event is None:
-            res = swap(res, event=SetDown(t_contact, speed))
+        res = set_down(robot, traj, deck, **cable, **checks)[2]
     return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
                   condition=np.full(len(res.t), np.nan), gimbal=None, attitude=None,
                   backend="numba", cable=res)

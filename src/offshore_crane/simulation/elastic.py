@@ -73,6 +73,7 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     """
     from offshore_crane.dynamics import backends
     from offshore_crane.dynamics.cable.forces import kane_forces
+    from offshore_crane.dynamics.cable.elastic import check_cable
     from offshore_crane.dynamics.cable.grid import cable_robot
     from offshore_crane.dynamics.cable.tip import tip_positions
     from offshore_crane.dynamics.forward import forward_dynamics
@@ -80,7 +81,8 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     from offshore_crane.robot.kinematics.workspace import Thresholds
     from offshore_crane.simulation.control import Controller
     from offshore_crane.simulation.record import (SimulationResult, actuator_power,
-                                                  initial_state, reference_grid, steps)
+                                                  initial_state, reference_grid, steps,
+                                                  workspace_stop)
 
     controller = controller or Controller()
     if controller.law not in ("computed-torque", "none"):
@@ -92,11 +94,7 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
         raise InputError("on an elastic cable the simulation takes an exact, noise-free "
                          "computed torque: leave noise_q, noise_qd, model and anti_sway "
                          "out", name="controller")
-    for name, value, low in (("ea", ea, 0.0), ("damping", damping, None)):
-        if not (isinstance(value, (int, float)) and math.isfinite(value)
-                and (value > 0.0 if low is not None else value >= 0.0)):
-            raise InputError(f"cable {name} = {value!r}: give a finite number "
-                             f"{'> 0' if low is not None else '>= 0'}", name=name)
+    check_cable(ea, damping)
     robot = cable_robot(robot)
     empty = robot.without_hanging_payload()
     m = float(robot.hybrid.cable.mass[-1])
@@ -198,7 +196,7 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     for key in ("payload", "payload_velocity", "length"):
         res.info[key] = res.info[key][:done]
     res.power = actuator_power(robot, res.q, res.qd, res.X)
-    first = _workspace(robot, res, limits)
+    first = workspace_stop(robot, res, limits)
     if first is not None and (stop is None or first[0] < stop[0]):
         stop = first
     if stop is not None:
@@ -208,17 +206,3 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
         res = res.truncated(k)
         raise stopped(res, t0 + k * step * out_every, cause)
     return res
-
-
-def _workspace(robot, res, limits):
-    """``(sample, cause)`` of the first workspace violation, or None."""
-    if not limits:
-        return None
-    from offshore_crane.errors import WorkspaceError
-    from offshore_crane.robot.kinematics import check_workspace
-
-    try:
-        check_workspace(robot, res.q, res.t)
-    except WorkspaceError as exc:
-        return exc.index, str(exc).split(" at sample")[0] + " (outside its limits)"
-    return None

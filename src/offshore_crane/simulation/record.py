@@ -275,3 +275,19 @@ class Recording(NamedTuple):
         """Zeroed arrays for ``n_out`` output samples."""
         nine = [np.zeros((n_out, 9)) for _ in range(7)]
         return cls(*nine, np.zeros((n_out, 9), dtype=bool), np.zeros(n_out), np.zeros(n_out))
+
+
+def workspace_stop(robot, res, limits: bool):
+    """``(sample, cause)`` of a recorded run's first workspace violation (the cause in
+    the words of :func:`~offshore_crane.robot.kinematics.check_workspace`), or None;
+    None too without ``limits``."""
+    if not limits:
+        return None
+    from offshore_crane.errors import WorkspaceError
+    from offshore_crane.robot.kinematics import check_workspace
+
+    try:
+        check_workspace(robot, res.q, res.t)
+    except WorkspaceError as exc:
+        return exc.index, str(exc).split(" at sample")[0] + " (outside its limits)"
+    return None

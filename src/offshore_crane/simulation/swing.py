@@ -231,8 +231,7 @@ def _finish(robot, res, sway_acc, g, limits) -> None:
 
 def _slack_or_workspace(robot, res, limits):
     """``(sample, cause)`` of the first slack-cable sample or workspace violation."""
-    from offshore_crane.errors import WorkspaceError
-    from offshore_crane.robot.kinematics import check_workspace
+    from offshore_crane.simulation.record import workspace_stop
 
     slack = ~(res.tension > 0.0)
     first = None
@@ -240,12 +239,9 @@ def _slack_or_workspace(robot, res, limits):
         k = int(np.argmax(slack))
         first = (k, f"the cable went slack (tension {res.tension[k]:.4g} N: a cable cannot "
                     "push, the pendulum model no longer holds)")
-    if limits:
-        try:
-            check_workspace(robot, res.q, res.t)
-        except WorkspaceError as exc:
-            if first is None or exc.index < first[0]:
-                first = (exc.index, str(exc).split(" at sample")[0] + " (outside its limits)")
+    outside = workspace_stop(robot, res, limits)
+    if outside is not None and (first is None or outside[0] < first[0]):
+        first = outside
     return first
 
 

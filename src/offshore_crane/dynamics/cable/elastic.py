@@ -132,6 +132,21 @@ class ElasticResult:
         return float(T[k])
 
 
+def check_cable(ea, damping) -> None:
+    """An elastic cable's EA [N] (finite, > 0) and axial damping [N·s/m] (finite, ≥ 0).
+
+    Raises:
+        InputError: naming the value and its unit.
+    """
+    for name, value, low, unit in (("ea", ea, "> 0", "N"), ("damping", damping, ">= 0",
+                                                            "N·s/m")):
+        ok = (isinstance(value, (int, float, np.floating)) and not isinstance(value, bool)
+              and math.isfinite(value) and (value > 0 if low == "> 0" else value >= 0))
+        if not ok:
+            raise InputError(f"cable {name} = {value!r} {unit}: give a finite number {low}",
+                             name=name)
+
+
 def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float = 0.0,
                              reference=None, gravity=GRAVITY, hoist=None, initial=None,
                              initial_velocity=(0.0, 0.0, 0.0), substeps: int | None = None,
@@ -170,13 +185,7 @@ def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float 
     from offshore_crane.dynamics.constants import cable_arrays
     from offshore_crane.dynamics.runtime import compiled_kernels
 
-    for name, value, low, unit in (("ea", ea, "> 0", "N"), ("damping", damping, ">= 0",
-                                                            "N·s/m")):
-        ok = (isinstance(value, (int, float, np.floating)) and not isinstance(value, bool)
-              and math.isfinite(value) and (value > 0 if low == "> 0" else value >= 0))
-        if not ok:
-            raise InputError(f"cable {name} = {value!r} {unit}: give a finite number {low}",
-                             name=name)
+    check_cable(ea, damping)
     robot = cable_robot(robot)
     q, qd, qdd, t, dt = motion_samples(q, qd, qdd, t)
     N = q.shape[0]

@@ -192,26 +192,24 @@ def _resting(robot, trajectory, k: int, *, rho, rhod, T, s, L, gravity, ea, damp
 def head(res, n: int):
     """The first ``n`` samples of an :class:`~.elastic.ElasticResult` (a set-down's
     record up to its contact: beyond it the deck would hold the load)."""
+    return replace(res, **{name: getattr(res, name)[:n] for name in _per_sample(res)})
+
+
+def _per_sample(res) -> list[str]:
+    """The fields of an :class:`~.elastic.ElasticResult` that hold one row a sample."""
     from dataclasses import fields
 
     N = len(res.t)
-    return replace(res, **{f.name: getattr(res, f.name)[:n] for f in fields(res)
-                           if isinstance(getattr(res, f.name), np.ndarray)
-                           and getattr(res, f.name).ndim >= 1
-                           and len(getattr(res, f.name)) == N})
+    return [f.name for f in fields(res) if isinstance(getattr(res, f.name), np.ndarray)
+            and getattr(res, f.name).ndim >= 1 and len(getattr(res, f.name)) == N]
 
 
 def _joined(first, second):
     """Two :class:`~.elastic.ElasticResult` records one after the other: the per-sample
     arrays concatenated, the integration's figures the second's (the first rests)."""
-    from dataclasses import fields
-
-    joined = {}
-    for f in fields(second):
-        a, b = getattr(first, f.name), getattr(second, f.name)
-        if isinstance(b, np.ndarray) and b.ndim >= 1 and len(b) == len(second.t):
-            joined[f.name] = np.concatenate([a, b])
-    return replace(second, **joined)
+    return replace(second, **{name: np.concatenate([getattr(first, name),
+                                                    getattr(second, name)])
+                              for name in _per_sample(second)})
 
 
 def _deck(deck, t):
@@ -233,7 +231,8 @@ def set_down(robot, trajectory, deck, *, ea: float, damping: float = 0.0, hoist=
     [m/s], result)`` at its first contact (NaN, NaN without contact), the speed the
     load's minus the deck's (negative: landing); ``result`` the whole record: from the
     contact on the load rests where it landed, and :func:`lift_off` from there says
-    whether the cable lifts it again (``result.event``: a :class:`SetDown`).
+    whether the cable lifts it again (``result.event``: a :class:`SetDown`, also without
+    a contact).
 
     Args:
         As :func:`lift_off`; ``initial``, ``initial_velocity``: the load from the tip and
@@ -254,9 +253,10 @@ def set_down(robot, trajectory, deck, *, ea: float, damping: float = 0.0, hoist=
         substeps=substeps, **checked)
     k, speed = first_contact(res.payload[:, 2], res.payload_velocity[:, 2], z, zd)
     if k is None:
-        return float("nan"), speed, res
+        return float("nan"), speed, replace(res, event=SetDown(float("nan"), speed))
     if k >= len(t) - 2:                      # at the record's end: nothing rests after it
-        return float(t[k]), speed, replace(res, airborne=(0, k))
+        return float(t[k]), speed, replace(res, airborne=(0, k),
+                                           event=SetDown(float(t[k]), speed))
     after = lift_off(robot, _tail(trajectory, k), deck, ea=ea, damping=damping, hoist=hoist,
                      gravity=gravity, substeps=substeps, xy=res.payload[k, :2], **checked)
     whole = replace(_joined(head(res, k), after.result), airborne=(0, k),

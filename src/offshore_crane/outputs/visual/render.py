@@ -200,6 +200,13 @@ DECK_SIDE = 0.2
 DECK_RGB = (70, 110, 120)
 
 
+def deck_square() -> np.ndarray:
+    """``(4, 3)`` the corners of a lift's deck plate around its centre [m]: a horizontal
+    square of :data:`DECK_SIDE`, counter-clockwise seen from above."""
+    h = DECK_SIDE / 2.0
+    return np.array([[-h, -h, 0.0], [h, -h, 0.0], [h, h, 0.0], [-h, h, 0.0]])
+
+
 def geometry(robot, links: tuple, hidden: tuple = ()) -> Geometry:
     """Tessellate the robot's visuals (see the module docstring), but those of the
     links ``hidden``."""
@@ -402,9 +409,7 @@ class Renderer:
 
     def _plate(self, draw, centre: np.ndarray) -> None:
         """The deck: a horizontal square of :data:`DECK_SIDE` at ``centre`` (base frame)."""
-        h = DECK_SIDE / 2.0
-        corners = centre + np.array([[-h, -h, 0.0], [h, -h, 0.0], [h, h, 0.0], [-h, h, 0.0]])
-        xy, depth = self.project(corners)
+        xy, depth = self.project(centre + deck_square())
         if (depth > 1e-6).all():
             draw.polygon([tuple(p) for p in xy.tolist()], fill=DECK_RGB)
 

@@ -184,13 +184,10 @@ class Viewer:
     def _plate(self):
         """The lift's deck: a square of ``render.DECK_SIDE`` under a frame that
         :meth:`show` moves."""
-        from offshore_crane.outputs.visual.render import DECK_RGB, DECK_SIDE
+        from offshore_crane.outputs.visual.render import DECK_RGB, deck_square
 
         frame = self.server.scene.add_frame("/deck", show_axes=False)
-        h = DECK_SIDE / 2.0
-        corners = np.array([[-h, -h, 0.0], [h, -h, 0.0], [h, h, 0.0], [-h, h, 0.0]],
-                           dtype=np.float32)
-        self.server.scene.add_mesh_simple("/deck/plate", corners,
+        self.server.scene.add_mesh_simple("/deck/plate", deck_square().astype(np.float32),
                                           np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32),
                                           color=DECK_RGB, side="double")
         return frame

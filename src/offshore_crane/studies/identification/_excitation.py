@@ -106,22 +106,21 @@ def excitation_condition(robot, traj, base, samples: int = OPTIMISE_SAMPLES) -> 
 
 def within_limits(robot, traj, gravity) -> bool:
     """Every sample inside the workspace (strokes, U-joints, sphere heights, arm limits)
-    and every actuator's speed and force within the description's capacities (the
-    nominal robot's inverse dynamics)."""
+    and every actuator's push, pull and speed within the description's capacities (the
+    sizing envelope's utilisations of the nominal robot's inverse dynamics, ≤ 1)."""
     from offshore_crane.dynamics import inverse_dynamics
     from offshore_crane.errors import OffshoreCraneError
-    from offshore_crane.robot.kinematics import actuator_motion, check_workspace
+    from offshore_crane.robot.kinematics import check_workspace
+    from offshore_crane.studies.sizing import CAPACITIES, envelope
 
     try:
         check_workspace(robot, traj.q, traj.t)
         X = inverse_dynamics(robot, traj.q, traj.qd, traj.qdd, gravity=gravity)
     except OffshoreCraneError:
         return False
-    caps = robot.capacities
-    v = actuator_motion(robot, traj.q, traj.qd)[1]
-    return bool((np.abs(v) <= np.asarray(caps.speed_max)).all()
-                and (X <= np.asarray(caps.push_max)).all()
-                and (-X <= np.asarray(caps.pull_max)).all())
+    util = envelope(robot, traj.t, traj.q, traj.qd, X).utilisation
+    cols = [CAPACITIES.index(c) for c in ("push", "pull", "speed")]
+    return bool(np.nan_to_num(util[:, cols], nan=0.0).max() <= 1.0)
 
 
 def optimise_excitation(robot, base, duration: float, rate: float = 100.0,
