@@ -30,6 +30,10 @@ def add_parser(sub) -> None:
     p.add_argument("--cutoff", type=float, metavar="HZ",
                    help="low-pass the positions at this frequency and differentiate them "
                    "(default: the log's own rates if it has them, else 5 Hz)")
+    p.add_argument("--out", metavar="IDENTIFIED.toml",
+                   help="write the identified robot's description: the nominal one with "
+                   "every body's mass, centre of mass and inertia identified (--robot "
+                   "IDENTIFIED.toml then runs any command on it)")
     add_robot_options(p)
     p.set_defaults(run=run)
 
@@ -67,13 +71,19 @@ def run(args) -> int:
     if args.cutoff is not None and not (args.cutoff > 0 and args.cutoff < float("inf")):
         raise InputError(f"--cutoff {args.cutoff:g}: give a frequency > 0 [Hz]",
                          name="--cutoff")
+    from offshore_crane.io import plan_outputs
+
+    outputs = plan_outputs({"--out": args.out}, [args.robot, args.log, args.validate],
+                           {"--out": ("toml",)})
     scene = robot_scene(args, scenes.Scene())
     robot = scenes.load_robot(scene)
     t, q, qd, qdd, X = _log(args.log, "--log", robot, args.cutoff)
     base = ident.base_parameters(robot, gravity=scene.gravity)
     R = ident.regressor(robot, q, qd, qdd, gravity=scene.gravity)
     fit = ident.fit_base(base.base_regressor(R.Y), X)
-    pi, misfit = ident.consistent_parameters(base.K, fit.beta, fit.covariance, R.pi)
+    bounds = ident.com_bounds(robot, R)
+    pi, misfit = ident.consistent_parameters(base.K, fit.beta, fit.covariance, R.pi,
+                                             com_bounds=bounds)
     print(f"offshore-crane identify: {args.log}, {len(t)} samples, t = {t[0]:.2f}.."
           f"{t[-1]:.2f} s; {base.rank} base parameters of {len(R.pi)} (condition number "
           f"{fit.condition:.4g}); every body physically consistent: "
@@ -82,6 +92,10 @@ def run(args) -> int:
     for k, (a, u) in enumerate(zip(ACTUATORS, ACTUATOR_UNITS)):
         print(f"{a:<9}{u:<6}{fit.noise[k]:>12.4g}"
               f"{np.sqrt(np.mean(fit.residual[:, k] ** 2)):>14.4g}")
+    held = ident.bounded_bodies(pi, bounds, R)
+    if held:
+        print(f"centres of mass held at their part's end (the log did not place them "
+              f"inside): {', '.join(held)}")
     masses = [(n.split(".")[0], R.pi[j], pi[j]) for j, n in enumerate(R.names)
               if n.endswith(".m")]
     print("masses [kg], nominal → identified (a body's mass alone may not be "
@@ -95,4 +109,31 @@ def run(args) -> int:
         print(f"validation on {args.validate} ({len(t2)} samples): RMS error per actuator "
               + ", ".join(f"{a} {e:.4g}" for a, e in zip(ACTUATORS, err))
               + f" [N·m, N]; largest {err.max() / np.abs(X2).max():.3g} of the peak force")
+    if args.out:
+        _write(outputs["--out"], args, robot, R, pi, base, fit, len(t))
     return 0
+
+
+def _write(target, args, robot, R, pi, base, fit, n) -> None:
+    """Write the identified description, with the base parameters and their σ in its
+    header, and check that it loads."""
+    from offshore_crane.io import write_text
+    from offshore_crane.robot.description import resolve
+    from offshore_crane.studies import identification as ident
+
+    spec = robot.spec
+    over = "".join(f", {k} = {v}" for k, v in spec.overrides.items())
+    header = [f"The robot identified by offshore-crane identify from {args.log} ({n} "
+              "samples).", f"Nominal description: {spec.path}{over}.",
+              "Every body's mass, com and inertia below are identified and physically",
+              "consistent; the forces determine only the base parameters (their values",
+              "and standard deviations below, docs/identification.md), the rest is kept",
+              "nearest the nominal values.", "",
+              f"{base.rank} base parameters (value ± σ [SI units of their terms]):"]
+    header += [f"  {line.split(' = ')[0]} = {fit.beta[k]:.10g} ± {fit.sigma[k]:.3g}: "
+               f"{line.split(' = ', 1)[1]}" for k, line in enumerate(base.describe())]
+    text = ident.identified_description(robot, R, pi, "\n".join(header))
+    resolve(args.out, content=text.encode())           # it loads (or says why)
+    write_text(target, text)
+    print(f"wrote {args.out}: the identified robot (run any command with --robot "
+          f"{args.out})")

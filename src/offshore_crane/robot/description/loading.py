@@ -63,8 +63,18 @@ def frozen(value):
 
 def resolve_data(data: dict, path: str, overrides: dict | None = None) -> Description:
     """:func:`resolve` for an already parsed document ``data`` (``path`` for messages)."""
+    return Resolver(flat_values(data, path, overrides), path, dict(overrides or {})).build()
+
+
+def flat_values(data: dict, path: str, overrides: dict | None = None) -> Values:
+    """The document ``data`` flattened to its leaves, checked against the format, with
+    the overrides applied (not yet evaluated: expressions are kept).
+
+    Raises:
+        DescriptionError: an unknown key, a wrong type or shape (naming the field).
+    """
     values = Values(label(path))
     values.add_table(data, SCHEMA, "", values.path)
     for name, value in (overrides or {}).items():
         values.override(name, value)
-    return Resolver(values, path, dict(overrides or {})).build()
+    return values

@@ -10,7 +10,8 @@ in the bodies' inertial parameters, ``X = Y(q, q̇, q̈) π``.
 - :func:`fourier_excitation`: a finite Fourier series motion inside the workspace;
   :func:`fit_base`: the base parameters from a record by weighted least squares, with
   their standard deviations; :func:`consistent_parameters`: every body's ten parameters,
-  physically consistent (log-Cholesky least squares), closest to them.
+  physically consistent (log-Cholesky least squares), closest to them;
+  :func:`identified_description`: the identified robot as a description file.
 
 docs/identification.md has the formulas, the groupings and the checks.
 """
@@ -25,8 +26,11 @@ from offshore_crane.studies.identification._excitation import (Fourier, excitati
 from offshore_crane.studies.identification._fit import Fit, fit_base, log_derivatives
 from offshore_crane.studies.identification._consistent import (PRIOR_WEIGHT, consistent,
                                                                consistent_parameters)
+from offshore_crane.studies.identification._description import (bounded_bodies, com_bounds,
+                                                                identified_description)
 
-__all__ = ["FRICTION", "PRIOR_WEIGHT", "RANK_TOLERANCE", "BaseParameters", "Fit", "Fourier", "Regressor",
-           "base_parameters", "consistent", "consistent_parameters", "excitation_condition", "fit_base", "fourier_excitation",
+__all__ = ["FRICTION", "PRIOR_WEIGHT", "RANK_TOLERANCE", "BaseParameters", "Fit", "Fourier",
+           "Regressor", "base_parameters", "bounded_bodies", "com_bounds", "consistent", "consistent_parameters",
+           "excitation_condition", "fit_base", "fourier_excitation", "identified_description",
            "log_derivatives", "optimise_excitation", "random_states", "regressor",
            "within_limits"]

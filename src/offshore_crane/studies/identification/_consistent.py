@@ -85,7 +85,8 @@ def consistent(p: np.ndarray, margin: float = 0.0) -> bool:
 
 
 def consistent_parameters(K: np.ndarray, beta: np.ndarray, covariance: np.ndarray,
-                          pi0: np.ndarray, prior: float = PRIOR_WEIGHT):
+                          pi0: np.ndarray, prior: float = PRIOR_WEIGHT,
+                          com_bounds: np.ndarray | None = None):
     """The physically consistent parameters closest to identified base parameters.
 
     Args:
@@ -93,6 +94,14 @@ def consistent_parameters(K: np.ndarray, beta: np.ndarray, covariance: np.ndarra
         beta: ``(r,)`` identified. covariance: ``(r, r)`` their covariance.
         pi0: ``(P,)`` the nominal parameters (consistent).
         prior: λ.
+        com_bounds: ``(b, 3, 2)`` [m] lower and upper bound of each body's centre of mass
+            per axis of its frame (``±inf``: none), e.g. a leg part's along the leg
+            (:func:`~._description.com_bounds`). The centre of mass is θ's ``t`` (``J``'s
+            last column over ``m``): a bound on it is a bound on θ. When the
+            unbounded solution (Levenberg–Marquardt) breaks a bound, the problem is
+            solved again with the bounds held exactly (SciPy's trust-region reflective
+            method, ~7× slower: it happens when the log does not decide a part's mass,
+            its first moment alone being identifiable). ``pi0`` must lie inside.
 
     Returns:
         ``(pi (P,), misfit)``: the parameters, and ``|L⁻¹ (K π − β̂)|`` per base
@@ -124,8 +133,14 @@ def consistent_parameters(K: np.ndarray, beta: np.ndarray, covariance: np.ndarra
         return np.vstack([A @ D, prior_rows[:, None] * D])
 
     x0 = np.concatenate([to_theta(pi0[k:k + 10]) for k in range(0, P, 10)])
-    out = least_squares(residual, x0, jac=jacobian, method="lm",
-                        max_nfev=MAX_EVALUATIONS)
+    out = least_squares(residual, x0, jac=jacobian, method="lm", max_nfev=MAX_EVALUATIONS)
+    if com_bounds is not None:
+        lo, hi = (np.full(P, -np.inf), np.full(P, np.inf))
+        for axis in range(3):
+            lo[7 + axis::10], hi[7 + axis::10] = com_bounds[:, axis, 0], com_bounds[:, axis, 1]
+        if np.any(out.x < lo) or np.any(out.x > hi):       # held: solved again, bounded
+            out = least_squares(residual, x0, jac=jacobian, method="trf", bounds=(lo, hi),
+                                max_nfev=MAX_EVALUATIONS)
     pi = pi_of(out.x)
     misfit = A @ pi - w
     return pi, float(np.sqrt(np.mean(misfit ** 2)))
