@@ -374,3 +374,54 @@ def test_identify_needs_forces_in_its_log(tmp_path, capsys):
     assert "the log has no actuator forces" in err and err.count("\n") == 1
     assert main(["identify", "--log", str(tmp_path / "none.csv")]) == 2
     assert "--log" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def good_log(tmp_path_factory):
+    """A 6 s log at 200 Hz: a Fourier excitation's q and Kane's X (the columns of
+    ``simulate --out``)."""
+    from offshore_crane.conventions import Q_COLUMNS
+    from offshore_crane.outputs.visual.motion import FORCE_COLUMNS
+
+    robot = oc.load_robot()
+    ex = ident.fourier_excitation(robot, 6.0, 200.0, harmonics=5, seed=1)
+    X = oc.inverse_dynamics(robot, ex.q, ex.qd, ex.qdd)
+    header = ",".join(("t_s",) + Q_COLUMNS + FORCE_COLUMNS)
+    rows = [",".join(repr(float(x)) for x in (t, *q, *f)) for t, q, f in zip(ex.t, ex.q, X)]
+    return header, rows, tmp_path_factory.mktemp("logs")
+
+
+@pytest.mark.parametrize("case, message", [
+    ("nan", r"data row 501, column q3_m: 'nan' is not finite"),
+    ("backwards", r"data row 502: t_s = 2.5 s does not increase after 2.505 s"),
+    ("short", r"--log .*: log: 150 samples; the filter's ends take 97 at each end"),
+    ("missing", r"missing column\(s\) Fl3_N of T1_Nm..Fl6_N: give all of them or none"),
+    ("still", r"the record excites \d+ of the 100 base parameters .*offshore-crane excite"),
+])
+def test_bad_logs_are_one_line(good_log, case, message, capsys):
+    """The issue's bad logs (a NaN, time going back, too short for the filter, a force
+    column missing, a robot standing still): one line naming the problem, exit 2."""
+    import re
+
+    from offshore_crane.__main__ import main
+
+    header, rows, where = good_log
+    rows = list(rows)
+    if case == "nan":
+        cells = rows[500].split(",")
+        rows[500] = ",".join(cells[:3] + ["nan"] + cells[4:])
+    elif case == "backwards":
+        rows[500], rows[501] = rows[501], rows[500]
+    elif case == "short":
+        rows = rows[:150]
+    elif case == "missing":
+        k = header.split(",").index("Fl3_N")
+        drop = lambda line: ",".join(c for j, c in enumerate(line.split(",")) if j != k)  # noqa: E731
+        header, rows = drop(header), [drop(r) for r in rows]
+    else:
+        rows = [",".join([f"{0.005 * i:.3f}"] + rows[0].split(",")[1:]) for i in range(800)]
+    log = where / f"{case}.csv"
+    log.write_text("\n".join([header] + rows) + "\n")
+    assert main(["identify", "--log", str(log)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and re.search(message, err), err

@@ -56,7 +56,10 @@ def _log(path: str, what: str, robot, cutoff):
                          "T1_Nm..Fl6_N): identification needs them", name=what)
     if m.qd is not None and m.qdd is not None and cutoff is None:
         return m.t, m.q, m.qd, m.qdd, m.X
-    keep, q, qd, qdd = ident.log_derivatives(m.t, m.q, cutoff or DEFAULT_CUTOFF)
+    try:
+        keep, q, qd, qdd = ident.log_derivatives(m.t, m.q, cutoff or DEFAULT_CUTOFF)
+    except InputError as exc:
+        raise InputError(f"{what} {path}: {exc}", name=what) from None
     return m.t[keep], q[keep], qd[keep], qdd[keep], m.X[keep]
 
 
@@ -80,7 +83,10 @@ def run(args) -> int:
     t, q, qd, qdd, X = _log(args.log, "--log", robot, args.cutoff)
     base = ident.base_parameters(robot, gravity=scene.gravity)
     R = ident.regressor(robot, q, qd, qdd, gravity=scene.gravity)
-    fit = ident.fit_base(base.base_regressor(R.Y), X)
+    try:
+        fit = ident.fit_base(base.base_regressor(R.Y), X)
+    except InputError as exc:
+        raise InputError(f"--log {args.log}: {exc}", name="--log") from None
     bounds = ident.com_bounds(robot, R)
     pi, misfit = ident.consistent_parameters(base.K, fit.beta, fit.covariance, R.pi,
                                              com_bounds=bounds)

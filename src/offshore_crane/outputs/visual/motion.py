@@ -158,12 +158,19 @@ def read_run(path) -> Motion:
     back = np.diff(t) <= 0.0
     if back.any():
         i = int(np.argmax(back)) + 1
-        raise TrajectoryError(f"{where}, data row {i + 1}: t_s = {t[i]!r} s does not "
-                              f"increase after {t[i - 1]!r} s", name="t_s", index=i,
+        raise TrajectoryError(f"{where}, data row {i + 1}: t_s = {float(t[i])!r} s does "
+                              f"not increase after {float(t[i - 1])!r} s", name="t_s", index=i,
                               path=where)
 
     def block(names):
-        if not all(n in col for n in names):
+        given = [n in col for n in names]
+        if not all(given):
+            if any(given):
+                missing = [n for n, g in zip(names, given) if not g]
+                raise TrajectoryError(f"{where}, line 1: missing column(s) "
+                                      f"{', '.join(missing)} of {names[0]}..{names[-1]}: "
+                                      "give all of them or none", name=missing[0],
+                                      path=where)
             return None
         return np.ascontiguousarray(values[:, [col[n] for n in names]])
 

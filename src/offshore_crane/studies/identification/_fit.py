@@ -38,9 +38,13 @@ def fit_base(Yb: np.ndarray, X: np.ndarray) -> Fit:
     """Weighted least squares of ``X (N, 9)`` on the base regressor ``Yb (N, 9, r)``.
 
     Raises:
-        InputError: shapes that do not agree; fewer equations than parameters.
+        InputError: shapes that do not agree; fewer equations than parameters; a record
+            that does not excite every base parameter (the column-scaled regressor's
+            numerical rank below ``r`` at :data:`~._base.RANK_TOLERANCE`, the base
+            parameters' own threshold).
     """
     from offshore_crane.errors import InputError
+    from offshore_crane.studies.identification._base import RANK_TOLERANCE
 
     N, m, r = Yb.shape
     if X.shape != (N, m):
@@ -50,6 +54,13 @@ def fit_base(Yb: np.ndarray, X: np.ndarray) -> Fit:
         raise InputError(f"fit: {N * m} equations for {r} base parameters: give a longer "
                          "record", name="X")
     W, y = Yb.reshape(-1, r), X.reshape(-1)
+    scale = np.linalg.norm(W, axis=0)
+    sv = np.linalg.svd(W / np.where(scale > 0.0, scale, 1.0), compute_uv=False)
+    rank = int(np.sum(sv > RANK_TOLERANCE * sv[0])) if sv[0] > 0.0 else 0
+    if rank < r:
+        raise InputError(f"fit: the record excites {rank} of the {r} base parameters (the "
+                         "motion does not identify the robot): log an excitation "
+                         "trajectory (offshore-crane excite)", name="X")
     beta = np.linalg.lstsq(W, y, rcond=None)[0]
     e = (y - W @ beta).reshape(N, m)
     dof = max(N - r / m, 1.0)
