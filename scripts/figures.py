@@ -232,10 +232,27 @@ def lift_rows(r: dict) -> dict:
     }
 
 
+def roofline_rows(r: dict) -> dict:
+    """benchmarks/roofline.py's figures: one row per kernel, the machine in prose."""
+    peak, width = r["peak_gflops"], r["vector_width"]
+    out = {("README.md", "figure roofline-machine"):
+           f"one core's peak {peak:.1f} GFLOP/s (a dense matrix product, one BLAS thread), "
+           f"vector width {width} doubles, so {peak / width:.1f} GFLOP/s for scalar code; "
+           f"memory copy {r['bandwidth_gbs']:.1f} GB/s; Pinocchio's `rneaInParallel(1)` "
+           f"{r['floor_us']:.2f} µs a sample; N = {_count(r['n'])}, run of {r['date']}"}
+    for k in r["kernels"]:
+        out[("README.md", f"roofline, {k['kernel']}")] = (
+            f"| roofline, {k['kernel']} | {_count(k['flop'])} (+{k['trig']} sin, cos) | "
+            f"{k['us']:.2f} | {k['gflops']:.2f} | {100 * k['peak_share']:.1f} % | "
+            f"{100 * k['scalar_share']:.0f} % | {k['intensity']:.0f} | {k['verdict']} |")
+    return out
+
+
 #: Each saved result and the figures it renders.
 RENDERERS = {"sweep": sweep_rows, "animate": animate_rows, "cable_swing": cable_swing_rows,
              "sea_synthesis": sea_synthesis_rows, "pinocchio_fd": pinocchio_fd_rows,
-             "mjcf_agreement": mjcf_agreement_rows, "lift": lift_rows}
+             "mjcf_agreement": mjcf_agreement_rows, "lift": lift_rows,
+             "roofline": roofline_rows}
 
 #: A figure inside prose: ``<!-- figure KEY -->text<!-- /figure -->``.
 MARKED = re.compile(r"<!-- figure (\S+) -->(.*?)<!-- /figure -->", re.S)

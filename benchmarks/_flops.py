@@ -1,0 +1,195 @@
+"""Floating-point operations per sample of the compiled kernels, counted by running their
+one text on numbers that count (benchmarks/roofline.py reads them).
+
+The formulas (:mod:`offshore_crane.dynamics.backends` binds their code to any arithmetic)
+and the compiled linear algebra (:mod:`offshore_crane.dynamics.linear`, called through
+``py_func``) run on :class:`Counted` numbers: each ``+ - * /`` and ``sqrt`` between
+floating-point values is one operation (a fused multiply-add would be two, as in the
+machine's peak); ``sin``, ``cos``, ``atan2`` are counted apart (each is a library call of
+tens of operations, reported, not added). Negation, ``abs``, comparisons and copies are
+not counted. The count follows the branches the sample takes (the checks' branches that
+compute nothing more are free).
+"""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+
+import numpy as np
+
+#: What the run counted: {"flop": n, "sin": n, "cos": n, "atan2": n}.
+COUNT: Counter = Counter()
+
+
+def _v(x):
+    return x.v if isinstance(x, Counted) else x
+
+
+class Counted:
+    """A float that counts the operations done on it (:data:`COUNT`)."""
+
+    __slots__ = ("v",)
+
+    def __init__(self, v):
+        self.v = float(_v(v))
+
+    def _op(self, other, f):
+        COUNT["flop"] += 1
+        return Counted(f(self.v, _v(other)))
+
+    def __add__(self, o): return self._op(o, lambda a, b: a + b)          # noqa: E704
+    def __radd__(self, o): return self._op(o, lambda a, b: b + a)         # noqa: E704
+    def __sub__(self, o): return self._op(o, lambda a, b: a - b)          # noqa: E704
+    def __rsub__(self, o): return self._op(o, lambda a, b: b - a)         # noqa: E704
+    def __mul__(self, o): return self._op(o, lambda a, b: a * b)          # noqa: E704
+    def __rmul__(self, o): return self._op(o, lambda a, b: b * a)         # noqa: E704
+    def __truediv__(self, o): return self._op(o, lambda a, b: a / b)      # noqa: E704
+    def __rtruediv__(self, o): return self._op(o, lambda a, b: b / a)     # noqa: E704
+    def __neg__(self): return Counted(-self.v)                            # noqa: E704
+    def __pos__(self): return self                                        # noqa: E704
+    def __abs__(self): return Counted(abs(self.v))                        # noqa: E704
+    def __float__(self): return self.v                                    # noqa: E704
+    def __lt__(self, o): return self.v < _v(o)                            # noqa: E704
+    def __le__(self, o): return self.v <= _v(o)                           # noqa: E704
+    def __gt__(self, o): return self.v > _v(o)                            # noqa: E704
+    def __ge__(self, o): return self.v >= _v(o)                           # noqa: E704
+    def __eq__(self, o): return self.v == _v(o)                           # noqa: E704
+    def __ne__(self, o): return self.v != _v(o)                           # noqa: E704
+    __hash__ = None
+
+    def __pow__(self, k):
+        if k != 2:
+            raise ValueError("only squares are counted")
+        return self * self
+
+    def sqrt(self):                         # np.sqrt on an object array calls it
+        return _sqrt(self)
+
+
+def _sqrt(x):
+    COUNT["flop"] += 1
+    return Counted(math.sqrt(_v(x)))
+
+
+def _call(name, f):
+    def g(*args):
+        COUNT[name] += 1
+        return Counted(f(*(_v(a) for a in args)))
+    return g
+
+
+MATH = {"sqrt": _sqrt, "sin": _call("sin", math.sin), "cos": _call("cos", math.cos),
+        "arctan2": _call("atan2", math.atan2)}
+
+
+def counted(x):
+    """Floats (and float arrays, recursively in tuples) as :class:`Counted`."""
+    if isinstance(x, np.ndarray) and x.dtype.kind == "f":
+        out = np.empty(x.shape, dtype=object)
+        for idx, v in np.ndenumerate(x):
+            out[idx] = Counted(v)
+        return out
+    if isinstance(x, float):
+        return Counted(x)
+    return x
+
+
+def objects(*shape, fill=0.0):
+    out = np.empty(shape, dtype=object)
+    out.fill(Counted(fill))
+    return out
+
+
+def _formulas():
+    from offshore_crane.dynamics.backends import bind
+
+    if not _BOUND:
+        _BOUND.append(bind(MATH))
+    return _BOUND[0]
+
+
+_BOUND: list = []
+
+
+def _state(robot, seed=0):
+    from offshore_crane.dynamics.constants import robot_arrays
+    from offshore_crane.dynamics.formulas import KaneConstants
+
+    C = robot_arrays(robot).kane
+    C = KaneConstants(*(counted(x) for x in C))
+    rng = np.random.default_rng(seed)
+    q = robot.home_pose() + np.r_[rng.uniform(-0.02, 0.02, 6), rng.uniform(-0.5, 0.5, 3)]
+    qd, qdd = rng.uniform(-0.3, 0.3, 9), rng.uniform(-1.0, 1.0, 9)
+    g = tuple(Counted(x) for x in (0.0, 0.0, -9.81))
+    return C, [Counted(x) for x in q], [Counted(x) for x in qd], [Counted(x) for x in qdd], g
+
+
+def fused_kane(robot) -> Counter:
+    """One sample of the fused Kane kernel: the formulas, the 6x6 solve with its
+    condition number."""
+    from offshore_crane.dynamics import linear
+    from offshore_crane.dynamics.formulas import DIAG_ROWS, STORE_WIDTH
+    from offshore_crane.robot.kinematics.formulas import LEG_MODEL_CODES
+
+    F = _formulas()
+    C, q, qd, qdd, g = _state(robot)
+    COUNT.clear()
+    rows, A, rhs = [Counted(0.0)] * 3, objects(6, 6), objects(6)
+    diag, store = objects(DIAG_ROWS, 6), objects(max(C.n_arm, 1), STORE_WIDTH)
+    F.kane_sample(C, q, qd, qdd, g, False, LEG_MODEL_CODES["full"], True, rows, A, rhs,
+                  diag, store)
+    linear.solve6.py_func(A, rhs, objects(6), objects(6, 13), True)
+    return Counter(COUNT)
+
+
+def _explicit(robot, want_mass: bool, qdd_zero: bool):
+    from offshore_crane.dynamics.formulas import DIAG_ROWS, STORE_WIDTH
+
+    F = _formulas()
+    C, q, qd, qdd, g = _state(robot)
+    if qdd_zero:
+        qdd = [Counted(0.0)] * 9
+    COUNT.clear()
+    B, J, Mm = objects(9), objects(6, 6), objects(9, 9)
+    F.explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm,
+                      objects(max(C.n_arm, 1), STORE_WIDTH), objects(9, 3), objects(9, 3),
+                      objects(9, 3), objects(DIAG_ROWS, 6), objects(1, 3))
+    return C, B, J, Mm
+
+
+def explicit_kane(robot) -> Counter:
+    """One sample of the explicit Kane kernel: the explicit pass, the leg system, the
+    6x6 solve with its condition number."""
+    from offshore_crane.dynamics import linear
+
+    C, B, J, _ = _explicit(robot, False, False)
+    A, rhs = objects(6, 6), objects(6)
+    linear.leg_system.py_func(B, J, Counted(1.0) / C.L, A, rhs)
+    linear.solve6.py_func(A, rhs, objects(6), objects(6, 13), True)
+    return Counter(COUNT)
+
+
+def forward_dynamics(robot) -> Counter:
+    """One sample of forward dynamics: the explicit pass at q̈ = 0 with the mass matrix,
+    ``A X − h``, the Cholesky solve."""
+    from offshore_crane.dynamics import linear
+
+    C, B, J, Mm = _explicit(robot, True, True)
+    rhs, X = objects(9), counted(np.linspace(-50.0, 50.0, 9))
+    linear.actuation_minus_bias.py_func(B, J, X, C.n_arm, rhs)
+    linear.cholesky_solve.py_func(Mm, rhs, 6 + C.n_arm, objects(9), objects(9, 9))
+    return Counter(COUNT)
+
+
+def rk4_step(robot) -> Counter:
+    """One RK4 step under computed torque (the simulation loop): four stages of the
+    control law (one explicit Kane sample) and forward dynamics, and the state update
+    (4 stage combinations of 18 states: 4 x 18 x ~4 flops)."""
+    law, fd = explicit_kane(robot), forward_dynamics(robot)
+    total = Counter()
+    for _ in range(4):
+        total.update(law)
+        total.update(fd)
+    total["flop"] += 4 * 18 * 4
+    return total

@@ -1,0 +1,173 @@
+"""Roofline of the compiled kernels: how far each is from what this machine can do.
+
+For each kernel: the floating-point operations of one sample, counted by running its one
+text on counting numbers (benchmarks/_flops.py: ``+ - * / sqrt``, the branch the sample
+takes; ``sin``/``cos``/``atan2`` listed apart), the time of one sample measured in this
+run (N samples, one thread, the default checks), hence the achieved GFLOP/s, against:
+
+- the **peak of one core**: a dense float64 matrix product in NumPy/BLAS with one BLAS
+  thread (2 n³ operations; vector units and fused multiply-adds: the machine's roof);
+- the **scalar roof**: that peak over the vector width in doubles read from the CPU's
+  flags (8 with AVX-512, 4 with AVX2, else 2): what code that does not use the vector
+  units can reach at best;
+- the **memory roof**: a large array copy's bandwidth times the kernel's arithmetic
+  intensity (operations per byte of its inputs and outputs, 8 bytes a double).
+
+Verdict per kernel, by rule: *memory-bound* when the memory roof at its intensity is
+below the scalar roof and it reaches half of it; otherwise *latency-bound* when it stays
+under the scalar roof (scalar dependency chains: the vector units idle), *compute-bound*
+above it. Counts are of the text: LLVM may fold some operations (multiplications by
+constant zeros or ones), so achieved rates are upper estimates by that share.
+
+    python benchmarks/roofline.py [--n 100000] [--save]
+
+``--save`` writes benchmarks/results/roofline.json (scripts/figures.py puts the table in
+README.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import _flops  # noqa: E402
+from _saved import add_save_option, save, stamp  # noqa: E402
+
+_PEAK = """
+import time, numpy as np
+n = {n}
+a, b = np.random.default_rng(0).random((2, n, n))
+a @ b
+best = min((lambda t0: (a @ b, time.perf_counter() - t0)[1])(time.perf_counter())
+           for _ in range(5))
+print(2.0 * n ** 3 / best / 1e9)
+"""
+
+
+def peak_gflops(n: int = 1500) -> float:
+    """One core's float64 peak [GFLOP/s]: a matrix product with one BLAS thread (in a
+    subprocess: the thread count is read when NumPy's BLAS starts)."""
+    env = {**os.environ, **{k: "1" for k in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS",
+                                             "MKL_NUM_THREADS", "BLIS_NUM_THREADS")}}
+    out = subprocess.run([sys.executable, "-c", _PEAK.format(n=n)], env=env, check=True,
+                         capture_output=True, text=True)
+    return float(out.stdout.split()[-1])
+
+
+def bandwidth_gbs(mb: int = 400) -> float:
+    """Memory bandwidth [GB/s]: the best of 5 copies of an ``mb`` MB array (read + write)."""
+    a = np.ones(mb * 1024 * 1024 // 8)
+    b = np.empty_like(a)
+    best = min(_timed_once(lambda: np.copyto(b, a)) for _ in range(5))
+    return 2.0 * a.nbytes / best / 1e9
+
+
+def vector_width() -> int:
+    """Doubles per vector register, from the CPU's flags (Linux; 2 when unknown)."""
+    try:
+        flags = Path("/proc/cpuinfo").read_text().split("flags")[1].split("\n")[0].split()
+    except (OSError, IndexError):
+        return 2
+    return 8 if "avx512f" in flags else 4 if "avx2" in flags else 2
+
+
+def _timed_once(fn) -> float:
+    t0 = time.perf_counter()
+    fn()
+    return time.perf_counter() - t0
+
+
+def best_of(fn, repeat: int = 5) -> float:
+    fn()
+    return min(_timed_once(fn) for _ in range(repeat))
+
+
+def kernels(robot, n: int) -> dict:
+    """name -> (counted operations, seconds per sample, bytes per sample)."""
+    import offshore_crane as oc
+    from offshore_crane.dynamics import solve
+    from offshore_crane.simulation import Controller
+
+    t = np.arange(n) / 100.0
+    q, qd, qdd = oc.motion.trajectories.table1(t)
+    X = solve(robot, q, qd, qdd).X
+    io = 36 * 8                                       # 27 doubles in, 9 out
+    out = {
+        "fused Kane": (_flops.fused_kane(robot),
+                       best_of(lambda: solve(robot, q, qd, qdd)) / n, io),
+        "explicit Kane": (_flops.explicit_kane(robot), best_of(
+            lambda: solve(robot, q, qd, qdd, method="kane-explicit")) / n, io),
+        "forward dynamics": (_flops.forward_dynamics(robot), best_of(
+            lambda: oc.forward_dynamics(robot, q, qd, X)) / n, io),
+    }
+    duration = 2.0
+    steps = int(round(duration / 1e-3))
+    run = best_of(lambda: oc.simulate(robot, duration, oc.motion.trajectories.table1,
+                                      controller=Controller()), repeat=3)
+    out["RK4 step, computed torque"] = (_flops.rk4_step(robot), run / steps, 36 * 8)
+    return out
+
+
+def floor_us(robot, n: int) -> float:
+    """Pinocchio's rneaInParallel (1 thread, tree states given) per sample [µs]."""
+    from bench import floor_call, trajectory
+
+    q, qd, qdd = trajectory(n)
+    return best_of(floor_call(robot, q, qd, qdd)) / n * 1e6
+
+
+def main(argv=None) -> int:
+    import offshore_crane as oc
+    from offshore_crane.dynamics import warm_up
+
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--n", type=int, default=100_000, help="samples per timing")
+    add_save_option(p, "roofline")
+    args = p.parse_args(argv)
+    robot = oc.load_robot()
+    warm_up(robot, methods=("kane", "kane-explicit"))
+    peak, bw, width = peak_gflops(), bandwidth_gbs(), vector_width()
+    scalar = peak / width
+    print(f"machine: one core's peak {peak:.1f} GFLOP/s (BLAS dgemm), vector width {width} "
+          f"doubles -> scalar roof {scalar:.1f} GFLOP/s; memory copy {bw:.1f} GB/s")
+    floor = floor_us(robot, args.n)
+    print(f"reference: Pinocchio rneaInParallel(1) {floor:.3f} µs a sample (N = {args.n})")
+    head = (f"{'kernel':<27}{'flop/sample':>12}{'sin,cos':>8}{'µs/sample':>11}"
+            f"{'GFLOP/s':>9}{'% peak':>8}{'% scalar':>9}{'flop/B':>8}  verdict")
+    print(head)
+    rows = []
+    for name, (count, sec, nbytes) in kernels(robot, args.n).items():
+        flop = count["flop"]
+        rate = flop / sec / 1e9
+        intensity = flop / nbytes
+        memory_roof = intensity * bw
+        if memory_roof < scalar and rate >= 0.5 * memory_roof:
+            verdict = "memory-bound"
+        elif rate < scalar:
+            verdict = "latency-bound (scalar chains; vector units idle)"
+        else:
+            verdict = "compute-bound"
+        rows.append(dict(kernel=name, flop=flop, trig=count["sin"] + count["cos"]
+                         + count["atan2"], us=sec * 1e6, gflops=rate,
+                         peak_share=rate / peak, scalar_share=rate / scalar,
+                         intensity=intensity, verdict=verdict))
+        r = rows[-1]
+        print(f"{name:<27}{flop:>12d}{r['trig']:>8d}{r['us']:>11.3f}{rate:>9.2f}"
+              f"{100 * rate / peak:>8.1f}{100 * rate / scalar:>9.1f}{intensity:>8.1f}  "
+              f"{verdict}")
+    if args.save:
+        save("roofline", dict(**stamp(), n=args.n, peak_gflops=peak, bandwidth_gbs=bw,
+                              vector_width=width, floor_us=floor, kernels=rows))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
