@@ -368,10 +368,11 @@ def test_validation_rule(tmp_path, case):
 
 
 def test_published_inertia_as_transcribed_is_refused(tmp_path):
-    """The literature platform's lower leg inertia as transcribed breaks the triangle
-    inequality (the file explains the correction it makes)."""
+    """The literature platform's lower leg inertia read as the part's principal moments
+    (I_2_x the axial one) breaks the triangle inequality (the file explains the reading
+    it holds instead)."""
     text = LITERATURE.read_text().replace(
-        "inertia = { ixx = 2.7092491e-2, iyy = 2.2567492e-2, izz = 4.525e-3 }",
+        "inertia = { ixx = 2.728149289983384e-2, iyy = 2.728149289983384e-2, izz = 1.0e-12 }",
         "inertia = { ixx = 2.7092491e-2, iyy = 2.2567492e-2, izz = 3.2057427e-3 }")
     path = tmp_path / "hs.toml"
     path.write_text(text)
