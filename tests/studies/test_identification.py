@@ -280,8 +280,15 @@ def test_identify_from_simulated_logs(tmp_path, capsys):
     capsys.readouterr()
     out_toml = tmp_path / "identified.toml"
     assert main(["identify", "--log", str(run1), "--validate", str(run2), "--out",
-                 str(out_toml)]) == 0
+                 str(out_toml), "--excite", str(ex)]) == 0
     out = capsys.readouterr().out
+    follows = float(out.split("the log follows it within ")[1].split(" RMS")[0])
+    assert follows < 1e-4                    # computed torque tracks its reference
+    half = tmp_path / "half.csv"
+    lines = ex.read_text().splitlines()
+    half.write_text("\n".join(lines[:len(lines) // 2]) + "\n")
+    assert main(["identify", "--log", str(run1), "--excite", str(half)]) == 2
+    assert "give the excitation the log ran" in capsys.readouterr().err
     assert "every body physically consistent: yes" in out
     share = float(out.split("largest ")[-1].split(" of the peak")[0])
     assert share <= 1e-4

@@ -30,6 +30,9 @@ def add_parser(sub) -> None:
     p.add_argument("--cutoff", type=float, metavar="HZ",
                    help="low-pass the positions at this frequency and differentiate them "
                    "(default: the log's own rates if it has them, else 5 Hz)")
+    p.add_argument("--excite", metavar="EXCITE.csv",
+                   help="the excitation the log ran (what 'excite' wrote): its base "
+                   "regressor's condition number and how closely the log followed it")
     p.add_argument("--out", metavar="IDENTIFIED.toml",
                    help="write the identified robot's description: the nominal one with "
                    "every body's mass, centre of mass and inertia identified (--robot "
@@ -76,12 +79,14 @@ def run(args) -> int:
                          name="--cutoff")
     from offshore_crane.io import plan_outputs
 
-    outputs = plan_outputs({"--out": args.out}, [args.robot, args.log, args.validate],
-                           {"--out": ("toml",)})
+    outputs = plan_outputs({"--out": args.out}, [args.robot, args.log, args.validate,
+                                                 args.excite], {"--out": ("toml",)})
     scene = robot_scene(args, scenes.Scene())
     robot = scenes.load_robot(scene)
     t, q, qd, qdd, X = _log(args.log, "--log", robot, args.cutoff)
     base = ident.base_parameters(robot, gravity=scene.gravity)
+    if args.excite:
+        _excitation(args.excite, robot, base, t, q)
     R = ident.regressor(robot, q, qd, qdd, gravity=scene.gravity)
     try:
         fit = ident.fit_base(base.base_regressor(R.Y), X)
@@ -118,6 +123,28 @@ def run(args) -> int:
     if args.out:
         _write(outputs["--out"], args, robot, R, pi, base, fit, len(t))
     return 0
+
+
+def _excitation(path: str, robot, base, t, q) -> None:
+    """Print the planned excitation's condition number and the log's departure from it
+    (RMS of q − planned at the log's times, the worst coordinate)."""
+    import numpy as np
+
+    from offshore_crane.conventions import Q_COLUMNS
+    from offshore_crane.motion.trajectories import load
+    from offshore_crane.studies import identification as ident
+
+    plan = load(path)
+    if t[0] < plan.t[0] or t[-1] > plan.t[-1]:
+        raise InputError(f"--excite {path}: it spans t = {plan.t[0]:g}..{plan.t[-1]:g} s, "
+                         f"the log {t[0]:g}..{t[-1]:g} s: give the excitation the log ran",
+                         name="--excite")
+    planned = np.column_stack([np.interp(t, plan.t, plan.q[:, j]) for j in range(9)])
+    rms = np.sqrt(np.mean((q - planned) ** 2, axis=0))
+    j = int(np.argmax(rms))
+    print(f"excitation {path}: base regressor condition number "
+          f"{ident.excitation_condition(robot, plan, base):.4g} as planned; the log follows "
+          f"it within {rms[j]:.3g} RMS (worst coordinate {Q_COLUMNS[j]})")
 
 
 def _write(target, args, robot, R, pi, base, fit, n) -> None:
