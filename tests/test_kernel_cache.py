@@ -92,3 +92,82 @@ def test_njit_keeps_numbas_forms():
     assert type(cached._cache).__name__ == "RecoveringCache"
     assert isinstance(cached._cache, FunctionCache)
     assert type(plain._cache).__name__ == "NullCache"
+
+
+RACE = '''
+import sys, time
+from numba.core import caching
+from offshore_crane import kernel_cache
+import mod
+
+# widen the race: Numba's save reads the index, picks the new entry's data file name,
+# then writes the index; a pause before that write lets the other processes read the
+# same index (without the entry's lock they would all pick data file 1)
+save_index = caching.IndexDataCacheFile._save_index
+caching.IndexDataCacheFile._save_index = lambda self, o: (time.sleep(0.5), save_index(self, o))
+start = float(sys.argv[1])
+while time.time() < start:          # both processes compile at the same moment
+    time.sleep(0.001)
+x = {"float": 3.0, "int": 3, "complex": 3 + 0j}[sys.argv[2]]
+print(mod.kernel(x), kernel_cache.COMPILED[0])
+'''
+
+LOAD = '''
+from offshore_crane import kernel_cache
+import mod
+print(mod.kernel(3.0), mod.kernel(3), mod.kernel(3 + 0j), kernel_cache.COMPILED[0])
+'''
+
+
+def _script(where: Path, code: str, *args, cache: Path | None = None):
+    env = {**os.environ, "PYTHONPATH": f"{SRC}{os.pathsep}{where}"}
+    env.pop("NUMBA_CACHE_DIR", None)
+    if cache is not None:
+        env["NUMBA_CACHE_DIR"] = str(cache)
+    return subprocess.Popen([sys.executable, "-c", code, *map(str, args)], cwd=where,
+                            env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+
+
+def test_processes_compiling_at_once_keep_every_signature_and_a_copied_cache_loads(tmp_path):
+    """Three processes compile three signatures of one kernel at the same moment into one
+    cache (what ``offshore-crane compile``'s workers and a sweep's do): a fourth process
+    then loads all three without compiling (the entry's lock keeps Numba from giving two
+    signatures one data file); so does a process reading a copy of that cache folder
+    elsewhere (NUMBA_CACHE_DIR), as on another machine of the same architecture."""
+    import shutil
+    import time
+
+    (tmp_path / "mod.py").write_text(MODULE)
+    cache = tmp_path / "cache"
+    start = time.time() + 3.0                   # after the three have imported Numba
+    procs = [_script(tmp_path, RACE, start, kind, cache=cache)
+             for kind in ("float", "int", "complex")]
+    outs = [p.communicate(timeout=120) for p in procs]
+    assert all(p.returncode == 0 for p in procs), [o[1] for o in outs]
+    assert [o[0].split()[1] for o in outs] == ["1", "1", "1"]     # each compiled its own
+    for where in (cache, tmp_path / "copied"):
+        if where != cache:
+            shutil.copytree(cache, where)
+        p = _script(tmp_path, LOAD, cache=where)
+        out, err = p.communicate(timeout=120)
+        assert p.returncode == 0, err
+        assert out.split() == ["7.0", "7.0", "(7+0j)", "0"], (out, err)
+
+
+def test_compile_runs_its_groups_and_refuses_no_workers(capsys):
+    """``offshore-crane compile`` (warm here: every group loads from the cache): each
+    group reported once; ``--jobs 0`` is one line, exit 2."""
+    from offshore_crane.__main__ import main
+    from offshore_crane.cli.compile import PARTS
+
+    assert main(["compile", "--jobs", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "compiled kernels ready in" in out
+    lines = out.splitlines()
+    assert all(sum(line.startswith(f"{name}:") for line in lines) == 1 for name in
+               ("kane kernels", "rnea kernels", "simulation loop", "hanging-load kernels"))
+    assert len(PARTS) == 6
+    assert main(["compile", "--jobs", "0"]) == 2
+    err = capsys.readouterr().err
+    assert "--jobs 0: give at least 1" in err and err.count("\n") == 1

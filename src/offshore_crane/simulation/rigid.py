@@ -290,9 +290,9 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
     return res
 
 
-def warm_up(robot=None) -> list[tuple[str, float]]:
-    """Compile (or load from the cache) the simulation loops, the rigid robot's and the
-    hanging load's (:func:`offshore_crane.simulation.swing.warm_up`):
+def warm_up(robot=None, swing: bool = True) -> list[tuple[str, float]]:
+    """Compile (or load from the cache) the simulation loops, the rigid robot's and, with
+    ``swing``, the hanging load's (:func:`offshore_crane.simulation.swing.warm_up`):
     ``[(name, seconds), ...]``."""
     import time
 
@@ -303,4 +303,5 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     robot = robot or load_robot()
     t0 = time.perf_counter()
     simulate(robot.without_hanging_payload(), 2e-3, table1, step=1e-3)
-    return [("simulation loop", time.perf_counter() - t0)] + warm_up_swing(robot)
+    return [("simulation loop", time.perf_counter() - t0)] + (
+        warm_up_swing(robot) if swing else [])
