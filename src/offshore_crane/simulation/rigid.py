@@ -62,7 +62,7 @@ def _loop():
     imports Numba: loaded on first use)."""
     from offshore_crane.simulation import rk4 as _rk4
 
-    return _rk4.run, _rk4.law, _rk4.accel
+    return _rk4.run, _rk4.law, _rk4.accel, _rk4.SHARED
 
 
 # --------------------------------------------------------------------------- public
@@ -147,6 +147,12 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
     nq = rng.normal(size=(n_ctrl, 9)) * sq
     nqd = rng.normal(size=(n_ctrl, 9)) * sqd
     n_out = n_steps // out_every + 1
+    kind = LAW_CODES[controller.law]
+    if (controller.law == "computed-torque" and hold == 0 and all(
+            np.array_equal(a, b) for a, b in ((plant.flat, model.flat), (plant.layout,
+                                              model.layout), (plant.prismatic,
+                                                              model.prismatic)))):
+        kind = _loop()[3]                          # one explicit pass a stage serves both
     rec = Recording.empty(n_out)
     health = ws.new_health()
     status = np.zeros(3, dtype=np.int64)
@@ -154,7 +160,7 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
         lambda: run(Packed(plant.flat, plant.layout, plant.prismatic),
                     Packed(model.flat, model.layout, model.prismatic), g, step, n_steps,
                     out_every, StageGrid(qr, qdr, qddr),
-                    LawParameters(LAW_CODES[controller.law], kp, kd, hold, nq, nqd, lo, hi),
+                    LawParameters(kind, kp, kd, hold, nq, nqd, lo, hi),
                     limits, q0, qd0, rec, health, status),
         lambda: status[2], n_out, "sample", "simulate")
     n_done = int(status[2])
@@ -232,7 +238,7 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
     from offshore_crane.errors import require
 
     integrate = require("scipy.integrate", "scipy", "The DOP853 integrator")
-    _, law, accel = _loop()
+    _, law, accel, _ = _loop()
     from offshore_crane.dynamics.constants import robot_arrays
 
     plant = robot_arrays(robot)

@@ -21,6 +21,10 @@ STAMP = c.STAMP
 jit = njit(**c.JIT)
 OK, WORKSPACE, SINGULAR, DIVERGED = 0, 1, 2, 3
 _VIOLATION = 3
+#: The law code of computed torque on the plant's own model with the law applied at
+#: every stage (:func:`offshore_crane.simulation.rigid.simulate` chooses it): one
+#: explicit pass a stage serves the law and the accelerations (:func:`_helpers`' ``ct``).
+SHARED = 4
 
 
 def _helpers(stamp):
@@ -72,24 +76,88 @@ def _helpers(stamp):
                 Xout[j] += kp[j] * (posr[j] - pos[j]) + kd[j] * (rater[j] - rate[j])
 
     @jit
-    def accel(C, g, n, q, qd, X, qdd, ws):
-        """q̈ from the equations of motion into ``qdd``; False when M is singular."""
+    def equations(C, g, q, qd, ws):
+        """The explicit pass at ``q, q̇`` and q̈ = 0 into ``ws``: M (lower triangle), h,
+        the leg Jacobian J, the checks' record and the mass moments."""
         if len(stamp) == 0:
-            return False
+            return
         B, J, Mm, L, store, Vw, Ww, Vs, diag, mc, rhs, x, zero = ws
         B[:] = 0.0
         Mm[:] = 0.0
         explicit_sample(C, q, qd, zero, g, True, B, J, Mm, store, Vw, Ww, Vs, diag, mc)
+
+    @jit
+    def solve(n, X, qdd, ws):
+        """q̈ of ``M q̈ + h = A X`` from the pass in ``ws`` into ``qdd``; False when M is
+        singular."""
+        if len(stamp) == 0:
+            return False
+        B, J, Mm, L, store, Vw, Ww, Vs, diag, mc, rhs, x, zero = ws
         actuation_minus_bias(B, J, X, n - 6, rhs)
         ok = cholesky_solve(Mm, rhs, n, x, L)
         for j in range(9):
             qdd[j] = x[j] if j < n else 0.0
         return ok
 
-    return law, accel
+    @jit
+    def accel(C, g, n, q, qd, X, qdd, ws):
+        """q̈ from the equations of motion into ``qdd``; False when M is singular."""
+        if len(stamp) == 0:
+            return False
+        equations(C, g, q, qd, ws)
+        return solve(n, X, qdd, ws)
+
+    @jit
+    def ct(C, n, kp, kd, q, qd, qr, qdr, qddr, Xout, ws, wl):
+        """Computed torque on the plant's own model from the pass already in ``ws`` (the
+        one the accelerations use): ``B = M q̈_cmd + h`` (M's lower triangle), ``(T1, T2,
+        Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]`` solved as :func:`law` solves it. Equal to
+        :func:`law`'s computed torque to round-off (its own explicit pass at q̈_cmd gives
+        the same ``M q̈_cmd + h``), without that pass."""
+        if len(stamp) == 0:
+            return
+        h, J, Mm = ws[0], ws[1], ws[2]
+        Bc, A, rhs, x, M13, qdd_c = wl[0], wl[9], wl[10], wl[11], wl[12], wl[14]
+        for j in range(9):
+            qdd_c[j] = qddr[j] + kd[j] * (qdr[j] - qd[j]) + kp[j] * (qr[j] - q[j])
+            Xout[j] = 0.0
+        for r in range(9):
+            f = h[r]
+            if r < n:
+                for c_ in range(n):
+                    f += (Mm[r, c_] if c_ <= r else Mm[c_, r]) * qdd_c[c_]
+            Bc[r] = f
+        for b in range(n - 6):
+            Xout[b] = Bc[6 + b]
+        leg_system(Bc, J, 1.0 / C.L, A, rhs)
+        solve6(A, rhs, x, M13, False)
+        for l in range(6):
+            Xout[3 + l] = x[l]
+
+    @jit
+    def stage(shared, C, Cc, g, n, kind, kp, kd, hold, q, qd, qr, qdr, qddr, lo, hi, Xc,
+              Xa, qdd, ws, wl):
+        """One RK4 stage after the first: the law at every stage (``hold`` 0: with the
+        pass shared when ``shared``, :data:`SHARED`) or the held forces, clamped into
+        ``Xa``, and q̈ into ``qdd``; False when M is singular."""
+        if len(stamp) == 0:
+            return False
+        if shared:
+            equations(C, g, q, qd, ws)
+            ct(C, n, kp, kd, q, qd, qr, qdr, qddr, Xc, ws, wl)
+        elif hold == 0:
+            law(Cc, g, kind, kp, kd, q, qd, qr, qdr, qddr, Xc, wl)
+        if shared or hold == 0:
+            for j in range(9):
+                Xa[j] = min(max(Xc[j], lo[j]), hi[j])
+        if shared:
+            return solve(n, Xa, qdd, ws)
+        return accel(C, g, n, q, qd, Xa, qdd, ws)
+
+    return law, accel, equations, solve, ct, stage
 
 
-law, accel = _helpers(STAMP)
+law, accel, equations, solve, ct, stage = _helpers(STAMP)
 
 
 def _runner(stamp):
@@ -108,6 +176,7 @@ def _runner(stamp):
         fc, lc, pc = model
         qr, qdr, qddr = reference
         kind, kp, kd, hold, nq, nqd, lo, hi = gains
+        shared = kind == SHARED                 # hold is 0 then (rigid.simulate)
         Q, QD, QDD, QR, QDR, XC, XA, SAT, E, P = record
         C, lim_arm, lim_stroke, lim_ujoint = unpack(fp, lp, pp)
         Cc = unpack(fc, lc, pc)[0]
@@ -149,11 +218,18 @@ def _runner(stamp):
                     qdm[j] = qd[j] + (nqd[ctrl, j] if hold > 0 else 0.0)
                 if hold > 0:
                     ctrl += 1
-                law(Cc, gt, kind, kp, kd, qm, qdm, qr[i0], qdr[i0], qddr[i0], Xc, wl)
+                if shared:
+                    equations(C, gt, q, qd, ws)
+                    ct(C, n, kp, kd, q, qd, qr[i0], qdr[i0], qddr[i0], Xc, ws, wl)
+                else:
+                    law(Cc, gt, kind, kp, kd, qm, qdm, qr[i0], qdr[i0], qddr[i0], Xc, wl)
                 for j in range(9):
                     sat[j] = Xc[j] < lo[j] or Xc[j] > hi[j]
                     Xa[j] = min(max(Xc[j], lo[j]), hi[j])
-            ok = accel(C, gt, n, q, qd, Xa, k1v, ws)
+            if shared:
+                ok = solve(n, Xa, k1v, ws)
+            else:
+                ok = accel(C, gt, n, q, qd, Xa, k1v, ws)
             diag, mc, Mm, J = ws[8], ws[9], ws[2], ws[1]
             finite = ok
             for j in range(9):
@@ -200,30 +276,18 @@ def _runner(stamp):
             k1q[:] = qd
             rk4_stage(q, k1q, 0.5 * h, qs)
             rk4_stage(qd, k1v, 0.5 * h, qds)
-            if hold == 0:
-                law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], Xc,
-                    wl)
-                for j in range(9):
-                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
-            accel(C, gt, n, qs, qds, Xa, k2v, ws)
+            stage(shared, C, Cc, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 1], qdr[i0 + 1],
+                  qddr[i0 + 1], lo, hi, Xc, Xa, k2v, ws, wl)
             k2q[:] = qds
             rk4_stage(q, k2q, 0.5 * h, qs)
             rk4_stage(qd, k2v, 0.5 * h, qds)
-            if hold == 0:
-                law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], Xc,
-                    wl)
-                for j in range(9):
-                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
-            accel(C, gt, n, qs, qds, Xa, k3v, ws)
+            stage(shared, C, Cc, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 1], qdr[i0 + 1],
+                  qddr[i0 + 1], lo, hi, Xc, Xa, k3v, ws, wl)
             k3q[:] = qds
             rk4_stage(q, k3q, h, qs)
             rk4_stage(qd, k3v, h, qds)
-            if hold == 0:
-                law(Cc, gt, kind, kp, kd, qs, qds, qr[i0 + 2], qdr[i0 + 2], qddr[i0 + 2], Xc,
-                    wl)
-                for j in range(9):
-                    Xa[j] = min(max(Xc[j], lo[j]), hi[j])
-            accel(C, gt, n, qs, qds, Xa, k4v, ws)
+            stage(shared, C, Cc, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 2], qdr[i0 + 2],
+                  qddr[i0 + 2], lo, hi, Xc, Xa, k4v, ws, wl)
             rk4_combine(q, h, k1q, k2q, k3q, qds)              # k4 of q is the stage's q̇
             rk4_combine(qd, h, k1v, k2v, k3v, k4v)
 
