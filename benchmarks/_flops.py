@@ -183,13 +183,26 @@ def forward_dynamics(robot) -> Counter:
 
 
 def rk4_step(robot) -> Counter:
-    """One RK4 step under computed torque (the simulation loop): four stages of the
-    control law (one explicit Kane sample) and forward dynamics, and the state update
-    (4 stage combinations of 18 states: 4 x 18 x ~4 flops)."""
-    law, fd = explicit_kane(robot), forward_dynamics(robot)
+    """One RK4 step under computed torque on the plant's own model (the simulation loop's
+    shared pass, simulation/rk4.py): four stages of forward dynamics (the explicit pass
+    with the mass matrix, the Cholesky solve) plus the law from that pass (q̈_cmd: 5
+    flops a coordinate; ``M q̈_cmd + h``: 2 n² + ... for n = 9 at most; the leg system and
+    its 6x6 solve, counted), and the state update (4 stage combinations of 18 states:
+    4 x 18 x 4 flops)."""
+    from offshore_crane.dynamics import linear
+
+    fd = forward_dynamics(robot)
+    C, B, J, _ = _explicit(robot, False, True)
+    COUNT.clear()
+    A, rhs = objects(6, 6), objects(6)
+    linear.leg_system.py_func(B, J, Counted(1.0) / C.L, A, rhs)
+    linear.solve6.py_func(A, rhs, objects(6), objects(6, 13), False)
+    n = 6 + C.n_arm
+    law = Counter(COUNT)
+    law["flop"] += 5 * 9 + 2 * n * n
     total = Counter()
     for _ in range(4):
-        total.update(law)
         total.update(fd)
+        total.update(law)
     total["flop"] += 4 * 18 * 4
     return total
