@@ -4,13 +4,16 @@ Times, in µs per sample, for N seeded random states (q within the joint limits,
 uniform in [-2, 2]):
 
 * ``kane``: :func:`offshore_crane.serial.inverse_dynamics`, one call on the whole batch
-  (NumPy, vectorised over samples);
+  (compiled, the default: the arm recursion's text in one Numba loop over samples);
+* ``kane numpy``: the same with ``backend="numpy"`` (vectorised over samples);
 * ``rnea loop``: ``pin.rnea`` called once per sample from Python;
 * ``rneaInParallel(1)``: ``pin.rneaInParallel`` with one thread on ``(nq, N)`` /
   ``(nv, N)`` Fortran-ordered arrays (C++ loop over samples).
 
-Every time is the best of several repeats (fewer for large N). The three results are
-compared: the table's last column is the largest ``|τ_kane − τ_rnea|``.
+Every time is the best of several repeats (fewer for large N). The results are
+compared: the table's last column is the largest ``|τ_kane − τ_rnea|``. Issue 25's
+targets, printed per robot: compiled Kane ≤ 1 × ``rneaInParallel(1)`` a sample at
+N ≥ 10⁴ and ≤ 3 × one ``pin.rnea`` call at N = 1.
 
 Usage::
 
@@ -41,10 +44,20 @@ import pinocchio as pin
 
 ROBOTS_DIR = Path(importlib.metadata.distribution("example-robot-data").locate_file(
     "cmeel.prefix/share/example-robot-data/robots"))
+#: The robots the tests use (tests/serial/test_serial.py).
 ROBOTS = [("UR5", "ur_description/urdf/ur5_robot.urdf", None),
-          ("Panda", "panda_description/urdf/panda.urdf", "panda_hand")]
-COLUMNS = ["robot", "joints", "N", "kane_us", "rnea_loop_us", "rnea_parallel1_us",
-           "kane_over_rnea_loop", "max_abs_diff"]
+          ("UR10", "ur_description/urdf/ur10_robot.urdf", None),
+          ("Panda", "panda_description/urdf/panda.urdf", "panda_hand"),
+          ("Panda5", "panda_description/urdf/panda.urdf", "panda_link5"),
+          ("Kinova", "kinova_description/robots/kinova.urdf", None),
+          ("SO100", "so_arm_description/urdf/so100.urdf", None),
+          ("SO101", "so_arm_description/urdf/so101.urdf", None),
+          ("xArm7", "xarm_description/urdf/xarm7.urdf", None),
+          ("Z1", "z1_description/urdf/z1.urdf", None),
+          ("pend2", "double_pendulum_description/urdf/double_pendulum_continuous.urdf",
+           None)]
+COLUMNS = ["robot", "joints", "N", "kane_us", "kane_numpy_us", "rnea_loop_us",
+           "rnea_parallel1_us", "kane_over_rnea_loop", "kane_over_parallel1", "max_abs_diff"]
 
 
 def best_time(fn, n_samples: int) -> float:
@@ -77,6 +90,9 @@ def bench_robot(label: str, path: Path, tip, sizes) -> list[dict]:
         def kane():
             out["kane"] = serial.inverse_dynamics(chain, q, qd, qdd)
 
+        def kane_numpy():
+            serial.inverse_dynamics(chain, q, qd, qdd, backend="numpy")
+
         def rnea_loop():
             out["loop"] = [pin.rnea(model, data, Q[i], qd[i], qdd[i]).copy() for i in range(N)]
 
@@ -84,34 +100,51 @@ def bench_robot(label: str, path: Path, tip, sizes) -> list[dict]:
             pin.rneaInParallel(1, pool, QF, VF, AF, TAU)
 
         t_kane = best_time(kane, N)
+        t_numpy = best_time(kane_numpy, N) if N <= 10_000 or chain.n <= 7 else np.nan
         t_loop = best_time(rnea_loop, N)
         t_par = best_time(rnea_parallel, N)
         loop = np.array(out["loop"])
         diff = max(np.abs(out["kane"] - loop).max(), np.abs(TAU.T - loop).max())
         rows.append({"robot": label, "joints": chain.n, "N": N,
-                     "kane_us": 1e6 * t_kane / N, "rnea_loop_us": 1e6 * t_loop / N,
-                     "rnea_parallel1_us": 1e6 * t_par / N,
-                     "kane_over_rnea_loop": t_kane / t_loop, "max_abs_diff": diff})
+                     "kane_us": 1e6 * t_kane / N, "kane_numpy_us": 1e6 * t_numpy / N,
+                     "rnea_loop_us": 1e6 * t_loop / N, "rnea_parallel1_us": 1e6 * t_par / N,
+                     "kane_over_rnea_loop": t_kane / t_loop,
+                     "kane_over_parallel1": t_kane / t_par, "max_abs_diff": diff})
         print_row(rows[-1])
     return rows
 
 
 def print_header() -> None:
-    print(f"{'robot':<6} {'n':>2} {'N':>7}  {'Kane [µs]':>10}  {'pin.rnea loop [µs]':>18}  "
-          f"{'rneaInParallel(1) [µs]':>22}  {'Kane/loop':>9}  {'max|Δτ|':>9}")
+    print(f"{'robot':<7}{'n':>2} {'N':>7}  {'Kane [µs]':>10} {'NumPy [µs]':>10}  "
+          f"{'pin.rnea loop':>13}  {'rneaInParallel(1)':>17}  {'/loop':>6} {'/par.':>6}  "
+          f"{'max|Δτ|':>8}")
 
 
 def print_row(r: dict) -> None:
-    print(f"{r['robot']:<6} {r['joints']:>2} {r['N']:>7}  {r['kane_us']:>10.3f}  "
-          f"{r['rnea_loop_us']:>18.3f}  {r['rnea_parallel1_us']:>22.3f}  "
-          f"{r['kane_over_rnea_loop']:>9.2f}  {r['max_abs_diff']:>9.1e}", flush=True)
+    print(f"{r['robot']:<7}{r['joints']:>2} {r['N']:>7}  {r['kane_us']:>10.3f} "
+          f"{r['kane_numpy_us']:>10.3f}  {r['rnea_loop_us']:>13.3f}  "
+          f"{r['rnea_parallel1_us']:>17.3f}  {r['kane_over_rnea_loop']:>6.2f} "
+          f"{r['kane_over_parallel1']:>6.2f}  {r['max_abs_diff']:>8.1e}", flush=True)
+
+
+def targets(rows: list[dict]) -> None:
+    """Issue 25's targets per robot: ≤ 3 × one pin.rnea call at N = 1, ≤ 1 ×
+    rneaInParallel(1) a sample at every N ≥ 10⁴ measured."""
+    for label in dict.fromkeys(r["robot"] for r in rows):
+        mine = [r for r in rows if r["robot"] == label]
+        one = [r["kane_over_rnea_loop"] for r in mine if r["N"] == 1]
+        big = [r["kane_over_parallel1"] for r in mine if r["N"] >= 10_000]
+        print(f"{label:<7} N = 1: {one[0] if one else float('nan'):.2f} × pin.rnea (≤ 3: "
+              f"{'met' if one and one[0] <= 3 else 'NOT met'}); N ≥ 10⁴: "
+              f"{max(big) if big else float('nan'):.2f} × rneaInParallel(1) (≤ 1: "
+              f"{'met' if big and max(big) <= 1 else 'NOT met'})")
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("csv", nargs="?", default="bench_serial.csv",
                         help="output CSV (default bench_serial.csv)")
-    parser.add_argument("--sizes", type=int, nargs="+", default=[1, 100, 10_000, 100_000],
+    parser.add_argument("--sizes", type=int, nargs="+", default=[1, 10_000, 100_000],
                         help="batch sizes N")
     args = parser.parse_args(argv)
     print(f"µs per sample (best of repeats); numpy {np.__version__}, pinocchio "
@@ -120,6 +153,7 @@ def main(argv=None) -> int:
     rows = []
     for label, rel, tip in ROBOTS:
         rows += bench_robot(label, ROBOTS_DIR / rel, tip, args.sizes)
+    targets(rows)
     with open(args.csv, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=COLUMNS)
         writer.writeheader()

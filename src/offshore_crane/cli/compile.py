@@ -24,6 +24,7 @@ PARTS = {
     "simulation loop": ("offshore_crane.simulation.rigid", "warm_up", {"swing": False}, 14),
     "rnea kernels": ("offshore_crane.dynamics", "warm_up",
                      {"methods": ("rnea",), "forward": False}, 8),
+    "serial chain kernels": ("offshore_crane.serial.core", "warm_up", {}, 10),
 }
 
 

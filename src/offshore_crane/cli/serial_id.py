@@ -68,7 +68,10 @@ def run(args) -> int:
         raise InputError(f"--random must be at least 1, got {args.random}", name="--random")
     chain = load_chain(args.urdf, tip=args.tip)
     q, qd, qdd = random_states(chain, args.random, seed=args.seed)
-    tau = inverse_dynamics(chain, q, qd, qdd, gravity=GRAVITY)
+    from offshore_crane.dynamics import quick_backend
+
+    tau = inverse_dynamics(chain, q, qd, qdd, gravity=GRAVITY,   # no wait for a few samples
+                           backend=quick_backend(len(q)))
     units = ["N" if p else "N·m" for p in chain.prismatic]
     end = f" -> tip '{chain.tip}'" if chain.tip else ""
     print(f"chain: base '{chain.base_link}'{end}, {chain.n} joints"

@@ -70,7 +70,12 @@ def build(model) -> RobotArrays:
         thin_It=f(0.5 * (leg_I[:, 0, 0] + leg_I[:, 1, 1])), lo_cz=f(model.lower_com[:, 2]),
         up_cz=f(model.upper_com[:, 2]),
         L=float(np.linalg.norm(model.p_platform_S, axis=1).mean()))
-    limits = limits_of(model)
+    return pack(kane, limits_of(model))
+
+
+def pack(kane: KaneConstants, limits: Limits) -> RobotArrays:
+    """``kane`` and ``limits`` packed into one buffer (:attr:`RobotArrays.flat`, its
+    ``layout``), the constants then views into it: what the compiled kernels receive."""
     values = {**kane._asdict(), "lim_arm": limits.arm, "lim_stroke": limits.stroke,
               "lim_ujoint": limits.ujoint}
     parts = [np.asarray(values[name], dtype=float) for name in FIELDS]

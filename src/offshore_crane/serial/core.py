@@ -10,6 +10,7 @@ which Pinocchio stores as ``(cos, sin)``) and displacements [m] for prismatic jo
 from __future__ import annotations
 
 import os
+import weakref
 from pathlib import Path
 
 import numpy as np
@@ -177,7 +178,8 @@ def _rotations(name: str, x, N: int) -> np.ndarray:
 
 
 def inverse_dynamics(chain: SerialChain, q, qd, qdd, gravity=GRAVITY, wrench=None,
-                     frame: str | None = None, base_pose=None) -> np.ndarray:
+                     frame: str | None = None, base_pose=None,
+                     backend: str = "auto") -> np.ndarray:
     """Joint torques and forces of a fixed-base serial chain by Kane's method.
 
     The arm recursion of the hybrid robot's formulas (paper Eqs. 27-30,
@@ -210,9 +212,18 @@ def inverse_dynamics(chain: SerialChain, q, qd, qdd, gravity=GRAVITY, wrench=Non
         [N·m] for revolute and continuous joints, [N] for prismatic joints.
 
     Raises:
-        InputError: wrong shapes, non-finite values, a base rotation that is not one.
+        InputError: wrong shapes, non-finite values, a base rotation that is not one, an
+            unknown backend.
         ModelError: ``frame`` is not a link of the chain.
+        BackendMissingError: ``backend="numba"`` without Numba.
     """
+    if wrench is None and base_pose is None and backend in ("auto", "numba"):
+        tau = _single(chain, q, qd, qdd, gravity)      # one plain sample: the short way
+        if tau is not None:
+            return tau
+    from offshore_crane.dynamics.runtime import resolve_backend
+
+    backend = resolve_backend(backend)
     n = chain.n
     q, single = as_samples("q", q, n)
     qd, _ = as_samples("qd", qd, n)
@@ -240,8 +251,79 @@ def inverse_dynamics(chain: SerialChain, q, qd, qdd, gravity=GRAVITY, wrench=Non
             raise ModelError(f"the wrench frame '{name}' is not a link of the chain "
                              f"(links: {', '.join(chain.frames)})", element=name)
         load = (name, F, M)
-    tau = _solve(chain, q, qd, qdd, g, R_b, load)
+    tau = (_compiled(chain, q, qd, qdd, g, R_b, load) if backend == "numba"
+           else _solve(chain, q, qd, qdd, g, R_b, load))
     return tau[0] if single else tau
+
+
+def _single(chain: SerialChain, q, qd, qdd, gravity):
+    """One sample given as three ``(n,)`` (or ``(1, n)``) float arrays, no wrench, no
+    base pose, finite, Numba installed: the compiled sample called with no more checking
+    than that (the general path's validation costs ~15 µs a call, the sample ~1.5 µs);
+    None otherwise (the general path then validates, and raises what it finds)."""
+    n = chain.n
+    if not (type(q) is type(qd) is type(qdd) is np.ndarray and q.shape == qd.shape
+            == qdd.shape and q.shape in ((n,), (1, n)) and q.dtype == qd.dtype
+            == qdd.dtype == np.float64):
+        return None
+    if not _KERNEL:
+        from offshore_crane.dynamics.runtime import numba_available
+
+        if not numba_available():
+            return None
+        from offshore_crane.serial import kernels
+
+        _KERNEL.append(kernels.kane_one)
+    C = _CONSTANTS.get(id(chain)) or _constants(chain)
+    tau = np.empty(n)
+    one = q.ndim == 1
+    if not _KERNEL[0](C.flat, C.layout, C.prismatic, q if one else q[0], qd if one else qd[0],
+                      qdd if one else qdd[0], as_gravity(gravity), tau):
+        return None                                  # not finite: the general path says so
+    return tau if one else tau[None]
+
+
+#: The compiled loop, once loaded (the single-sample path looks it up once).
+_KERNEL: list = []
+
+
+def _constants(chain: SerialChain):
+    """The chain's packed constants for the compiled loop, built once per chain."""
+    C = _CONSTANTS.get(id(chain))
+    if C is None:
+        from offshore_crane.serial import kernels
+
+        C = _CONSTANTS[id(chain)] = kernels.constants(chain)
+        weakref.finalize(chain, _CONSTANTS.pop, id(chain), None)
+    return C
+
+
+def _compiled(chain: SerialChain, q, qd, qdd, g, R_b, load) -> np.ndarray:
+    """:func:`_solve`'s formulas in one compiled loop over the samples."""
+    from offshore_crane.dynamics.runtime import compiled_kernels
+
+    compiled_kernels()                                 # Numba installed, or say so
+    from offshore_crane.serial import kernels
+
+    C = _constants(chain)
+    N = q.shape[0]
+    R = np.ascontiguousarray(R_b[:1] if R_b.strides[0] == 0 else R_b)
+    k, lever, F, M = -1, np.zeros(3), np.zeros((1, 3)), np.zeros((1, 3))
+    if load is not None:
+        name, F, M = load
+        k, p_frame, _ = chain.frames[name]
+        if k >= 0:
+            lever = np.asarray(p_frame, dtype=float) - chain.com[k]
+        F, M = (np.ascontiguousarray(x[:1] if x.strides[0] == 0 else x) for x in (F, M))
+    tau = np.empty((N, chain.n))
+    kernels.kane(C.flat, C.layout, C.prismatic, np.ascontiguousarray(q), np.ascontiguousarray(qd),
+                 np.ascontiguousarray(qdd), np.asarray(g, dtype=float), R, max(k, -1),
+                 lever, F, M, tau)
+    return tau
+
+
+#: Each chain's constants for the compiled loop, by ``id`` (dropped with the chain).
+_CONSTANTS: dict = {}
 
 
 def _solve(chain: SerialChain, q, qd, qdd, g, R_b, load) -> np.ndarray:
@@ -270,3 +352,18 @@ def _solve(chain: SerialChain, q, qd, qdd, g, R_b, load) -> np.ndarray:
     rows = np.empty(n, dtype=object)
     B.arm_backward(C, store, rows)
     return np.column_stack([np.broadcast_to(r, (N,)) for r in rows])
+
+
+def warm_up() -> list[tuple[str, float]]:
+    """Compile (or load from the cache) the serial chain's loops, on the lab robot's arm
+    (the loops' types are the same for every chain): ``[(name, seconds)]``."""
+    import time
+
+    from offshore_crane.robot import load_robot
+
+    t0 = time.perf_counter()
+    chain = load_chain(load_robot().urdf, base="platform", tip="arm_tip")
+    q = np.zeros((2, chain.n))
+    inverse_dynamics(chain, q, q, q, wrench=((0.0, 0.0, 1.0), (0.0, 0.0, 0.0)))
+    inverse_dynamics(chain, q[0], q[0], q[0])
+    return [("serial chain kernels", time.perf_counter() - t0)]
