@@ -206,3 +206,23 @@ def rk4_step(robot) -> Counter:
         total.update(law)
     total["flop"] += 4 * 18 * 4
     return total
+
+
+def serial_kane(chain) -> Counter:
+    """One sample of the serial chain's compiled loop (serial/kernels.py): the arm
+    recursion forward and backward on a base at rest, no wrench."""
+    from offshore_crane.dynamics.formulas import KaneConstants, STORE_WIDTH
+    from offshore_crane.serial import kernels
+
+    F = _formulas()
+    C = KaneConstants(*(counted(x) for x in kernels.constants(chain).kane))
+    rng = np.random.default_rng(0)
+    q, qd, qdd = ([Counted(x) for x in rng.uniform(-1.0, 1.0, chain.n)] for _ in range(3))
+    one, nil = Counted(1.0), Counted(0.0)
+    R = ((one, nil, nil), (nil, one, nil), (nil, nil, one))
+    z = (nil, nil, nil)
+    COUNT.clear()
+    store = objects(chain.n, STORE_WIDTH)
+    F.arm_forward(C, R, z, z, z, q, qd, qdd, 0, (nil, nil, Counted(-9.81)), store, False)
+    F.arm_backward(C, store, objects(chain.n))
+    return Counter(COUNT)

@@ -113,6 +113,14 @@ def kernels(robot, n: int) -> dict:
     run = best_of(lambda: oc.simulate(robot, duration, oc.motion.trajectories.table1,
                                       controller=Controller()), repeat=3)
     out["RK4 step, computed torque"] = (_flops.rk4_step(robot), run / steps, 36 * 8)
+    from offshore_crane import serial
+    from bench_serial import ROBOTS_DIR
+
+    chain = serial.load_chain(ROBOTS_DIR / "panda_description/urdf/panda.urdf",
+                              tip="panda_hand")
+    sq, sqd, sqdd = serial.random_states(chain, n, seed=0)
+    out["serial Kane, Panda (7 joints)"] = (_flops.serial_kane(chain), best_of(
+        lambda: serial.inverse_dynamics(chain, sq, sqd, sqdd)) / n, 4 * 7 * 8)
     # (36 doubles a step: the state in and out; the record's row every tenth step)
     return out
 
