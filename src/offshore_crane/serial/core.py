@@ -316,9 +316,9 @@ def _compiled(chain: SerialChain, q, qd, qdd, g, R_b, load) -> np.ndarray:
             lever = np.asarray(p_frame, dtype=float) - chain.com[k]
         F, M = (np.ascontiguousarray(x[:1] if x.strides[0] == 0 else x) for x in (F, M))
     tau = np.empty((N, chain.n))
-    kernels.kane(C.flat, C.layout, C.prismatic, np.ascontiguousarray(q), np.ascontiguousarray(qd),
-                 np.ascontiguousarray(qdd), np.asarray(g, dtype=float), R, max(k, -1),
-                 lever, F, M, tau)
+    f = np.ascontiguousarray
+    kernels.kane(C.flat, C.layout, C.prismatic, f(q), f(qd), f(qdd), f(g, dtype=float), R,
+                 k if k >= 0 else -1, lever, F, M, tau)
     return tau
 
 

@@ -30,7 +30,7 @@ from offshore_crane.studies.identification._description import (bounded_bodies, 
                                                                 identified_description)
 
 __all__ = ["FRICTION", "PRIOR_WEIGHT", "RANK_TOLERANCE", "BaseParameters", "Fit", "Fourier",
-           "Regressor", "base_parameters", "bounded_bodies", "com_bounds", "consistent", "consistent_parameters",
-           "excitation_condition", "fit_base", "fourier_excitation", "identified_description",
-           "log_derivatives", "optimise_excitation", "random_states", "regressor",
-           "within_limits"]
+           "Regressor", "base_parameters", "bounded_bodies", "com_bounds", "consistent",
+           "consistent_parameters", "excitation_condition", "fit_base", "fourier_excitation",
+           "identified_description", "log_derivatives", "optimise_excitation",
+           "random_states", "regressor", "within_limits"]
