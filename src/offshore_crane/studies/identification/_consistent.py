@@ -109,6 +109,8 @@ def consistent_parameters(K: np.ndarray, beta: np.ndarray, covariance: np.ndarra
     """
     from scipy.optimize import least_squares
 
+    from offshore_crane import progress
+
     P = len(pi0)
     L = np.linalg.cholesky(covariance + 1e-300 * np.eye(len(beta)))
     scale = np.array([max(abs(pi0[k:k + 10]).max(), 1e-6) for k in range(0, P, 10)
@@ -122,6 +124,7 @@ def consistent_parameters(K: np.ndarray, beta: np.ndarray, covariance: np.ndarra
     prior_rows = np.sqrt(prior) / scale
 
     def residual(x):
+        shown.update()
         with np.errstate(over="ignore", invalid="ignore"):
             pi = pi_of(x)
             r_ = np.concatenate([A @ pi - w, prior_rows * (pi - pi0)])
@@ -133,14 +136,17 @@ def consistent_parameters(K: np.ndarray, beta: np.ndarray, covariance: np.ndarra
         return np.vstack([A @ D, prior_rows[:, None] * D])
 
     x0 = np.concatenate([to_theta(pi0[k:k + 10]) for k in range(0, P, 10)])
-    out = least_squares(residual, x0, jac=jacobian, method="lm", max_nfev=MAX_EVALUATIONS)
+    with progress.bar(MAX_EVALUATIONS, "evaluation", "identify") as shown:
+        out = least_squares(residual, x0, jac=jacobian, method="lm",
+                            max_nfev=MAX_EVALUATIONS)
     if com_bounds is not None:
         lo, hi = (np.full(P, -np.inf), np.full(P, np.inf))
         for axis in range(3):
             lo[7 + axis::10], hi[7 + axis::10] = com_bounds[:, axis, 0], com_bounds[:, axis, 1]
         if np.any(out.x < lo) or np.any(out.x > hi):       # held: solved again, bounded
-            out = least_squares(residual, x0, jac=jacobian, method="trf", bounds=(lo, hi),
-                                max_nfev=MAX_EVALUATIONS)
+            with progress.bar(MAX_EVALUATIONS, "evaluation", "identify, bounded") as shown:
+                out = least_squares(residual, x0, jac=jacobian, method="trf",
+                                    bounds=(lo, hi), max_nfev=MAX_EVALUATIONS)
     pi = pi_of(out.x)
     misfit = A @ pi - w
     return pi, float(np.sqrt(np.mean(misfit ** 2)))

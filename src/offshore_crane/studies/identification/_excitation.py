@@ -137,16 +137,27 @@ def optimise_excitation(robot, base, duration: float, rate: float = 100.0,
     Raises:
         InputError: no seed gives an excitation inside the limits.
     """
+    from offshore_crane import progress
+    from offshore_crane.conventions import GRAVITY
+
+    g = GRAVITY if gravity is None else gravity
+    seeds = list(seeds)
+    with progress.bar(len(seeds) + iterations, "evaluation", "excite") as shown:
+        return _optimise(robot, base, duration, rate, harmonics, period, seeds, iterations,
+                         g, shown)
+
+
+def _optimise(robot, base, duration, rate, harmonics, period, seeds, iterations, g, shown):
+    """:func:`optimise_excitation`'s work, each evaluation counted on ``shown``."""
     from scipy.optimize import minimize
 
-    from offshore_crane.conventions import GRAVITY
     from offshore_crane.errors import InputError
     from offshore_crane.motion.trajectories import Trajectory
 
-    g = GRAVITY if gravity is None else gravity
     best = None
     for seed in seeds:
         traj = fourier_excitation(robot, duration, rate, harmonics, period, seed, speed=1.0)
+        shown.update()
         if not within_limits(robot, traj, g):
             continue
         c = excitation_condition(robot, traj, base)
@@ -164,6 +175,7 @@ def optimise_excitation(robot, base, duration: float, rate: float = 100.0,
         return Trajectory(best[0].name + ", optimised", best[0].t, *f(best[0].t), source=f)
 
     def cost(s):
+        shown.update()
         traj = scaled(s)
         if not within_limits(robot, traj, g):
             return math.inf
