@@ -226,3 +226,57 @@ def serial_kane(chain) -> Counter:
     F.arm_forward(C, R, z, z, z, q, qd, qdd, 0, (nil, nil, Counted(-9.81)), store, False)
     F.arm_backward(C, store, objects(chain.n))
     return Counter(COUNT)
+
+
+def _cable_state(robot):
+    """The hanging-load robot's constants (the arm continued by the two sway joints and
+    the payload) and one state of its 11 coordinates, as counted numbers."""
+    from offshore_crane.dynamics.constants import cable_arrays
+    from offshore_crane.dynamics.formulas import KaneConstants
+
+    C = KaneConstants(*(counted(x) for x in cable_arrays(robot).kane))
+    rng = np.random.default_rng(1)
+    q = np.r_[robot.home_pose(), 0.05, -0.03] + np.r_[rng.uniform(-0.02, 0.02, 6),
+                                                      rng.uniform(-0.5, 0.5, 3), 0, 0]
+    qd, qdd = rng.uniform(-0.3, 0.3, 11), rng.uniform(-1.0, 1.0, 11)
+    return C, *([Counted(x) for x in v] for v in (q, qd, qdd))
+
+
+def swing_step(robot) -> Counter:
+    """One RK4 step of the sway along a given motion (dynamics/cable/kernels.py
+    ``integrate``): the tip's motion at the two new stage points, four evaluations of the
+    pendulum's Kane equations, the stage and combination updates of the 4 sway states
+    (3 x 4 x 2 + 4 x 8 flops)."""
+    F = _formulas()
+    C, q, qd, qdd = _cable_state(robot)
+    COUNT.clear()
+    for _ in range(2):
+        R, w, al, a = F.tip_motion(C, q[:9], qd[:9], qdd[:9])
+    g = (Counted(0.0), Counted(0.0), Counted(-9.81))
+    L, Ld, Ldd = Counted(1.0), Counted(0.0), Counted(0.0)
+    c = Counted(0.01)
+    for _ in range(4):
+        F.hoisted_pendulum(C, R, w, al, a, g, q[9], q[10], qd[9], qd[10], c, c, L, Ld, Ldd)
+    COUNT["flop"] += 3 * 4 * 2 + 4 * 8
+    return Counter(COUNT)
+
+
+def cable_kane(robot) -> Counter:
+    """One sample of the hanging load's Kane kernel (the robot's forces with the payload
+    swinging: the fused formulas on the arm continued by the sway joints, the 6x6 solve
+    with its condition number, the cable's pull)."""
+    from offshore_crane.dynamics import linear
+    from offshore_crane.dynamics.formulas import DIAG_ROWS, STORE_WIDTH
+    from offshore_crane.robot.kinematics.formulas import LEG_MODEL_CODES
+
+    F = _formulas()
+    C, q, qd, qdd = _cable_state(robot)
+    g = (Counted(0.0), Counted(0.0), Counted(-9.81))
+    COUNT.clear()
+    rows, A, rhs = objects(C.n_arm), objects(6, 6), objects(6)
+    store = objects(C.n_arm, STORE_WIDTH)
+    F.kane_sample(C, q, qd, qdd, g, False, LEG_MODEL_CODES["full"], True, rows, A, rhs,
+                  objects(DIAG_ROWS, 6), store)
+    linear.solve6.py_func(A, rhs, objects(6), objects(6, 13), True)
+    F.cable_force(C, store)
+    return Counter(COUNT)

@@ -121,6 +121,47 @@ def kernels(robot, n: int) -> dict:
     sq, sqd, sqdd = serial.random_states(chain, n, seed=0)
     out["serial Kane, Panda (7 joints)"] = (_flops.serial_kane(chain), best_of(
         lambda: serial.inverse_dynamics(chain, sq, sqd, sqdd)) / n, 4 * 7 * 8)
+    out.update(swing(n))
+    return out
+
+
+def swing(n: int) -> dict:
+    """The hanging load's two compiled kernels, timed inside one ``cable.swing`` of the
+    shipped sea-state scene with its payload on a 1 m cable (benchmarks/cable_swing.py's),
+    ``n`` samples at 100 Hz: the sway's RK4 step and the robot's Kane with the payload
+    swinging (the motion's synthesis at the stage points, NumPy, is not a kernel)."""
+    from cable_swing import _scene
+
+    from offshore_crane import scenes
+    from offshore_crane.dynamics import cable
+
+    scene = _scene(n / 100.0 / 3600.0, 100.0, 20.0, 1.0, 0.02)
+    robot = scenes.load_robot(scene)
+    traj = scenes.load_trajectory(scene, robot)
+    spent: dict = {}
+    inner = {"integrate": cable._integrate_kane, "kane": cable.kane_forces}
+
+    def timed_as(name):
+        def run(*args, **kwargs):
+            t0 = time.perf_counter()
+            result = inner[name](*args, **kwargs)
+            spent[name] = min(spent.get(name, np.inf), time.perf_counter() - t0)
+            if name == "integrate":
+                spent["steps"] = (args[1].shape[0] - 1) // 2
+            return result
+        return run
+
+    cable._integrate_kane, cable.kane_forces = timed_as("integrate"), timed_as("kane")
+    try:
+        for _ in range(3):
+            cable.swing(robot, traj, **scene.cable)
+    finally:
+        cable._integrate_kane, cable.kane_forces = inner["integrate"], inner["kane"]
+    samples = len(traj.t)
+    return {"swing: sway RK4 step": (_flops.swing_step(robot),
+                                     spent["integrate"] / spent["steps"], 8 * 8),
+            "swing: Kane with the load": (_flops.cable_kane(robot), spent["kane"] / samples,
+                                          (33 + 15) * 8)}
     # (36 doubles a step: the state in and out; the record's row every tenth step)
     return out
 
