@@ -113,6 +113,7 @@ def kernels(robot, n: int) -> dict:
     run = best_of(lambda: oc.simulate(robot, duration, oc.motion.trajectories.table1,
                                       controller=Controller()), repeat=3)
     out["RK4 step, computed torque"] = (_flops.rk4_step(robot), run / steps, 36 * 8)
+    # (36 doubles a step: the state in and out; the record's row every tenth step)
     from offshore_crane import serial
     from bench_serial import ROBOTS_DIR
 
@@ -162,8 +163,8 @@ def swing(n: int) -> dict:
                                      spent["integrate"] / spent["steps"], 8 * 8),
             "swing: Kane with the load": (_flops.cable_kane(robot), spent["kane"] / samples,
                                           (33 + 15) * 8)}
-    # (36 doubles a step: the state in and out; the record's row every tenth step)
-    return out
+    # bytes: the sway step reads and writes its 4 states (8 doubles); the Kane reads 33
+    # (q, q̇, q̈ of 11 coordinates) and writes 15 (X, the pull, tension and residuals)
 
 
 def floor_us(robot, n: int) -> float:
