@@ -33,14 +33,37 @@ def _helpers(stamp):
     link) rebuilds them. (A closure over a dispatcher would defeat the cache: the loop
     below reaches these two as module globals.)"""
 
+    @njit(inline="always", **c.JIT)
+    def command(kp, kd, q, qd, qr, qdr, qddr, qdd_c):
+        """Computed torque's commanded accelerations ``q̈_r + Kd (q̇_r − q̇) + Kp (q_r −
+        q)`` into ``qdd_c`` (9,)."""
+        if len(stamp) == 0:
+            return
+        for j in range(9):
+            qdd_c[j] = qddr[j] + kd[j] * (qdr[j] - qd[j]) + kp[j] * (qr[j] - q[j])
+
+    @njit(inline="always", **c.JIT)
+    def forces(C, B, J, A, rhs, x, M13, Xout):
+        """Actuator forces of the generalized forces ``B`` (9,): ``(T1, T2, Fs) =
+        B[6:9]``, ``Jᵀ Fl = B[0:6]`` solved as inverse dynamics solves it
+        (:func:`~offshore_crane.dynamics.compiled.leg_system`, rotation rows scaled; a
+        singular system gives NaN forces); the other entries of ``Xout`` untouched.
+        (This and :func:`command` are inlined: calls cost the loop ~5 %.)"""
+        if len(stamp) == 0:
+            return
+        for b in range(C.n_arm):
+            Xout[b] = B[6 + b]
+        leg_system(B, J, 1.0 / C.L, A, rhs)
+        solve6(A, rhs, x, M13, False)
+        for l in range(6):
+            Xout[3 + l] = x[l]
+
     @jit
     def law(Cc, g, kind, kp, kd, q, qd, qr, qdr, qddr, Xout, w):
         """The control law at one state, with the controller's model ``Cc`` (``w``: the
         workspace tuple). The model's inverse dynamics comes from its equations of motion:
-        ``B = M q̈_cmd + h``, ``(T1, T2, Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]`` solved as
-        inverse dynamics solves it (:func:`~offshore_crane.dynamics.compiled.leg_system`,
-        rotation rows scaled; a singular system gives NaN forces, and the run stops as
-        diverged)."""
+        ``B = M q̈_cmd + h``, turned into actuator forces by :func:`forces` (a singular
+        leg system gives NaN forces, and the run stops as diverged)."""
         if len(stamp) == 0:
             return
         B, J, Mm, store, Vw, Ww, Vs, diag, mc, A, rhs, x, M13, zero, qdd_c, pos, rate, posr, \
@@ -54,21 +77,14 @@ def _helpers(stamp):
         if kind <= 1:
             B[:] = 0.0
             Mm[:] = 0.0
-            for j in range(9):
-                qdd_c[j] = (qddr[j] + kd[j] * (qdr[j] - qd[j]) + kp[j] * (qr[j] - q[j])
-                            if kind == 0 else 0.0)
             if kind == 0:
+                command(kp, kd, q, qd, qr, qdr, qddr, qdd_c)
                 explicit_sample(Cc, q, qd, qdd_c, g, False, B, J, Mm, store, Vw, Ww, Vs,
                                 diag, mc)
             else:
                 explicit_sample(Cc, q, zero, zero, g, False, B, J, Mm, store, Vw, Ww, Vs,
                                 diag, mc)
-            for b in range(Cc.n_arm):
-                Xout[b] = B[6 + b]
-            leg_system(B, J, 1.0 / Cc.L, A, rhs)
-            solve6(A, rhs, x, M13, False)
-            for l in range(6):
-                Xout[3 + l] = x[l]
+            forces(Cc, B, J, A, rhs, x, M13, Xout)
         if kind >= 1:
             actuator_coordinates(Cc, q, qd, pos, rate)
             actuator_coordinates(Cc, qr, qdr, posr, rater)
@@ -111,28 +127,22 @@ def _helpers(stamp):
     def ct(C, n, kp, kd, q, qd, qr, qdr, qddr, Xout, ws, wl):
         """Computed torque on the plant's own model from the pass already in ``ws`` (the
         one the accelerations use): ``B = M q̈_cmd + h`` (M's lower triangle), ``(T1, T2,
-        Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]`` solved as :func:`law` solves it. Equal to
+        Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]`` (:func:`forces`, as :func:`law`). Equal to
         :func:`law`'s computed torque to round-off (its own explicit pass at q̈_cmd gives
         the same ``M q̈_cmd + h``), without that pass."""
         if len(stamp) == 0:
             return
         h, J, Mm = ws[0], ws[1], ws[2]
         Bc, A, rhs, x, M13, qdd_c = wl[0], wl[9], wl[10], wl[11], wl[12], wl[14]
-        for j in range(9):
-            qdd_c[j] = qddr[j] + kd[j] * (qdr[j] - qd[j]) + kp[j] * (qr[j] - q[j])
-            Xout[j] = 0.0
+        command(kp, kd, q, qd, qr, qdr, qddr, qdd_c)
         for r in range(9):
+            Xout[r] = 0.0
             f = h[r]
             if r < n:
                 for c_ in range(n):
                     f += (Mm[r, c_] if c_ <= r else Mm[c_, r]) * qdd_c[c_]
             Bc[r] = f
-        for b in range(n - 6):
-            Xout[b] = Bc[6 + b]
-        leg_system(Bc, J, 1.0 / C.L, A, rhs)
-        solve6(A, rhs, x, M13, False)
-        for l in range(6):
-            Xout[3 + l] = x[l]
+        forces(C, Bc, J, A, rhs, x, M13, Xout)
 
     @jit
     def stage(shared, C, Cc, g, n, kind, kp, kd, hold, q, qd, qr, qdr, qddr, lo, hi, Xc,
