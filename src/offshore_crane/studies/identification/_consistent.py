@@ -35,11 +35,17 @@ MAX_EVALUATIONS = 500
 REFUSED = 1e100
 
 
+def origin_inertia(p: np.ndarray) -> np.ndarray:
+    """``(3, 3)`` inertia about the frame's origin [kg·m²] of one body's ten parameters
+    ``[m, hx, hy, hz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz]`` (Pinocchio's order)."""
+    return np.array([[p[4], p[5], p[7]], [p[5], p[6], p[8]], [p[7], p[8], p[9]]])
+
+
 def pseudo_inertia(p: np.ndarray) -> np.ndarray:
     """``(4, 4)`` J of one body's ten parameters ``[m, hx, hy, hz, Ixx, Ixy, Iyy, Ixz, Iyz,
     Izz]`` (Pinocchio's order; I about the frame's origin)."""
     m, h = p[0], p[1:4]
-    I = np.array([[p[4], p[5], p[7]], [p[5], p[6], p[8]], [p[7], p[8], p[9]]])
+    I = origin_inertia(p)
     J = np.empty((4, 4))
     J[:3, :3] = 0.5 * np.trace(I) * np.eye(3) - I
     J[:3, 3] = J[3, :3] = h

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from offshore_crane.studies.identification._consistent import consistent
+from offshore_crane.studies.identification._consistent import consistent, origin_inertia
 from offshore_crane.studies.identification._regressor import Regressor
 
 #: The description's table of each regressor body (leg parts: per leg).
@@ -44,8 +44,7 @@ def body_fields(p: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
     standard parameters with ``m > 0`` (inverse of :func:`body_parameters`)."""
     m = float(p[0])
     c = np.asarray(p[1:4]) / m
-    I = np.array([[p[4], p[5], p[7]], [p[5], p[6], p[8]], [p[7], p[8], p[9]]])
-    return m, c, I - m * (c @ c * np.eye(3) - np.outer(c, c))
+    return m, c, origin_inertia(p) - m * (c @ c * np.eye(3) - np.outer(c, c))
 
 
 def identified_description(robot, R: Regressor, pi: np.ndarray, header: str = "",
