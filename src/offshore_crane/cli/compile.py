@@ -59,7 +59,7 @@ def compile_all(jobs: int | None = None, report=None) -> list[tuple[str, float]]
     """
     from offshore_crane.errors import InputError
 
-    jobs = os.cpu_count() or 1 if jobs is None else jobs
+    jobs = (os.cpu_count() or 1) if jobs is None else jobs
     if jobs < 1:
         raise InputError(f"--jobs {jobs}: give at least 1", name="--jobs")
     out: list = []

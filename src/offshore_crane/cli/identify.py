@@ -45,7 +45,7 @@ def add_parser(sub) -> None:
 DEFAULT_CUTOFF = 5.0
 
 
-def _log(path: str, what: str, robot, cutoff):
+def _log(path: str, what: str, cutoff):
     """``(t, q, qd, qdd, X)`` of a log, the filtered ends dropped."""
     from offshore_crane.outputs.visual.motion import read_run
     from offshore_crane.studies import identification as ident
@@ -83,7 +83,7 @@ def run(args) -> int:
                                                  args.excite], {"--out": ("toml",)})
     scene = robot_scene(args, scenes.Scene())
     robot = scenes.load_robot(scene)
-    t, q, qd, qdd, X = _log(args.log, "--log", robot, args.cutoff)
+    t, q, qd, qdd, X = _log(args.log, "--log", args.cutoff)
     base = ident.base_parameters(robot, gravity=scene.gravity)
     if args.excite:
         _excitation(args.excite, robot, base, t, q)
@@ -114,7 +114,7 @@ def run(args) -> int:
     for body, m0, m1 in masses:
         print(f"  {body:<14}{m0:>9.4g} → {m1:.4g}")
     if args.validate:
-        t2, q2, qd2, qdd2, X2 = _log(args.validate, "--validate", robot, args.cutoff)
+        t2, q2, qd2, qdd2, X2 = _log(args.validate, "--validate", args.cutoff)
         pred = ident.regressor(robot, q2, qd2, qdd2, gravity=scene.gravity).Y @ pi
         err = np.sqrt(np.mean((X2 - pred) ** 2, axis=0))
         print(f"validation on {args.validate} ({len(t2)} samples): RMS error per actuator "

@@ -274,7 +274,7 @@ def _single(chain: SerialChain, q, qd, qdd, gravity):
         from offshore_crane.serial import kernels
 
         _KERNEL.append(kernels.kane_one)
-    C = _CONSTANTS.get(id(chain)) or _constants(chain)
+    C = _constants(chain)
     tau = np.empty(n)
     one = q.ndim == 1
     if not _KERNEL[0](C.flat, C.layout, C.prismatic, q if one else q[0], qd if one else qd[0],
