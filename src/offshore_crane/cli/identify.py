@@ -12,8 +12,6 @@ error on a second log.
 
 from __future__ import annotations
 
-import os
-
 from offshore_crane.errors import InputError
 
 
@@ -50,10 +48,7 @@ def _log(path: str, what: str, cutoff):
     from offshore_crane.outputs.visual.motion import read_run
     from offshore_crane.studies import identification as ident
 
-    if not os.path.isfile(path):
-        raise InputError(f"{what} {path}: no such file (a run's CSV: t_s, q1..q9, "
-                         "T1_Nm..Fl6_N)", name=what)
-    m = read_run(path)
+    m = read_run(path, what)
     if m.X is None:
         raise InputError(f"{what} {path}: the log has no actuator forces (columns "
                          "T1_Nm..Fl6_N): identification needs them", name=what)

@@ -83,8 +83,9 @@ def from_trajectory(traj) -> Motion:
     return Motion(traj.name, traj.t, traj.q, traj.qd, traj.qdd, source=traj.source)
 
 
-def read_run(path) -> Motion:
-    """Read a run's CSV (see the module docstring for the accepted files).
+def read_run(path, option: str = "--from") -> Motion:
+    """Read a run's CSV (see the module docstring for the accepted files); ``option`` is
+    the command-line option that named it, for the message of a missing file.
 
     Raises:
         TrajectoryError: the file is missing or unreadable, lacks ``t_s`` or one of
@@ -96,7 +97,7 @@ def read_run(path) -> Motion:
 
     where = os.fspath(path)
     if not os.path.isfile(where):
-        raise TrajectoryError(f"--from {where}: no such file (a CSV of offshore-crane "
+        raise TrajectoryError(f"{option} {where}: no such file (a CSV of offshore-crane "
                               "simulate --out, or a trajectory t_s,q1..q9)", path=where)
     try:
         rows = [r for r in csv.reader(read_text(where, "run CSV").removeprefix("\ufeff")
