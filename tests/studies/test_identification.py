@@ -298,6 +298,12 @@ def test_identify_from_simulated_logs(tmp_path, capsys):
     capsys.readouterr()
     assert main(["identify", "--log", str(run1), "--out", str(run1)]) == 2
     assert "--out" in capsys.readouterr().err
+    from offshore_crane.robot.description import default_description
+
+    shipped = str(default_description())           # the nominal robot it reads, by default
+    assert main(["identify", "--log", str(run1), "--out", shipped]) == 2
+    err = capsys.readouterr().err
+    assert "--out" in err and err.count("\n") == 1
 
 
 def _body_scale(pi):

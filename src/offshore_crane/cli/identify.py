@@ -74,9 +74,9 @@ def run(args) -> int:
                          name="--cutoff")
     from offshore_crane.io import plan_outputs
 
-    outputs = plan_outputs({"--out": args.out}, [args.robot, args.log, args.validate,
-                                                 args.excite], {"--out": ("toml",)})
     scene = robot_scene(args, scenes.Scene())
+    read = scene.inputs() + [f for f in (args.log, args.validate, args.excite) if f]
+    outputs = plan_outputs({"--out": args.out}, read, {"--out": ("toml",)})
     robot = scenes.load_robot(scene)
     t, q, qd, qdd, X = _log(args.log, "--log", args.cutoff)
     base = ident.base_parameters(robot, gravity=scene.gravity)
