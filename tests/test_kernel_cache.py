@@ -171,3 +171,20 @@ def test_compile_runs_its_groups_and_refuses_no_workers(capsys):
     assert main(["compile", "--jobs", "0"]) == 2
     err = capsys.readouterr().err
     assert "--jobs 0: give at least 1" in err and err.count("\n") == 1
+
+
+def test_a_new_process_loads_every_group_without_compiling():
+    """After the session's compile (conftest), a new process finds every kernel of every
+    group in the cache: none is compiled again. (The serial chain's loops once closed
+    over their inlined helper's dispatcher, whose per-process id entered Numba's cache
+    key: they compiled again in every process, 10 s, and their index grew a signature
+    each time.)"""
+    code = ("from offshore_crane import kernel_cache\n"
+            "from offshore_crane.cli.compile import compile_all\n"
+            "compile_all(jobs=1)\n"
+            "print(kernel_cache.COMPILED[0])\n")
+    env = {**os.environ, "PYTHONPATH": str(SRC)}
+    run = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                         text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split()[-1] == "0", run.stderr

@@ -18,9 +18,10 @@ arm_forward, arm_backward = K.arm_forward, K.arm_backward
 take, put, mv, sub, add, cross = K.take, K.put, K.mv, K.sub, K.add, K.cross
 
 
-def _make(stamp):
-    """The loops, closed over the formulas' hash (it keys the disk cache: an edited
-    formula rebuilds them)."""
+def _helper(stamp):
+    """The sample's text, inlined into both loops; made here and kept as a module global
+    (not a cell of the loops' closures: a dispatcher in a closure is hashed into Numba's
+    cache key with its per-process id, and the loops then compiled in every process)."""
 
     @njit(inline="always", **c.JIT)
     def sample(C, R, q, qd, qdd, gt, k, lv, Fe, Me, store, rows):
@@ -38,6 +39,16 @@ def _make(stamp):
             put(store, k, F_, sub(take(store, k, F_), Fe))
             put(store, k, T_, sub(take(store, k, T_), add(Me, cross(arm, Fe))))
         arm_backward(C, store, rows)
+
+    return sample
+
+
+sample = _helper(c.STAMP)
+
+
+def _make(stamp):
+    """The loops, closed over the formulas' hash (it keys the disk cache: an edited
+    formula rebuilds them)."""
 
     @njit(**c.JIT)
     def kane(flat, lay, prism, q, qd, qdd, g, R_b, k_load, lever, F, M, tau):
