@@ -67,17 +67,18 @@ class SeaMotion:
         """
         t, scalar = as_times(t)
         root = math.sqrt(self.scale)
-        x, v, a = _full_scale(self.ship, self.scale, self.duration, t)
+        xva = _full_scale(self.ship, self.scale, self.duration, t)
+        one, lam = np.ones(3), np.full(3, self.scale)      # Froude, in place (no copies):
+        np.multiply(xva, np.concatenate([one, one, one, one * root, one, lam]), out=xva)
+        np.divide(xva, np.concatenate([lam, one, one * root, one, one, one]), out=xva)
         n = t.size
         q = np.empty((n, 9))
         qd = np.empty((n, 9))
         qdd = np.empty((n, 9))
-        q[:, :3] = self.home[:3] + x[:, :3] / self.scale
-        qd[:, :3] = v[:, :3] / root
-        qdd[:, :3] = a[:, :3]
-        q[:, 3:6] = x[:, 3:]
-        qd[:, 3:6] = v[:, 3:] * root
-        qdd[:, 3:6] = a[:, 3:] * self.scale
+        q[:, :6] = xva[:, 0:6]            # x/λ, φ; v/√λ, ω√λ; a, α λ
+        q[:, :3] += self.home[:3]
+        qd[:, :6] = xva[:, 6:12]
+        qdd[:, :6] = xva[:, 12:18]
         if self.operation is None:
             q[:, 6:] = self.home[6:]
             qd[:, 6:] = 0.0
@@ -116,7 +117,8 @@ class SeaMotion:
 
 
 def _full_scale(ship: ShipMotion, scale: float, duration: float, t: np.ndarray):
-    """``ship``'s ``(x, v, a)`` at model-scale times ``t (n,)`` [s] (full scale ``t √λ``).
+    """``ship``'s ``x, v, a`` side by side, ``(n, 18)`` (:meth:`ShipMotion.side_by_side`),
+    at model-scale times ``t (n,)`` [s] (full scale ``t √λ``).
 
     Raises:
         SeaStateError: a time outside ``[0, repetition period / √λ]``, the model-scale
@@ -131,7 +133,7 @@ def _full_scale(ship: ShipMotion, scale: float, duration: float, t: np.ndarray):
             f"t[{k}] = {float(t[k]):.9g} s is outside [0, {end:.9g}] s, the model-scale "
             f"span on which this sea does not repeat (record {duration:g} s at scale "
             f"{scale:g}): build the motion for a longer duration", name="t", index=k)
-    return ship(t * root)
+    return ship.side_by_side(t * root)
 
 
 @dataclass(frozen=True, eq=False)
@@ -154,8 +156,9 @@ class DeckMotion:
 
     def __call__(self, t):
         t, scalar = as_times(t)
-        x, v, a = _full_scale(self.ship, self.scale, self.duration, t)
-        out = (x[:, :3] / self.scale, v[:, :3] / math.sqrt(self.scale), a[:, :3])
+        xva = _full_scale(self.ship, self.scale, self.duration, t)
+        out = (xva[:, 0:3] / self.scale, xva[:, 6:9] / math.sqrt(self.scale),
+               np.ascontiguousarray(xva[:, 12:15]))
         return tuple(o[0] for o in out) if scalar else out
 
 

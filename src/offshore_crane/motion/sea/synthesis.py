@@ -201,6 +201,16 @@ class ShipMotion:
         parts = tuple(np.ascontiguousarray(out[:, 6 * i:6 * i + 6]) for i in range(3))
         return tuple(p[0] for p in parts) if scalar else parts
 
+    def side_by_side(self, t, method: str = "auto") -> np.ndarray:
+        """:meth:`__call__`'s three results as the columns of one new ``(n, 18)`` array
+        (motion, velocity, acceleration), ``t`` ``(n,)``: no copies into three arrays,
+        for callers that take columns of it anyway (or scale it in place).
+
+        Raises:
+            SeaStateError: as :meth:`__call__`.
+        """
+        return self._evaluate(self._channels, np.atleast_1d(t), method)[0]
+
     def elevation(self, t, method: str = "auto"):
         """Wave elevation at the RAO table's reference point [m] (table's band only).
 
