@@ -236,6 +236,44 @@ def test_sea_state_run_is_reproducible_bit_for_bit():
     assert np.abs(runs[0].sway).max() > 1e-3            # it does swing
 
 
+def test_threads_split_the_kane_pass_bit_for_bit():
+    """The Kane pass over the integrated sway in two threads: the same numbers as one
+    (each sample is computed alone; only the blocks differ)."""
+    from offshore_crane import scenes
+
+    scene = sea_scene(initial=[0.02, 0.0])
+    robot = scenes.load_robot(scene)
+    traj = scenes.load_trajectory(scene, robot)
+    one, two = (cable.swing(robot, traj, **scene.cable, threads=n) for n in (1, 2))
+    for name in ("X", "sway", "tension", "force_tip", "residual", "condition"):
+        assert np.array_equal(getattr(one, name), getattr(two, name)), name
+
+
+def test_substeps_of_a_sea_state_evaluate_its_synthesis_per_stage_offset():
+    """With substeps = 3 the sea's motion is wanted at 5 stage offsets between samples:
+    each offset is a uniform set of times, so the synthesis stays on its FFT path (all
+    of them as one non-uniform set fell back to the direct sum, 10⁴× slower on 3 h).
+    Reference: the direct sum at the first 200 intervals' stage points (one non-uniform
+    set); equal to 1e-12 of each column's peak (the two summations' round-off on ~2·10⁴
+    components, measured 3.3e-15)."""
+    from offshore_crane import scenes
+
+    scene = sea_scene()
+    robot = scenes.load_robot(scene)
+    traj = scenes.load_trajectory(scene, robot)
+    tt, *grid = cable.stage_grid(traj.t, traj.q, traj.qd, traj.qdd, traj.reference, 3)
+    src = traj.source
+    fft = src.ship.side_by_side(tt[1::6] * np.sqrt(src.scale), method="fft")
+    assert fft.shape == (len(traj.t) - 1, 18)          # an offset's times are a grid
+    for g, given in zip(grid, (traj.q, traj.qd, traj.qdd)):
+        assert np.array_equal(g[::6], given)           # the samples' own rows
+    inner = np.arange(1200) % 6 != 0
+    ref = src(tt[:1200][inner])                        # not a grid: the direct sum
+    for g, r in zip(grid, ref):
+        scale = np.abs(r).max(axis=0) + 1e-300
+        assert (np.abs(g[:1200][inner] - r) / scale).max() <= 1e-12
+
+
 def test_slack_cable_is_an_error_or_marked(crane):
     """The platform dropping faster than gravity (q̈3 = −15 m/s² for 0.1 s) would need a
     pushing cable: SlackCableError names the time and keeps the samples before it; with
@@ -251,16 +289,60 @@ def test_slack_cable_is_an_error_or_marked(crane):
     assert res.slack.sum() == 10 and res.slack[10] and not res.slack[9]
 
 
-def test_singular_sway_stops_with_the_time_and_keeps_the_samples(crane):
+@pytest.mark.parametrize("threads", [1, 2])
+def test_singular_sway_stops_with_the_time_and_keeps_the_samples(crane, threads, monkeypatch):
     """A swing driven towards cos φ2 = 0 with an error threshold of 50 on 1/cos²φ2:
-    SingularConfigurationError (kind 'sway') naming the sample; the samples before it kept."""
+    SingularConfigurationError (kind 'sway') naming the sample; the samples before it
+    kept (6 of them). In two threads (the Kane pass alongside the integration, chunks of
+    2 samples here so that several wait on it) the same stop and the same numbers."""
+    from offshore_crane.dynamics.cable import forces
+
+    monkeypatch.setattr(forces, "CHUNK", 2)
     t, q, qd, qdd = at_rest(crane, 1.0, 100.0)
-    with pytest.raises(SingularConfigurationError, match="singular set") as info:
-        cable.inverse_dynamics(crane, q, qd, qdd, initial=(0.0, 1.3),
-                               initial_rate=(0.0, 3.0), thresholds=Thresholds(10.0, 50.0), t=t)
-    exc = info.value
-    assert exc.kind == "sway" and exc.index > 0 and len(exc.result) == exc.index
-    assert (1 / np.cos(exc.result.sway[:, 1]) ** 2).max() <= 50.0
+    results = []
+    for n in sorted({1, threads}):
+        with pytest.raises(SingularConfigurationError, match="singular set") as info:
+            cable.inverse_dynamics(crane, q, qd, qdd, initial=(0.0, 1.3),
+                                   initial_rate=(0.0, 3.0), thresholds=Thresholds(10.0, 50.0),
+                                   t=t, threads=n)
+        exc = info.value
+        assert exc.kind == "sway" and exc.index > 2 and len(exc.result) == exc.index
+        assert (1 / np.cos(exc.result.sway[:, 1]) ** 2).max() <= 50.0
+        results.append(exc.result)
+    for name in ("X", "sway", "tension", "condition"):
+        assert np.array_equal(getattr(results[0], name), getattr(results[-1], name)), name
+
+
+def test_kane_alongside_the_integration_waits_for_its_rows(crane, monkeypatch):
+    """Table 1 with the swing in two threads, in chunks of 16 samples that wait for the
+    integration: every output equal to one thread's to the bit."""
+    from offshore_crane.dynamics.cable import forces
+
+    monkeypatch.setattr(forces, "CHUNK", 16)
+    t = time_grid(5.0, 100.0)
+    q, qd, qdd = table1(t)
+    one, two = (cable.inverse_dynamics(crane, q, qd, qdd, reference=table1, t=t,
+                                       initial=(0.1, 0.05), threads=n) for n in (1, 2))
+    for name in ("X", "sway", "sway_rate", "sway_accel", "tension", "force_tip", "residual",
+                 "condition"):
+        assert np.array_equal(getattr(one, name), getattr(two, name)), name
+
+
+def test_an_integration_that_raises_is_not_masked_by_the_kane_pass(crane, monkeypatch):
+    """The integration raising in its thread (here a stand-in that writes 5 rows, then
+    fails): the Kane pass alongside stops waiting and computes nothing more, and the
+    integration's own exception reaches the caller."""
+    from offshore_crane.dynamics.cable import kernels as ck
+
+    def failing(*args):
+        Y = args[-2]
+        Y[:5] = 0.0
+        raise RuntimeError("integration failed")
+
+    monkeypatch.setattr(ck, "integrate", failing)
+    t, q, qd, qdd = at_rest(crane, 1.0, 100.0)
+    with pytest.raises(RuntimeError, match="integration failed"):
+        cable.inverse_dynamics(crane, q, qd, qdd, t=t, threads=2)
 
 
 @pytest.mark.parametrize("kwargs, error, match", [
@@ -273,6 +355,7 @@ def test_singular_sway_stops_with_the_time_and_keeps_the_samples(crane):
     (dict(substeps=0), InputError, r"substeps = 0 must be an integer >= 1"),
     (dict(slack="ignore"), InputError, r"slack = 'ignore'"),
     (dict(method="rnea"), InputError, r"unknown method 'rnea'"),
+    (dict(threads=0), InputError, r"threads must be a positive integer, got 0"),
 ])
 def test_bad_arguments(crane, kwargs, error, match):
     t, q, qd, qdd = at_rest(crane, 0.1, 100.0)

@@ -58,9 +58,10 @@ CABLE_METHODS = {"kane": "kane", "rnea": "pinocchio"}
 
 
 def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, checks: bool = True,
-           thresholds=None, **ignored):
+           thresholds=None, threads: int = 1, **ignored):
     """A scene with a payload on a cable: :func:`offshore_crane.dynamics.cable.swing` (the
-    ``[cable]`` options; ``backend`` and ``threads`` do not apply), with a winch when
+    ``[cable]`` options; ``threads`` split the rigid cable's Kane pass, ``backend`` does
+    not apply), with a winch when
     ``[cable] winch = true`` (the hoist column of ``[operation]``), or on an elastic cable
     when ``[cable] ea`` is given (:func:`~offshore_crane.dynamics.cable.elastic_inverse_dynamics`,
     Kane's path only), as a :class:`~offshore_crane.dynamics.Result` holding the
@@ -106,7 +107,8 @@ def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, check
         return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
                       condition=np.full(len(res.t), np.nan), gimbal=None, attitude=None,
                       backend="numba", cable=res)
-    res = swing(robot, traj, method=CABLE_METHODS[method], **checked, **options)
+    res = swing(robot, traj, method=CABLE_METHODS[method], **checked, **options,
+                threads=threads)
     return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
                   condition=res.condition, gimbal=None, attitude=None,
                   backend="numba" if method == "kane" else "pinocchio", cable=res)

@@ -45,6 +45,7 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import (InputError, NumericalError, SingularConfigurationError,
                                    SlackCableError)
 from offshore_crane.robot.kinematics import workspace as ws
+from offshore_crane.dynamics.runtime import thread_count
 from offshore_crane.validation import as_gravity, as_pair, as_samples
 from offshore_crane.dynamics.cable.hoist import hoist_grid, hoist_profile
 from offshore_crane.dynamics.cable.result import CableResult
@@ -77,7 +78,7 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
                      slack: str = "error", method: str = "kane", limits: bool = True,
                      checks: bool = True, thresholds: ws.Thresholds = ws.Thresholds(),
                      length: float | None = None, mass: float | None = None,
-                     hoist=None) -> CableResult:
+                     hoist=None, threads: int = 1) -> CableResult:
     """Actuator forces of the prescribed motion with the payload swinging on its cable.
 
     Args:
@@ -103,6 +104,9 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
             length [m] (> 0), its rate [m/s] and acceleration [m/s²] at any times (RK4's
             stage times among them); e.g. :func:`hoist_profile`. None: the fixed
             ``payload.cable_length``.
+        threads: Threads for the Kane pass over the integrated sway (its samples split
+            into contiguous blocks; the same numbers as one thread); the sway's
+            integration runs in one. ``method="pinocchio"`` ignores it.
 
     Returns:
         :class:`CableResult`.
@@ -126,6 +130,7 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
     if not isinstance(thresholds, ws.Thresholds):
         raise InputError(f"thresholds must be a Thresholds(warn, error), got {thresholds!r}",
                          name="thresholds")
+    threads = thread_count(threads)
     robot = cable_robot(robot, length, mass)
     q, qd, qdd, t, dt = motion_samples(q, qd, qdd, t)
     g = as_gravity(gravity)
@@ -142,9 +147,17 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
     y0 = np.concatenate([phi0, rate0])
     length_, mass_ = robot.hybrid.cable_length, float(robot.hybrid.cable.mass[-1])
     Lh = (np.array([[length_, 0.0, 0.0]]) if hoist is None else hoist_grid(hoist, tt))
+    done = None
     if method == "kane":
-        Y, status = _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, int(substeps), y0,
-                                    thresholds)
+        follow = None
+        if hoist is None and threads > 1:     # the Kane pass follows the integration
+
+            def follow(Y, ready):
+                return kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds,
+                                   threads=threads, rows_ready=ready)
+
+        Y, status, done = _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, int(substeps), y0,
+                                          thresholds, follow)
     else:
         from offshore_crane.reference import cable as ref
 
@@ -153,8 +166,11 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
     code, stop, worst = int(status[0]), int(status[1]), float(status[2])
     n = len(t) if code == 0 else stop
     L = None if hoist is None else np.ascontiguousarray(Lh[::2 * int(substeps)][:n])
+    if done is not None:
+        X, F, kappa = done
+        done = X[:n], F[:n], None if kappa is None else kappa[:, :n]
     res = _forces(robot, t[:n], q[:n], qd[:n], qdd[:n], Y[:n], g, method, limits, checks,
-                  thresholds, worst, length_, mass_, h, L)
+                  thresholds, worst, length_, mass_, h, L, threads, done)
     if code != 0:
         if slack == "error":
             _slack(res, slack)         # a slack cable before the stop is its first cause
@@ -177,7 +193,11 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
     return res
 
 
-def _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, sub, y0, thresholds):
+def _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, sub, y0, thresholds, follow=None):
+    """The sway ``Y`` ``(n, 6)`` and the integration's ``status`` (3,), and with
+    ``follow(Y, ready)`` its result: run in this thread while the integration runs in
+    another, ``ready`` as :func:`~offshore_crane.dynamics.cable.forces.kane_forces`'s
+    ``rows_ready`` (None without ``follow``)."""
     from offshore_crane.dynamics.runtime import compiled_kernels
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
@@ -187,22 +207,73 @@ def _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, sub, y0, thresholds):
     n_out = (Q.shape[0] - 1) // (2 * sub) + 1
     Y = np.full((n_out, 6), np.nan)
     status = np.zeros(3)
-    progress.run_polled(
-        lambda: ck.integrate(arrays.flat, arrays.layout, arrays.prismatic,
-                             robot.hybrid.sway_damping, Q, Qd, Qdd, Lh, g, h, sub, y0,
-                             1.0 / thresholds.error, Y, status),
-        lambda: progress.filled_rows(Y), n_out, "sample", "swing")
-    return Y, status
 
+    def integrate():
+        progress.run_polled(
+            lambda: ck.integrate(arrays.flat, arrays.layout, arrays.prismatic,
+                                 robot.hybrid.sway_damping, Q, Qd, Qdd, Lh, g, h, sub, y0,
+                                 1.0 / thresholds.error, Y, status),
+            lambda: progress.filled_rows(Y), n_out, "sample", "swing")
+
+    if follow is None:
+        integrate()
+        return Y, status, None
+    return Y, status, _alongside(integrate, lambda ready: follow(Y, ready), Y, status)
+
+
+#: How often the Kane pass, waiting for the sway's integration, looks again [s].
+WAIT = 1e-3
+
+
+def _alongside(job, follow, Y, status):
+    """``follow(ready)`` in this thread while ``job()`` (the sway's integration: writes
+    ``Y``'s rows in order over NaN, and ``status`` when it ends) runs in another;
+    ``ready(b)`` waits until rows ``< b`` are written (row ``b`` begun) or the job ends,
+    and returns how many of them hold the sway: ``b``, fewer when the integration stopped
+    early (its stop sample), none when it raised (raised here after ``follow``)."""
+    import threading
+    import time
+
+    box: dict = {}
+
+    def target():
+        try:
+            job()
+        except BaseException as exc:     # re-raised in the caller's thread
+            box["error"] = exc
+
+    worker = threading.Thread(target=target, daemon=True, name="offshore-crane swing")
+    worker.start()
+
+    def ready(b: int) -> int:
+        while worker.is_alive():
+            if progress.filled_rows(Y) > b:
+                return b
+            time.sleep(WAIT)
+        if "error" in box:
+            return 0
+        return b if status[0] == 0 else min(b, int(status[1]))
+
+    try:
+        out = follow(ready)
+    finally:
+        worker.join()
+    if "error" in box:
+        raise box["error"]
+    return out
 
 
 def _forces(robot, t, q, qd, qdd, Y, g, method, limits, checks, thresholds, worst, length,
-            mass, h, L=None) -> CableResult:
+            mass, h, L=None, threads=1, done=None) -> CableResult:
     """X, the cable force and the residual at the integrated sway (both paths); ``L``
-    ``(n, 3)`` the hoisted length, rate, acceleration, or None."""
+    ``(n, 3)`` the hoisted length, rate, acceleration, or None; ``done``: Kane's
+    ``(X, F, kappa)`` already computed alongside the integration, or None."""
     n = len(t)
-    if method == "kane":
-        X, F, kappa = kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L)
+    if done is not None:
+        X, F, kappa = done
+    elif method == "kane":
+        X, F, kappa = kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L,
+                                  threads=threads)
     else:
         from offshore_crane.dynamics.constants import cable_arrays
         from offshore_crane.robot.kinematics.workspace import Limits

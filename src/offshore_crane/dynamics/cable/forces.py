@@ -8,22 +8,36 @@ import numpy as np
 from offshore_crane.robot.kinematics import workspace as ws
 
 
-def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, P=None):
+#: Samples per chunk of the Kane pass: its 11-column rows are formed a chunk at a time,
+#: right before the kernel reads them (still in cache), and a chunk is the unit the
+#: threads take and what waits for the sway's integration when it runs alongside.
+CHUNK = 1 << 14
+
+
+def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, P=None, *,
+                threads: int = 1, rows_ready=None):
     """X ``(n, 9)``, the cable's ``F`` ``(n, 6)`` and the condition numbers, by the
     compiled ``kernels.kane``: the payload on the chain (``L`` and ``P`` None), or
     ``kernels.kane_pulled`` with the pull on the tip of the hoisted pendulum (``L``
     ``(n, 3)``: the winch's length, rate, acceleration) or given (``P`` ``(n, 3)`` [N]:
-    an elastic cable)."""
-    from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded
+    an elastic cable); chunks of :data:`CHUNK` samples shared by ``threads`` (checked by
+    the caller, :func:`~offshore_crane.dynamics.runtime.thread_count`).
+
+    ``rows_ready(b)``: None when the sway ``Y`` is complete; else called before a chunk
+    ending at sample ``b`` is read, it waits until the rows before ``b`` are written
+    (an integration still running) and returns how many of them hold the sway (< b when
+    the integration stopped early); samples past that are not computed (their rows of
+    X, F and the condition numbers are undefined)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from offshore_crane.dynamics.runtime import compiled_kernels
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
 
     compiled_kernels()
     arrays = cable_arrays(robot)
     n = len(t)
-    q11 = np.ascontiguousarray(np.concatenate([q, Y[:, 0:2]], axis=1))
-    qd11 = np.ascontiguousarray(np.concatenate([qd, Y[:, 2:4]], axis=1))
-    qdd11 = np.ascontiguousarray(np.concatenate([qdd, Y[:, 4:6]], axis=1))
+    q11, qd11, qdd11 = (np.empty((n, 11)) for _ in range(3))
     X = np.empty((n, 9))
     F = np.empty((n, 6))
     kappa = np.empty((3, n)) if checks else np.empty((3, 1))
@@ -34,18 +48,34 @@ def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, 
     elif P is not None:              # an elastic cable's: its tension is |P|
         P = np.ascontiguousarray(P)
         F[:, 0:3], F[:, 3], F[:, 4:6] = P, np.linalg.norm(P, axis=1), 0.0
+    chunks = [(a, min(a + CHUNK, n)) for a in range(0, n, CHUNK)]
+    records = [ws.new_health() for _ in chunks]
 
-    def run(start, stop, health):
+    def run(i):
+        start, stop = chunks[i]
+        if rows_ready is not None:
+            stop = min(stop, rows_ready(stop))
+        if stop <= start:
+            return
+        for out, given, col in ((q11, q, 0), (qd11, qd, 2), (qdd11, qdd, 4)):
+            out[start:stop, :9] = given[start:stop]
+            out[start:stop, 9:] = Y[start:stop, col:col + 2]
         if P is None:
             ck.kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping,
                     q11, qd11, qdd11, g, checks, limits, thresholds.warn, thresholds.error,
-                    start, stop, X, kappa, health, F)
+                    start, stop, X, kappa, records[i], F)
         else:
             ck.kane_pulled(arrays.flat, arrays.layout, arrays.prismatic, q11, qd11, qdd11, P,
                            g, checks, limits, thresholds.warn, thresholds.error, start, stop,
-                           X, kappa, health)
+                           X, kappa, records[i])
 
-    health = run_threaded(run, n, 1)
+    if threads == 1 or len(chunks) == 1:
+        for i in range(len(chunks)):
+            run(i)
+    else:
+        with ThreadPoolExecutor(threads) as pool:
+            list(pool.map(run, range(len(chunks))))
+    health = ws.merge(records)
     ws.enforce(health, (q, qd, qdd), arrays.limits if limits else None,
                kappa if checks else None, thresholds, (ws.LEG_JACOBIAN, ws.GIMBAL), t)
     return X, F, kappa if checks else None

@@ -125,23 +125,22 @@ def stage_grid(t, q, qd, qdd, reference, substeps: int):
     tt[::2 * substeps] = t
     if reference is None:
         return (tt, *_quintic_midpoints(t, q, qd, qdd, substeps))
-    between = np.ones(len(tt), dtype=bool)
-    between[::2 * substeps] = False
-    grid = []
-    for name, x, given in zip(("q", "qd", "qdd"), reference(tt[between]), (q, qd, qdd)):
-        x = np.asarray(x, dtype=float)
-        if x.shape != (int(between.sum()), 9):
-            raise InputError(f"reference(t) returned {name} of shape {x.shape}; expected "
-                             f"({int(between.sum())}, 9)", name="reference")
-        if not np.isfinite(x).all():
-            k = int(np.argmax(~np.isfinite(x).all(axis=1)))
-            raise InputError(f"reference(t) returned a non-finite {name} at t = "
-                             f"{tt[between][k]:.6g} s", name="reference", index=k)
-        full = np.empty((len(tt), 9))
-        full[between] = x
-        full[~between] = given
-        grid.append(full)
-    return (tt, *grid)
+    full = [np.empty((len(tt), 9)) for _ in range(3)]
+    for f, given in zip(full, (q, qd, qdd)):
+        f[::2 * substeps] = given                          # the samples themselves
+    for j in range(1, 2 * substeps):      # one uniform set of times per stage offset: a
+        times = tt[j::2 * substeps]       # sea motion's synthesis stays on its FFT path
+        for name, x, f in zip(("q", "qd", "qdd"), reference(times), full):
+            x = np.asarray(x, dtype=float)
+            if x.shape != (N - 1, 9):
+                raise InputError(f"reference(t) returned {name} of shape {x.shape}; "
+                                 f"expected ({N - 1}, 9)", name="reference")
+            if not np.isfinite(x).all():
+                k = int(np.argmax(~np.isfinite(x).all(axis=1)))
+                raise InputError(f"reference(t) returned a non-finite {name} at t = "
+                                 f"{times[k]:.6g} s", name="reference", index=k)
+            f[j:-1:2 * substeps] = x
+    return (tt, *full)
 
 
 def motion_samples(q, qd, qdd, t):
