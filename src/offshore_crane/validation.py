@@ -74,7 +74,9 @@ _DEFAULT_GRAVITY: dict = {}
 
 
 def as_gravity(gravity) -> np.ndarray:
-    """Gravity ``(3,)`` [m/s²], finite, each component at most :data:`MAX_GRAVITY`."""
+    """Gravity ``(3,)`` [m/s²], finite, each component at most :data:`MAX_GRAVITY`: a new
+    read-only float64 array whatever was given (a list, a tuple, a writable or a
+    read-only array), so that the compiled kernels see one type and compile once."""
     key = gravity if type(gravity) is tuple else None
     if key is not None and key in _DEFAULT_GRAVITY:
         return _DEFAULT_GRAVITY[key]
@@ -82,7 +84,7 @@ def as_gravity(gravity) -> np.ndarray:
         raise InputError(f"gravity must be 3 real numbers [m/s²], got {gravity!r}",
                          name="gravity")
     try:
-        g = np.asarray(gravity, dtype=float)
+        g = np.array(gravity, dtype=float)
     except (TypeError, ValueError):
         raise InputError(f"gravity must be 3 numbers [m/s²], got {gravity!r}",
                          name="gravity") from None
@@ -92,8 +94,8 @@ def as_gravity(gravity) -> np.ndarray:
     if np.abs(g).max() > MAX_GRAVITY:
         raise InputError(f"gravity {gravity!r} m/s² exceeds {MAX_GRAVITY:g} m/s² in size: "
                          "give it in m/s² (Earth: 9.81)", name="gravity")
+    g.flags.writeable = False
     if key is not None and len(_DEFAULT_GRAVITY) < 16:
-        g.flags.writeable = False
         _DEFAULT_GRAVITY[key] = g
     return g
 

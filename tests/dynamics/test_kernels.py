@@ -17,9 +17,10 @@ from conftest import relative_error
 from offshore_crane.dynamics import PYTHON_MAX, REGISTRY, solve
 from offshore_crane.dynamics.kernels import Options
 from offshore_crane.robot.kinematics.formulas import FULL, MASSLESS, THIN_ROD
+from offshore_crane.validation import as_gravity
 from problems import random_states
 
-G = np.array([0.0, 0.0, -9.81])
+G = as_gravity((0.0, 0.0, -9.81))      # read-only, as the public functions hand it on
 EXACT = 1e-12
 OPTIONS = [Options(conditioning=True, limits=True, warn=1e5, error=1e8),
            Options(leg_model=THIN_ROD), Options(leg_model=MASSLESS, limits=True),
@@ -162,3 +163,29 @@ def test_twist_form_survives_the_attitude_singularity(robot, backend):
     q[:, 3] = q[:, 5] = 0.0
     res = solve(robot, q, qd, qdd, limits=False, checks=False, backend=backend)
     assert np.isfinite(res.X).all()
+
+
+@pytest.mark.filterwarnings("ignore::offshore_crane.robot.kinematics.workspace."
+                            "OffshoreCraneWarning")
+def test_public_calls_hand_the_kernels_one_signature(robot):
+    """Gravity as a tuple, a list, a writable or a read-only array, thresholds as ints or
+    floats: the public functions give the compiled kernels one argument type each, so
+    each kernel compiles once (a read-only gravity and a writable one, or an int
+    threshold, were each a further compile of ~20 s of the fused Kane kernel)."""
+    from offshore_crane.dynamics import compiled
+    from offshore_crane.robot.kinematics.workspace import Thresholds
+
+    q, qd, qdd = random_states(robot, 4, seed=3)
+    kernels = (compiled.kane, compiled.explicit, compiled.forward)
+    before = [len(k.signatures) for k in kernels]
+    read_only = np.array([0.0, 0.0, -9.81])
+    read_only.flags.writeable = False
+    for g in ((0.0, 0.0, -9.81), [0, 0, -9.81], np.array([0.0, 0.0, -9.81]), read_only):
+        for th in (Thresholds(), Thresholds(10, 10 ** 9)):
+            for method in ("kane", "kane-explicit"):
+                X = oc.inverse_dynamics(robot, q, qd, qdd, gravity=g, thresholds=th,
+                                        method=method, backend="numba", limits=False)
+            oc.forward_dynamics(robot, q, qd, X, gravity=g, thresholds=th, limits=False)
+            oc.forward_dynamics(robot, q[0], qd[0], X[0], gravity=g)
+    added = [len(k.signatures) - b for k, b in zip(kernels, before)]
+    assert max(added) <= 1, added

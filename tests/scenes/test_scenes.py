@@ -27,11 +27,12 @@ from offshore_crane.dynamics.kernels import Options
 from offshore_crane.robot.kinematics import legs as leg_kinematics
 from offshore_crane.robot.kinematics.formulas import FULL, MASSLESS
 from offshore_crane.errors import SceneError
+from offshore_crane.validation import as_gravity
 from problems import random_states
 
 EXACT = 1e-12
 AGREE = 1e-9
-G = np.array([0.0, 0.0, -9.81])
+G = as_gravity((0.0, 0.0, -9.81))      # read-only, as the public functions hand it on
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
 EXAMPLES = ("full_crane", "platform_only", "arm_fixed_deck", "crane_with_payload")
 ARM = ["T1", "T2", "Fs"]

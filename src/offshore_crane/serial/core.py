@@ -314,7 +314,8 @@ def _compiled(chain: SerialChain, q, qd, qdd, g, R_b, load) -> np.ndarray:
         k, p_frame, _ = chain.frames[name]
         if k >= 0:
             lever = np.asarray(p_frame, dtype=float) - chain.com[k]
-        F, M = (np.ascontiguousarray(x[:1] if x.strides[0] == 0 else x) for x in (F, M))
+        F, M = (np.array(x[:1] if x.strides[0] == 0 else x, dtype=float)   # writable,
+                for x in (F, M))          # as the defaults: one signature to compile
     tau = np.empty((N, chain.n))
     f = np.ascontiguousarray
     kernels.kane(C.flat, C.layout, C.prismatic, f(q), f(qd), f(qdd), f(g, dtype=float), R,

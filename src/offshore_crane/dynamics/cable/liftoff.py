@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from offshore_crane.errors import InputError
+from offshore_crane.validation import as_gravity
 
 
 @dataclass
@@ -174,7 +175,7 @@ def _resting(robot, trajectory, k: int, *, rho, rhod, T, s, L, gravity, ea, damp
     q, qd, qdd = (np.ascontiguousarray(np.asarray(x, dtype=float)[:k])
                   for x in (trajectory.q, trajectory.qd, trajectory.qdd))
     pull = T[:k, None] * rho[:k] / np.linalg.norm(rho[:k], axis=1)[:, None]
-    g = np.asarray(gravity, dtype=float)
+    g = as_gravity(gravity)
     X, _, _ = kane_forces(robot, t, q, qd, qdd, np.zeros((k, 6)), g, limits, checks,
                           thresholds, P=pull)
     p_tip, v_tip = tip_positions(robot, q, qd)

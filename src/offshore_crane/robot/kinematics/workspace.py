@@ -66,6 +66,7 @@ class Thresholds:
             if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)):
                 raise InputError(f"condition-number threshold {name} must be a number, got "
                                  f"{value!r} (CLI --{name}-cond)", name="thresholds")
+            object.__setattr__(self, name, float(value))   # one type for the kernels
         if not (1.0 <= self.warn <= self.error):      # also rejects NaN
             raise InputError(
                 f"condition-number thresholds need 1 <= warn <= error, got warn={self.warn:g}, "
