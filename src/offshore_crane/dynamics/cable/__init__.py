@@ -104,9 +104,10 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
             length [m] (> 0), its rate [m/s] and acceleration [m/s²] at any times (RK4's
             stage times among them); e.g. :func:`hoist_profile`. None: the fixed
             ``payload.cable_length``.
-        threads: Threads for the Kane pass over the integrated sway (its samples split
-            into contiguous blocks; the same numbers as one thread); the sway's
-            integration runs in one. ``method="pinocchio"`` ignores it.
+        threads: Threads for the Kane pass over the integrated sway (chunks of samples;
+            from 2 threads on a fixed cable it runs alongside the integration, which
+            itself runs in one); the same numbers as one thread. ``method="pinocchio"``
+            ignores it.
 
     Returns:
         :class:`CableResult`.
