@@ -188,3 +188,28 @@ def test_a_new_process_loads_every_group_without_compiling():
                          text=True, timeout=600)
     assert run.returncode == 0, run.stderr
     assert run.stdout.split()[-1] == "0", run.stderr
+
+
+def test_constant_arguments_do_not_make_a_called_kernel_compile_again():
+    """A compiled function called from compiled code with constants (``True``, ``0``)
+    compiles once, for the plain types: Numba types a constant as a literal and made a
+    specialisation per value (the explicit formulas three times, ~5 s each). Inlined
+    functions keep Numba's typing (they are not compiled on their own)."""
+    from offshore_crane.kernel_cache import njit
+
+    @njit
+    def callee(x, flag, k):
+        return x + k if flag else x - k
+
+    @njit(inline="always")
+    def inlined(x, k):
+        return x * k
+
+    @njit
+    def caller(x):
+        return (callee(x, True, 1) + callee(x, False, 2) + callee(x, x > 0.0, 3)
+                + inlined(x, 2) + inlined(x, 3))
+
+    assert caller(1.0) == 2.0 + -1.0 + 4.0 + 2.0 + 3.0
+    assert len(callee.signatures) == 1
+    assert [str(t) for t in callee.signatures[0]] == ["float64", "bool", "int64"]
