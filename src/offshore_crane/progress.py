@@ -91,6 +91,20 @@ def run_polled(job, done, total: int, unit: str, desc: str):
     Ctrl-C stops waiting (the loop's thread is a daemon: it ends with the process)."""
     if not is_enabled():
         return job()
+    worker, box = in_thread(job, desc)
+    with bar(total, unit, desc) as b:
+        while worker.is_alive():
+            worker.join(POLL)
+            b.update(max(0, min(int(done()), total) - b.n))
+    if "error" in box:
+        raise box["error"]
+    return box.get("value")
+
+
+def in_thread(job, desc: str):
+    """Start ``job()`` in a daemon thread (a Ctrl-C in the caller ends the process, not
+    waiting for it): ``(thread, box)``; once the thread has ended, ``box`` holds
+    ``"value"`` (the result) or ``"error"`` (the exception, for the caller to raise)."""
     box: dict = {}
 
     def target():
@@ -100,14 +114,8 @@ def run_polled(job, done, total: int, unit: str, desc: str):
             box["error"] = exc
 
     worker = threading.Thread(target=target, daemon=True, name=f"offshore-crane {desc}")
-    with bar(total, unit, desc) as b:
-        worker.start()
-        while worker.is_alive():
-            worker.join(POLL)
-            b.update(max(0, min(int(done()), total) - b.n))
-    if "error" in box:
-        raise box["error"]
-    return box.get("value")
+    worker.start()
+    return worker, box
 
 
 def filled_rows(Y) -> int:

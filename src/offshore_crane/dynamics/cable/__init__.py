@@ -232,19 +232,9 @@ def _alongside(job, follow, Y, status):
     ``ready(b)`` waits until rows ``< b`` are written (row ``b`` begun) or the job ends,
     and returns how many of them hold the sway: ``b``, fewer when the integration stopped
     early (its stop sample), none when it raised (raised here after ``follow``)."""
-    import threading
     import time
 
-    box: dict = {}
-
-    def target():
-        try:
-            job()
-        except BaseException as exc:     # re-raised in the caller's thread
-            box["error"] = exc
-
-    worker = threading.Thread(target=target, daemon=True, name="offshore-crane swing")
-    worker.start()
+    worker, box = progress.in_thread(job, "swing")
 
     def ready(b: int) -> int:
         while worker.is_alive():
