@@ -11,20 +11,24 @@ from __future__ import annotations
 
 import os
 
-#: The kernel groups: name -> (module, warm-up function, keyword arguments), each
-#: compiled (or loaded) by one call; the cold compile seconds measured on this project's
-#: 2-core machine order them longest first (a longest-first schedule on the workers).
+#: The kernel groups: name -> (warm-up calls, each ``(module, function, keyword
+#: arguments)``, run in order in one process; cold compile seconds). The seconds,
+#: measured on this project's 2-core machine, order the groups longest first (a
+#: longest-first schedule on the workers). Groups share no big kernel: two processes
+#: compiling one kernel at once both pay for it (the hanging load's kernels and its
+#: simulation loop both need the cable's Kane pass, 16 s: one group).
 PARTS = {
-    "hanging-load simulation loop": ("offshore_crane.simulation.swing", "warm_up", {}, 30),
-    "hanging-load kernels": ("offshore_crane.dynamics.cable", "warm_up", {}, 28),
-    "kane kernels": ("offshore_crane.dynamics", "warm_up",
-                     {"methods": ("kane",), "forward": False}, 23),
+    "hanging load": ((("offshore_crane.dynamics.cable", "warm_up", {}),
+                      ("offshore_crane.simulation.swing", "warm_up", {})), 60),
+    "kane kernels": ((("offshore_crane.dynamics", "warm_up",
+                       {"methods": ("kane",), "forward": False}),), 16),
+    "simulation loop": ((("offshore_crane.simulation.rigid", "warm_up", {"swing": False}),),
+                        16),
+    "serial chain kernels": ((("offshore_crane.serial.core", "warm_up", {}),), 11),
+    "rnea kernels": ((("offshore_crane.dynamics", "warm_up",
+                       {"methods": ("rnea",), "forward": False}),), 8),
     "kane-explicit kernels and forward dynamics": (
-        "offshore_crane.dynamics", "warm_up", {"methods": ("kane-explicit",)}, 15),
-    "simulation loop": ("offshore_crane.simulation.rigid", "warm_up", {"swing": False}, 14),
-    "rnea kernels": ("offshore_crane.dynamics", "warm_up",
-                     {"methods": ("rnea",), "forward": False}, 8),
-    "serial chain kernels": ("offshore_crane.serial.core", "warm_up", {}, 10),
+        (("offshore_crane.dynamics", "warm_up", {"methods": ("kane-explicit",)}),), 3),
 }
 
 
@@ -42,8 +46,8 @@ def _part(name: str) -> list[tuple[str, float]]:
     """Compile (or load) one group in this process: ``[(name, seconds), ...]``."""
     import importlib
 
-    module, function, kwargs, _ = PARTS[name]
-    return getattr(importlib.import_module(module), function)(**kwargs)
+    return [item for module, function, kwargs in PARTS[name][0]
+            for item in getattr(importlib.import_module(module), function)(**kwargs)]
 
 
 def compile_all(jobs: int | None = None, report=None) -> list[tuple[str, float]]:
@@ -52,7 +56,7 @@ def compile_all(jobs: int | None = None, report=None) -> list[tuple[str, float]]
 
     Args:
         jobs: Worker processes (spawned: they import nothing of this process).
-        report: Called with each ``(name, seconds)`` as it completes.
+        report: Called with each group's ``[(name, seconds), ...]`` as it completes.
 
     Raises:
         InputError: ``jobs`` < 1.
@@ -63,25 +67,24 @@ def compile_all(jobs: int | None = None, report=None) -> list[tuple[str, float]]
     if jobs < 1:
         raise InputError(f"--jobs {jobs}: give at least 1", name="--jobs")
     out: list = []
-    order = sorted(PARTS, key=lambda n: -PARTS[n][3])
+    order = sorted(PARTS, key=lambda n: -PARTS[n][1])
+
+    def done(items):
+        out.extend(items)
+        if report:
+            report(items)
+
     if jobs == 1:
         for name in order:
-            for item in _part(name):
-                out.append(item)
-                if report:
-                    report(item)
+            done(_part(name))
         return out
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
     with ProcessPoolExecutor(min(jobs, len(order)),
                              mp_context=multiprocessing.get_context("spawn")) as pool:
-        futures = [pool.submit(_part, name) for name in order]
-        for f in as_completed(futures):
-            for item in f.result():
-                out.append(item)
-                if report:
-                    report(item)
+        for f in as_completed([pool.submit(_part, name) for name in order]):
+            done(f.result())
     return out
 
 
@@ -92,8 +95,9 @@ def run(args) -> int:
 
     t0 = time.perf_counter()
     with progress.bar(len(PARTS), "group", "compile") as shown:
-        def report(item):
-            print(f"{item[0]}: {item[1]:.1f} s", flush=True)
+        def report(items):
+            for name, seconds in items:
+                print(f"{name}: {seconds:.1f} s", flush=True)
             shown.update()
 
         compile_all(args.jobs, report)
