@@ -17,7 +17,6 @@ import numpy as np
 import pytest
 
 import offshore_crane as oc
-from offshore_crane.robot.overrides import normalise
 from conftest import relative_error
 from offshore_crane import scenes
 from offshore_crane.__main__ import main

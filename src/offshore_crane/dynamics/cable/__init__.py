@@ -150,13 +150,10 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
     Lh = (np.array([[length_, 0.0, 0.0]]) if hoist is None else hoist_grid(hoist, tt))
     done = None
     if method == "kane":
-        follow = None
-        if hoist is None and threads > 1:     # the Kane pass follows the integration
-
-            def follow(Y, ready):
-                return kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds,
-                                   threads=threads, rows_ready=ready)
-
+        follow = (None if hoist is not None or threads == 1 else   # the Kane pass
+                  lambda Y, ready: kane_forces(                       # alongside
+                      robot, t, q, qd, qdd, Y, g, limits, checks, thresholds,
+                      threads=threads, rows_ready=ready))
         Y, status, done = _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, int(substeps), y0,
                                           thresholds, follow)
     else:
