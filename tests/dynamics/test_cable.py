@@ -252,7 +252,8 @@ def test_threads_split_the_kane_pass_bit_for_bit():
 def test_substeps_of_a_sea_state_evaluate_its_synthesis_per_stage_offset():
     """With substeps = 3 the sea's motion is wanted at 5 stage offsets between samples:
     each offset is a uniform set of times, so the synthesis stays on its FFT path (all
-    of them as one non-uniform set fell back to the direct sum, 10⁴× slower on 3 h).
+    of them as one non-uniform set fell back to the direct sum: on 3 h with substeps = 2,
+    unfinished after 2 min, against 3.1 s).
     Reference: the direct sum at the first 200 intervals' stage points (one non-uniform
     set); equal to 1e-12 of each column's peak (the two summations' round-off on ~2·10⁴
     components, measured 3.3e-15)."""
