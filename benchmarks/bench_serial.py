@@ -29,6 +29,7 @@ import csv
 import importlib.metadata
 import sys
 import time
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -44,18 +45,11 @@ import pinocchio as pin
 
 ROBOTS_DIR = Path(importlib.metadata.distribution("example-robot-data").locate_file(
     "cmeel.prefix/share/example-robot-data/robots"))
-#: The robots the tests use (tests/serial/test_serial.py).
-ROBOTS = [("UR5", "ur_description/urdf/ur5_robot.urdf", None),
-          ("UR10", "ur_description/urdf/ur10_robot.urdf", None),
-          ("Panda", "panda_description/urdf/panda.urdf", "panda_hand"),
-          ("Panda5", "panda_description/urdf/panda.urdf", "panda_link5"),
-          ("Kinova", "kinova_description/robots/kinova.urdf", None),
-          ("SO100", "so_arm_description/urdf/so100.urdf", None),
-          ("SO101", "so_arm_description/urdf/so101.urdf", None),
-          ("xArm7", "xarm_description/urdf/xarm7.urdf", None),
-          ("Z1", "z1_description/urdf/z1.urdf", None),
-          ("pend2", "double_pendulum_description/urdf/double_pendulum_continuous.urdf",
-           None)]
+#: (id, URDF under example-robot-data/robots, tip or None): the robots the tests check
+#: (tests/data/serial_robots.toml, read by tests/serial/test_serial.py too).
+ROBOTS = [(r["id"], r["urdf"], r.get("tip")) for r in tomllib.loads(
+    (Path(__file__).resolve().parents[1] / "tests" / "data" / "serial_robots.toml")
+    .read_text())["robot"]]
 COLUMNS = ["robot", "joints", "N", "kane_us", "kane_numpy_us", "rnea_loop_us",
            "rnea_parallel1_us", "kane_over_rnea_loop", "kane_over_parallel1", "max_abs_diff"]
 

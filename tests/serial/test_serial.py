@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import importlib.metadata
 import math
+import tomllib
 import zlib
 from pathlib import Path
 
@@ -32,23 +33,10 @@ ROBOTS_DIR = Path(importlib.metadata.distribution("example-robot-data").locate_f
 RELATIVE = 1e-9
 N_STATES = 200
 
-# (id, URDF under example-robot-data/robots, tip): revolute (UR, Panda, xArm, Z1, SO),
-# continuous (Kinova, continuous double pendulum), joints listed in reverse order in
-# the file (SO-101), a branching tree cut at a tip with prismatic + mimic fingers locked
-# (Panda) and a tip in mid-chain locking the wrist too (Panda at link5).
-ROBOTS = [
-    ("ur5", "ur_description/urdf/ur5_robot.urdf", None),
-    ("ur10", "ur_description/urdf/ur10_robot.urdf", None),
-    ("panda", "panda_description/urdf/panda.urdf", "panda_hand"),
-    ("panda-link5", "panda_description/urdf/panda.urdf", "panda_link5"),
-    ("kinova", "kinova_description/robots/kinova.urdf", None),
-    ("so100", "so_arm_description/urdf/so100.urdf", None),
-    ("so101", "so_arm_description/urdf/so101.urdf", None),
-    ("xarm7", "xarm_description/urdf/xarm7.urdf", None),
-    ("z1", "z1_description/urdf/z1.urdf", None),
-    ("double-pendulum", "double_pendulum_description/urdf/double_pendulum_continuous.urdf",
-     None),
-]
+#: (id, URDF under example-robot-data/robots, tip or None): the list the benchmark times
+#: too, with why each robot is in it (tests/data/serial_robots.toml).
+ROBOTS = [(r["id"], r["urdf"], r.get("tip")) for r in tomllib.loads(
+    (Path(__file__).resolve().parents[1] / "data" / "serial_robots.toml").read_text())["robot"]]
 
 # A chain with every joint kind: revolute, prismatic on a skew axis, continuous on a skew
 # axis hanging from a welded link, joint origins and inertial frames with rpy, full
