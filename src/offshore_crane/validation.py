@@ -1,12 +1,17 @@
-"""Checks at the public boundary: shapes, dtypes and finiteness of user arrays."""
+"""Checks at the public boundary: shapes, dtypes and finiteness of user arrays, thread
+counts."""
 
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 
 from offshore_crane.errors import InputError, TrajectoryError
+
+#: The machine's CPU count: :func:`thread_count` caps thread counts at it.
+_CPUS = os.cpu_count() or 1
 
 
 def as_samples(name: str, x, width: int = 9, finite: bool = True) -> tuple[np.ndarray, bool]:
@@ -240,3 +245,12 @@ def not_a_number(value) -> str | None:
     if not math.isfinite(value):
         return "is not finite"
     return None
+
+
+def thread_count(threads) -> int:
+    """``threads`` checked (a positive integer) and capped at the CPU count."""
+    if threads == 1:
+        return 1
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
+        raise InputError(f"threads must be a positive integer, got {threads!r}", name="threads")
+    return int(min(threads, _CPUS))

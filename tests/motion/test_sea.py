@@ -315,6 +315,32 @@ def test_fft_and_direct_paths_agree():
         assert ship.repetition_period > duration
 
 
+def test_fft_in_threads_is_bit_for_bit_one_thread():
+    """Threads share the FFT's 18 channels (each a transform of its own): the same
+    numbers as one thread, on a record long enough to take the FFT path, with aliasing
+    components; through the model-scale motion and a trajectory's reference too (its
+    source takes the threads; a source without them ignores the count)."""
+    ship = sea.sea_state(2.5, 8.0, 150.0, 600.0, 2.0, spreading=4.0, directions=12, seed=4)
+    t = np.arange(1201) / 2.0
+    one = ship(t, method="fft")
+    for n in (2, 3, 64):
+        assert all(np.array_equal(a, b) for a, b in zip(one, ship(t, method="fft",
+                                                                  threads=n)))
+    motion = sea.sea_motion(60.0, 50.0, 2.5, 8.0, 90.0, 20.0, oc.load_robot())
+    traj = motion.trajectory()
+    two = motion.trajectory(threads=2)
+    for name in ("q", "qd", "qdd"):
+        assert np.array_equal(getattr(traj, name), getattr(two, name)), name
+    mid = 0.5 * (traj.t[1:] + traj.t[:-1])
+    assert all(np.array_equal(a, b) for a, b in zip(traj.reference(mid),
+                                                    traj.reference(mid, threads=2)))
+    table = oc.motion.trajectories.load("table1")
+    assert all(np.array_equal(a, b) for a, b in zip(table.reference(mid[:50]),
+                                                    table.reference(mid[:50], threads=2)))
+    with pytest.raises(InputError, match="threads must be a positive integer, got 0"):
+        ship(t, method="fft", threads=0)
+
+
 def test_analytic_derivatives_match_finite_differences():
     """8th-order central differences, h = 0.05 s: truncation (ωh)⁸/630 < 1e-9 for
     ω ≤ 3.14 rad/s, round-off ε/h² ~ 1e-13: agreement to 1e-7 of the peak."""

@@ -13,6 +13,7 @@ import numpy as np
 import offshore_crane as oc
 import pinocchio as pin
 
+from offshore_crane.errors import InputError
 from offshore_crane.conventions import LEG_JOINTS
 from offshore_crane.robot.kinematics import legs as leg_kinematics
 from offshore_crane.reference.rnea import tree_states
@@ -150,3 +151,28 @@ def test_check_workspace_equals_the_solvers_limits(ujoint_limit):
                      if ours[1].startswith("arm") else ours[1].split("_")[1].rstrip("0123456789"))
     assert seen == ({"height", "slide", "arm", "u"} if ujoint_limit else
                     {"height", "slide", "arm"})
+
+
+def test_check_workspace_in_threads_names_the_first_violation():
+    """Threads share the check's blocks of CHECK_BLOCK samples (thread k every k-th
+    block): the same error as one thread, naming the earliest violation even when it lies
+    in another thread's share than a later one (blocks 1 and 2 here), and the same pass."""
+    from offshore_crane.errors import WorkspaceError
+    from offshore_crane.robot.kinematics import CHECK_BLOCK, check_workspace
+
+    robot = oc.load_robot()
+    q = np.tile(robot.home_pose(), (5 * CHECK_BLOCK, 1))
+    t = 0.01 * np.arange(len(q))
+    for n in (1, 2, 3):
+        check_workspace(robot, q, t, threads=n)            # home everywhere: passes
+    bad = q.copy()
+    bad[2 * CHECK_BLOCK + 3, 2] = 5.0                     # legs far too long (block 2)
+    bad[CHECK_BLOCK + 5, 2] = 5.0                         # the first one (block 1)
+    errors = []
+    for n in (1, 2, 3):
+        with pytest.raises(WorkspaceError, match=f"sample {CHECK_BLOCK + 5}") as info:
+            check_workspace(robot, bad, t, threads=n)
+        errors.append((str(info.value), info.value.joint, info.value.index))
+    assert errors[1:] == errors[:1] * 2
+    with pytest.raises(InputError, match="threads must be a positive integer, got 0"):
+        check_workspace(robot, q, t, threads=0)

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from offshore_crane.conventions import ACTUATOR_UNITS, ACTUATORS, AGREEMENT_RTOL, NUMBA_MIN
-from offshore_crane.errors import InputError
 from offshore_crane.cli.common import add_robot_options
 
 RELATIVE_LIMIT = AGREEMENT_RTOL
@@ -38,8 +37,8 @@ def add_options(p, plot_help: str = "write a figure like the paper's Fig. 3 (PNG
                    f"sample, ~1.2 s to load) or auto; default: numpy below {NUMBA_MIN:,} "
                    "samples, numba from there")
     p.add_argument("--threads", type=int, default=1,
-                   help="threads for the compiled kernels (large trajectories; results "
-                   "bit-identical to 1 thread)")
+                   help="threads for the compiled kernels and a sea record's FFT and "
+                   "workspace check (large trajectories; results bit-identical to 1 thread)")
     p.add_argument("--method", choices=("kane", "kane-explicit", "rnea", "both"),
                    help="default kane; 'both' runs kane and rnea and compares them")
     p.add_argument("--leg-model", choices=("full", "thin-rod", "massless"),
@@ -87,7 +86,7 @@ def run(args) -> int:
     scene = id_scene(args)
     outputs, say = plan(args, scene)
     robot = scenes.load_robot(scene)
-    traj = scenes.load_trajectory(scene, robot)
+    traj = scenes.load_trajectory(scene, robot, threads=args.threads)
     from offshore_crane.dynamics import quick_backend
 
     backend = args.backend or quick_backend(len(traj.t))

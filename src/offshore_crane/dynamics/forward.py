@@ -31,7 +31,8 @@ from offshore_crane.errors import InputError, SingularConfigurationError
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.validation import as_gravity, as_samples
 from offshore_crane.dynamics.constants import robot_arrays
-from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded, thread_count
+from offshore_crane.dynamics.runtime import compiled_kernels, run_threaded
+from offshore_crane.validation import thread_count
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike

@@ -26,7 +26,8 @@ from offshore_crane.robot.kinematics.formulas import LEG_MODEL_CODES
 from offshore_crane.validation import as_gravity, as_samples, same_length
 from offshore_crane.dynamics.constants import robot_arrays
 from offshore_crane.dynamics.kernels import Options, allocate, run_numpy, run_python
-from offshore_crane.dynamics.runtime import compiled_kernels, resolve_backend, run_threaded, thread_count
+from offshore_crane.dynamics.runtime import compiled_kernels, resolve_backend, run_threaded
+from offshore_crane.validation import thread_count
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike

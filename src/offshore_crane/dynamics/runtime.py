@@ -7,7 +7,6 @@ hanging load (:mod:`.cable`) and the simulation loops.
 
 from __future__ import annotations
 
-import os
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -16,7 +15,6 @@ from offshore_crane.errors import BackendMissingError, InputError
 from offshore_crane.robot.kinematics import workspace as ws
 
 BACKENDS = ("auto", "numpy", "numba")
-_CPUS = os.cpu_count() or 1
 
 
 def numba_available() -> bool:
@@ -92,11 +90,3 @@ def resolve_backend(backend: str) -> str:
         return "numba" if numba_available() else "numpy"
     return backend
 
-
-def thread_count(threads) -> int:
-    """``threads`` checked (a positive integer) and capped at the CPU count."""
-    if threads == 1:
-        return 1
-    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
-        raise InputError(f"threads must be a positive integer, got {threads!r}", name="threads")
-    return int(min(threads, _CPUS))

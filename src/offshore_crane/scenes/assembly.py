@@ -51,10 +51,11 @@ def still_water_level(scene: Scene, robot) -> float | None:
     return float(robot.home_pose()[2] - float(point[2]) / float(args["scale"]))
 
 
-def sea_trajectory(scene: Scene, robot, check: bool = True):
+def sea_trajectory(scene: Scene, robot, check: bool = True, threads: int = 1):
     """The model-scale record of a ``source = "sea"`` scene
     (:func:`offshore_crane.motion.sea.platform_trajectory`, analytic rates and accelerations;
-    its ``source`` evaluates the same motion at any times).
+    its ``source`` evaluates the same motion at any times); ``threads`` share its FFT and
+    workspace check.
 
     Raises:
         SceneError: a bad ``[sea]`` value. SeaWorkspaceError: the record leaves the
@@ -70,7 +71,7 @@ def sea_trajectory(scene: Scene, robot, check: bool = True):
         return platform_trajectory(
             SEA_DURATION if scene.duration is None else scene.duration,
             SEA_RATE if scene.rate is None else scene.rate, robot=robot, check=check,
-            name=name, **args)
+            name=name, threads=threads, **args)
     except SeaStateError as exc:
         section = "operation" if exc.name == "waypoints" else "sea"
         raise SceneError(f"{scene.where()}: [{section}] {exc}", path=scene.path,
@@ -164,10 +165,11 @@ def with_robot_overrides(scene: Scene, overrides: dict, source: str = "--set") -
                    origin=f"{where} with {source}")
 
 
-def load_trajectory(scene: Scene, robot):
+def load_trajectory(scene: Scene, robot, threads: int = 1):
     """The scene's trajectory; with ``platform = false``, q1..q6 held at the deck pose;
     with ``[control] compensation`` and ``delay``, from the time the first measurement
-    has arrived.
+    has arrived. ``threads`` share a sea record's FFT and workspace check (the same
+    record in any count).
 
     Returns:
         :class:`offshore_crane.motion.trajectories.Trajectory` (``(N, 9)`` arrays).
@@ -175,7 +177,7 @@ def load_trajectory(scene: Scene, robot):
     from offshore_crane.motion import trajectories
 
     if scene.trajectory == "sea":
-        traj = sea_trajectory(scene, robot)
+        traj = sea_trajectory(scene, robot, threads=threads)
         if scene.compensation == "none":
             return traj
         from offshore_crane.simulation.compensation import measured_from

@@ -45,8 +45,7 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import (InputError, NumericalError, SingularConfigurationError,
                                    SlackCableError)
 from offshore_crane.robot.kinematics import workspace as ws
-from offshore_crane.dynamics.runtime import thread_count
-from offshore_crane.validation import as_gravity, as_pair, as_samples
+from offshore_crane.validation import as_gravity, as_pair, as_samples, thread_count
 from offshore_crane.dynamics.cable.hoist import hoist_grid, hoist_profile
 from offshore_crane.dynamics.cable.result import CableResult
 from offshore_crane.dynamics.cable.grid import (cable_robot, motion_samples, stage_grid,
@@ -107,7 +106,8 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
         threads: Threads for the Kane pass over the integrated sway (chunks of samples;
             from 2 threads on a fixed cable it runs alongside the integration, which
             itself runs in one); the same numbers as one thread. ``method="pinocchio"``
-            ignores it.
+            ignores it. (:func:`swing` also passes them to a sea motion's FFT at the
+            stage times.)
 
     Returns:
         :class:`CableResult`.
@@ -356,8 +356,11 @@ def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY,
 
 def swing(robot, trajectory, **options) -> CableResult:
     """:func:`inverse_dynamics` of a :class:`~offshore_crane.motion.trajectories.Trajectory`,
-    its analytic ``source`` (when it has one) evaluated at RK4's stage times."""
-    reference = trajectory.reference if trajectory.source is not None else None
+    its analytic ``source`` (when it has one) evaluated at RK4's stage times (with the
+    ``threads`` of the options, a sea motion shares its FFT among them)."""
+    threads = thread_count(options.get("threads", 1))
+    reference = (None if trajectory.source is None else
+                 lambda t: trajectory.reference(t, threads=threads))
     return inverse_dynamics(robot, trajectory.q, trajectory.qd, trajectory.qdd,
                             reference=reference, **options, t=trajectory.t)
 

@@ -21,7 +21,7 @@ def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, 
     ``kernels.kane_pulled`` with the pull on the tip of the hoisted pendulum (``L``
     ``(n, 3)``: the winch's length, rate, acceleration) or given (``P`` ``(n, 3)`` [N]:
     an elastic cable); chunks of :data:`CHUNK` samples shared by ``threads`` (checked by
-    the caller, :func:`~offshore_crane.dynamics.runtime.thread_count`).
+    the caller, :func:`~offshore_crane.validation.thread_count`).
 
     ``rows_ready(b)``: None when the sway ``Y`` is complete; else called before a chunk
     ending at sample ``b`` is read, it waits until the rows before ``b`` are written

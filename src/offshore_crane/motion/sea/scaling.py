@@ -57,28 +57,29 @@ class SeaMotion:
 
         return time_grid(self.duration, self.rate)
 
-    def __call__(self, t):
+    def __call__(self, t, threads: int = 1):
         """``(q, qd, qdd)`` at model-scale times ``t`` [s]: each ``(n, 9)`` (``(9,)`` for a
-        scalar), [m, rad], [m/s, rad/s], [m/s², rad/s²].
+        scalar), [m, rad], [m/s, rad/s], [m/s², rad/s²]; ``threads`` share the ship's FFT
+        (:meth:`ShipMotion.__call__`: the same numbers in any count).
 
         Raises:
             SeaStateError: non-finite times, or times beyond the record's non-repeating
-                span (``ship.repetition_period / √λ``).
+                span (``ship.repetition_period / √λ``). InputError: a bad ``threads``.
         """
         t, scalar = as_times(t)
         root = math.sqrt(self.scale)
-        xva = _full_scale(self.ship, self.scale, self.duration, t)
-        one, lam = np.ones(3), np.full(3, self.scale)      # Froude, in place (no copies):
-        np.multiply(xva, np.concatenate([one, one, one, one * root, one, lam]), out=xva)
-        np.divide(xva, np.concatenate([lam, one, one * root, one, one, one]), out=xva)
+        xva = _full_scale(self.ship, self.scale, self.duration, t, threads)
         n = t.size
         q = np.empty((n, 9))
         qd = np.empty((n, 9))
         qdd = np.empty((n, 9))
-        q[:, :6] = xva[:, 0:6]            # x/λ, φ; v/√λ, ω√λ; a, α λ
+        np.divide(xva[:, 0:3], self.scale, out=q[:, 0:3])       # Froude: x/λ, φ;
+        q[:, 3:6] = xva[:, 3:6]
         q[:, :3] += self.home[:3]
-        qd[:, :6] = xva[:, 6:12]
-        qdd[:, :6] = xva[:, 12:18]
+        np.divide(xva[:, 6:9], root, out=qd[:, 0:3])            # v/√λ, ω√λ;
+        np.multiply(xva[:, 9:12], root, out=qd[:, 3:6])
+        qdd[:, 0:3] = xva[:, 12:15]                              # a, α λ
+        np.multiply(xva[:, 15:18], self.scale, out=qdd[:, 3:6])
         if self.operation is None:
             q[:, 6:] = self.home[6:]
             qd[:, 6:] = 0.0
@@ -87,15 +88,16 @@ class SeaMotion:
             q[:, 6:], qd[:, 6:], qdd[:, 6:] = self.operation(t)
         return (q[0], qd[0], qdd[0]) if scalar else (q, qd, qdd)
 
-    def trajectory(self, name: str = "sea"):
+    def trajectory(self, name: str = "sea", threads: int = 1):
         """The record on its design grid as a
-        :class:`~offshore_crane.motion.trajectories.Trajectory`."""
+        :class:`~offshore_crane.motion.trajectories.Trajectory` (``threads`` as
+        :meth:`__call__`)."""
         from offshore_crane.motion.trajectories import Trajectory
 
         t = self.time_grid()
-        return Trajectory(name, t, *self(t), source=self)
+        return Trajectory(name, t, *self(t, threads), source=self)
 
-    def check(self, robot, trajectory=None) -> None:
+    def check(self, robot, trajectory=None, threads: int = 1) -> None:
         """Raise :class:`SeaWorkspaceError` if the record leaves the robot's workspace.
 
         Every sample's leg lengths, U-joint angles and sphere heights are checked by
@@ -111,12 +113,15 @@ class SeaMotion:
         Args:
             robot: From :func:`offshore_crane.load_robot`.
             trajectory: The design-grid :class:`Trajectory` if already computed.
+            threads: Threads sharing the record's check (and its synthesis when
+                ``trajectory`` is None).
         """
-        traj = self.trajectory() if trajectory is None else trajectory
-        _check_scaled(robot, traj.t, traj.q, self.home, self.scale)
+        traj = self.trajectory(threads=threads) if trajectory is None else trajectory
+        _check_scaled(robot, traj.t, traj.q, self.home, self.scale, threads)
 
 
-def _full_scale(ship: ShipMotion, scale: float, duration: float, t: np.ndarray):
+def _full_scale(ship: ShipMotion, scale: float, duration: float, t: np.ndarray,
+                threads: int = 1):
     """``ship``'s ``x, v, a`` side by side, ``(n, 18)`` (:meth:`ShipMotion.side_by_side`),
     at model-scale times ``t (n,)`` [s] (full scale ``t √λ``).
 
@@ -133,7 +138,7 @@ def _full_scale(ship: ShipMotion, scale: float, duration: float, t: np.ndarray):
             f"t[{k}] = {float(t[k]):.9g} s is outside [0, {end:.9g}] s, the model-scale "
             f"span on which this sea does not repeat (record {duration:g} s at scale "
             f"{scale:g}): build the motion for a longer duration", name="t", index=k)
-    return ship.side_by_side(t * root)
+    return ship.side_by_side(t * root, threads=threads)
 
 
 @dataclass(frozen=True, eq=False)
@@ -185,13 +190,13 @@ def deck_motion(duration, rate, hs, tp, heading_deg, scale, *, vessel="supply", 
     return DeckMotion(ship, scale, float(duration))
 
 
-def _violation(robot, q, t):
+def _violation(robot, q, t, threads: int = 1):
     """The WorkspaceError that ``q`` meets (:func:`offshore_crane.robot.kinematics.check_workspace`),
     or None."""
     from offshore_crane.robot.kinematics import check_workspace
 
     try:
-        check_workspace(robot, q, t)
+        check_workspace(robot, q, t, threads=threads)
     except WorkspaceError as exc:
         return exc
     return None
@@ -202,10 +207,10 @@ def _what(exc) -> str:
     return str(exc).split(";")[0]
 
 
-def _check_scaled(robot, t, q, home, scale) -> None:
+def _check_scaled(robot, t, q, home, scale, threads: int = 1) -> None:
     from offshore_crane.conventions import ARM_JOINTS
 
-    first = _violation(robot, q, t)
+    first = _violation(robot, q, t, threads)
     if first is None:
         return
     if first.joint in ARM_JOINTS:
@@ -219,7 +224,7 @@ def _check_scaled(robot, t, q, home, scale) -> None:
 
     head = (f"the ship motion at scale {scale:g} leaves the workspace: {_what(first)}")
     data = dict(joint=first.joint, index=first.index, value=first.value, scale=scale)
-    rot = _violation(robot, pose(math.inf), t)
+    rot = _violation(robot, pose(math.inf), t, threads)
     if rot is not None:
         raise SeaWorkspaceError(
             f"{head}; no scale fits: the rotations alone (translations removed) leave it too "
@@ -231,7 +236,7 @@ def _check_scaled(robot, t, q, home, scale) -> None:
         idx = np.array(sorted(witnesses))
         if _violation(robot, pose(lam, idx), t[idx]) is not None:
             return False
-        exc = _violation(robot, pose(lam), t)
+        exc = _violation(robot, pose(lam), t, threads)
         if exc is not None:
             witnesses.add(exc.index)
             return False
@@ -323,12 +328,13 @@ def platform_trajectory(duration, rate, hs, tp, heading_deg, scale, robot, *,
                         vessel="supply", seed=0, kind: str = "jonswap", gamma=None,
                         point=(0.0, 0.0, 0.0), spreading=None,
                         directions: int = DEFAULT_DIRECTIONS, highpass=None, operation=None,
-                        check: bool = True, name: str = "sea"):
+                        check: bool = True, name: str = "sea", threads: int = 1):
     """The model-scale record of :func:`sea_motion` as a
     :class:`~offshore_crane.motion.trajectories.Trajectory` ``(name, t, q, qd, qdd)``.
 
     ``t = trajectories.time_grid(duration, rate)``; ``q`` ``(N, 9)`` with analytic
-    ``qd``, ``qdd`` (see :class:`SeaMotion`). Arguments as :func:`sea_motion`.
+    ``qd``, ``qdd`` (see :class:`SeaMotion`). Arguments as :func:`sea_motion`;
+    ``threads`` share the FFT and the workspace check (the same record in any count).
 
     Raises:
         SeaStateError, TrajectoryError: bad arguments. SeaWorkspaceError: the record
@@ -338,7 +344,7 @@ def platform_trajectory(duration, rate, hs, tp, heading_deg, scale, robot, *,
     motion = _sea_motion(duration, rate, hs, tp, heading_deg, scale, robot, vessel=vessel,
                          seed=seed, kind=kind, gamma=gamma, point=point, spreading=spreading,
                          directions=directions, highpass=highpass, operation=operation)
-    traj = motion.trajectory(name)
+    traj = motion.trajectory(name, threads)
     if check:
-        motion.check(robot, traj)
+        motion.check(robot, traj, threads)
     return traj

@@ -16,7 +16,7 @@ from offshore_crane.motion.sea.arguments import (DEFAULT_DIRECTIONS, GRID_EPS, S
                                                  integer, real, sea_arguments, vector3)
 from offshore_crane.motion.sea.raos import RAOTable, VESSELS, vessel_raos
 from offshore_crane.motion.sea.spectra import default_gamma, spectrum, spreading_directions
-from offshore_crane.validation import check_memory
+from offshore_crane.validation import check_memory, thread_count
 
 
 # Times within this many units in the last place of the largest |t| of a uniform grid
@@ -63,12 +63,15 @@ def _direct(coef: np.ndarray, omega: np.ndarray, t: np.ndarray) -> np.ndarray:
 
 
 def _fft(coef: np.ndarray, harmonics: np.ndarray, d_omega: float, t0: float, L: int,
-         n: int) -> np.ndarray:
-    """``Re Σ_j coef[j] e^{i j Δω (t0 + m T/L)}`` for m = 0..n-1 (``T = 2π/Δω``): ``(n, C)``.
+         n: int, threads: int = 1) -> np.ndarray:
+    """``Re Σ_j coef[j] e^{i j Δω (t0 + m T/L)}`` for m = 0..n-1 (``T = 2π/Δω``): ``(n, C)``
+    (a transposed view of channel-major memory).
 
     Exact for any harmonics (those above L/2 fold onto their alias with the conjugate
     coefficient; the samples are the same numbers): one inverse real FFT of length L
-    per channel.
+    per channel, the channels shared among ``threads`` threads (NumPy's FFT releases the
+    GIL), each filling one spectrum of its own (only the components' bins are non-zero)
+    and transforming it straight into its row of the result.
     """
     b = coef * np.exp(1j * (harmonics * d_omega * t0))[:, None]
     k = harmonics % L
@@ -76,12 +79,28 @@ def _fft(coef: np.ndarray, harmonics: np.ndarray, d_omega: float, t0: float, L: 
     k = np.where(upper, L - k, k)
     b = np.where(upper[:, None], b.conj(), b)
     b *= np.where((k == 0) | (2 * k == L), float(L), 0.5 * L)[:, None]
-    spec = np.zeros((L // 2 + 1, coef.shape[1]), dtype=complex)
-    if np.unique(k).size == k.size:
-        spec[k] = b
+    unique = np.unique(k).size == k.size
+    x = np.empty((coef.shape[1], L))
+
+    def channels(rows):
+        spec = np.zeros(L // 2 + 1, dtype=complex)
+        for c in rows:
+            if unique:
+                spec[k] = b[:, c]
+            else:
+                spec[k] = 0.0
+                np.add.at(spec, k, b[:, c])
+            np.fft.irfft(spec, n=L, out=x[c])
+
+    parts = np.array_split(np.arange(len(x)), min(threads, len(x)))
+    if len(parts) == 1:
+        channels(parts[0])
     else:
-        np.add.at(spec, k, b)
-    x = np.fft.irfft(spec, n=L, axis=0)
+        from concurrent.futures import ThreadPoolExecutor
+
+        with ThreadPoolExecutor(len(parts)) as pool:
+            list(pool.map(channels, parts))
+    x = x.T
     return x[:n] if n <= L else x[np.arange(n) % L]     # n = L + 1: t0 + T repeats t0
 
 
@@ -153,7 +172,7 @@ class ShipMotion:
             return None
         return float(t[0]), L
 
-    def _evaluate(self, coef: np.ndarray, t, method: str):
+    def _evaluate(self, coef: np.ndarray, t, method: str, threads: int = 1):
         if method not in ("auto", "fft", "direct"):
             raise SeaStateError(f"unknown method {method!r}: use 'auto', 'fft' or 'direct'",
                                 name="method")
@@ -175,12 +194,13 @@ class ShipMotion:
         omega = self.omega
         if plan is not None and (method == "fft" or t.size * omega.size
                                  >= plan[1] * math.log2(plan[1])):
-            out = _fft(coef, self.harmonics, self.d_omega, plan[0], plan[1], t.size)
+            out = _fft(coef, self.harmonics, self.d_omega, plan[0], plan[1], t.size,
+                       thread_count(threads))
         else:
             out = _direct(coef, omega, t)
         return out, scalar
 
-    def __call__(self, t, method: str = "auto"):
+    def __call__(self, t, method: str = "auto", threads: int = 1):
         """Motion, velocity, acceleration at times ``t`` (full scale).
 
         Args:
@@ -189,6 +209,8 @@ class ShipMotion:
             method: ``"auto"`` (FFT on a compatible uniform grid when it is cheaper,
                 else direct summation), ``"fft"`` or ``"direct"``; they agree to
                 round-off.
+            threads: Threads sharing the FFT's 18 channels (capped at the CPU count);
+                the same numbers in any count.
 
         Returns:
             ``(motion, velocity, acceleration)``, each ``(n, 6)`` (``(6,)`` for a scalar)
@@ -196,20 +218,23 @@ class ShipMotion:
 
         Raises:
             SeaStateError: non-finite times, times outside the non-repeating span.
+            InputError: a bad ``threads``.
         """
-        out, scalar = self._evaluate(self._channels, t, method)
+        out, scalar = self._evaluate(self._channels, t, method, threads)
         parts = tuple(np.ascontiguousarray(out[:, 6 * i:6 * i + 6]) for i in range(3))
         return tuple(p[0] for p in parts) if scalar else parts
 
-    def side_by_side(self, t, method: str = "auto") -> np.ndarray:
+    def side_by_side(self, t, method: str = "auto", threads: int = 1) -> np.ndarray:
         """:meth:`__call__`'s three results as the columns of one new ``(n, 18)`` array
         (motion, velocity, acceleration), ``t`` ``(n,)``: no copies into three arrays,
-        for callers that take columns of it anyway (or scale it in place).
+        for callers that take columns of it anyway (or scale it in place). On the FFT
+        path it is column-major (the FFT's rows seen transposed); ``threads`` as
+        :meth:`__call__`.
 
         Raises:
-            SeaStateError: as :meth:`__call__`.
+            SeaStateError: as :meth:`__call__`; InputError: a bad ``threads``.
         """
-        return self._evaluate(self._channels, np.atleast_1d(t), method)[0]
+        return self._evaluate(self._channels, np.atleast_1d(t), method, threads)[0]
 
     def elevation(self, t, method: str = "auto"):
         """Wave elevation at the RAO table's reference point [m] (table's band only).

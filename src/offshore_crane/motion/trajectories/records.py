@@ -37,14 +37,18 @@ class Trajectory:
     qdd: np.ndarray
     source: object = None
 
-    def reference(self, t) -> tuple:
+    def reference(self, t, threads: int = 1) -> tuple:
         """The motion at any times ``t`` ``(n,)`` within the record: ``(q, qd, qdd)``
         ``(n, 9)`` each. Analytic where the trajectory has a source; otherwise the cubic
         Hermite interpolant of the samples' positions and rates (C¹; its acceleration is
         the interpolant's second derivative, linear between samples), which a simulator
-        evaluates at its integration stages."""
+        evaluates at its integration stages. ``threads`` go to a source whose call takes
+        them (a sea motion's FFT); the same numbers in any count."""
         if self.source is not None:
-            return self.source(np.asarray(t, dtype=float))
+            t = np.asarray(t, dtype=float)
+            if threads != 1 and _takes_threads(self.source):
+                return self.source(t, threads=threads)
+            return self.source(t)
         return hermite(self.t, self.q, self.qd, t)
 
     def __post_init__(self):
@@ -61,6 +65,16 @@ class Trajectory:
     def __len__(self) -> int:
         """Number of time samples ``N``."""
         return int(self.t.shape[0])
+
+
+def _takes_threads(source) -> bool:
+    """Whether ``source``'s call takes a ``threads`` keyword."""
+    import inspect
+
+    try:
+        return "threads" in inspect.signature(source).parameters
+    except (TypeError, ValueError):       # no signature to read (a builtin): it does not
+        return False
 
 
 def hermite(tk, qk, qdk, t) -> tuple:

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from offshore_crane.robot.kinematics import formulas as F
+from offshore_crane.validation import thread_count
 
 __all__ = ["LegState", "actuator_motion", "check_workspace", "leg_positions", "legs",
            "platform_pose"]
@@ -146,7 +147,7 @@ def leg_positions(robot, q) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.stack(length, axis=1), np.stack(height, axis=1), np.stack(theta, axis=1)
 
 
-def check_workspace(robot, q, t=None, *, pose: str | None = None) -> None:
+def check_workspace(robot, q, t=None, *, pose: str | None = None, threads: int = 1) -> None:
     """Raise :class:`~offshore_crane.errors.WorkspaceError` for the first sample of ``q``
     ``(N, 9)`` [m, rad] outside the robot's workspace: arm joints outside their limits,
     a sphere centre not above its U-joint (platform below the base), a leg length outside
@@ -160,18 +161,35 @@ def check_workspace(robot, q, t=None, *, pose: str | None = None) -> None:
         t: ``(N,)`` times [s] for the message, or None.
         pose: The name of one pose a user gave (``"--pose"``): the message names it, not
             a sample, and asks for a pose inside the workspace.
+        threads: Threads sharing the blocks of :data:`CHECK_BLOCK` samples (NumPy
+            releases the GIL in its loops); the same verdict in any count.
 
     Raises:
-        InputError: q is not finite or has the wrong shape. WorkspaceError: as above.
+        InputError: q is not finite or has the wrong shape, a bad ``threads``.
+        WorkspaceError: as above.
     """
     from offshore_crane.robot.kinematics import workspace as ws
 
     q = _samples(q)
     limits = ws.limits_of(robot.hybrid)
-    health = ws.new_health()
-    for a in range(0, len(q), CHECK_BLOCK):
-        chunk = q[a:a + CHECK_BLOCK]
-        ws.record_limits(health, limits, chunk, *leg_positions(robot, chunk), offset=a)
+    starts = range(0, len(q), CHECK_BLOCK)
+
+    def record(share) -> np.ndarray:
+        health = ws.new_health()
+        for a in share:
+            chunk = q[a:a + CHECK_BLOCK]
+            ws.record_limits(health, limits, chunk, *leg_positions(robot, chunk), offset=a)
+        return health
+
+    threads = min(thread_count(threads), len(starts))
+    if threads <= 1:
+        health = record(starts)
+    else:                                  # every thread-th block: equal shares
+        from concurrent.futures import ThreadPoolExecutor
+
+        with ThreadPoolExecutor(threads) as pool:
+            health = ws.merge(list(pool.map(record, (starts[i::threads]
+                                                     for i in range(threads)))))
     ws.check_limits(health, limits, q, None if t is None else np.asarray(t, dtype=float),
                     pose)
 
