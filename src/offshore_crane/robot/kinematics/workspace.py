@@ -34,6 +34,7 @@ chunk in NumPy; :func:`merge` combines the records of chunks or threads and
 
 from __future__ import annotations
 
+import operator
 import warnings
 from dataclasses import dataclass
 
@@ -96,6 +97,9 @@ _EMPTY[KAPPA::4] = -np.inf
 #: The slots that hold a sample index of something found (all -1 in a clean record).
 _FIRST = np.array([BAD_INPUT, BAD_OUTPUT, *range(VIOLATION, BAD_OUTPUT, 3),
                    *(KAPPA + 4 * k + j for k in range(len(KINDS)) for j in (2, 3))])
+#: The ``_FIRST`` slots of a record's list (what :func:`is_clean` reads: 0.7 µs, against
+#: 1.7 µs for NumPy's fancy indexing of a 29-value array, on every public call).
+_first_slots = operator.itemgetter(*_FIRST.tolist())
 
 
 @dataclass(frozen=True)
@@ -130,8 +134,8 @@ def new_health() -> np.ndarray:
 
 def is_clean(health: np.ndarray) -> bool:
     """True when the record holds nothing to report (no bad input or result, no workspace
-    violation, no κ above a threshold): one comparison."""
-    return bool((health[_FIRST] < 0.0).all())
+    violation, no κ above a threshold): every "first sample" slot still −1."""
+    return max(_first_slots(health.tolist())) < 0.0
 
 
 def enforce(health: np.ndarray, arrays, limits, kappa, thresholds, error_kinds, t=None):
