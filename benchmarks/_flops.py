@@ -280,3 +280,17 @@ def cable_kane(robot) -> Counter:
     linear.solve6.py_func(A, rhs, objects(6), objects(6, 13), True)
     F.cable_force(C, store)
     return Counter(COUNT)
+
+
+def legs_geometry(robot) -> Counter:
+    """One sample of the six legs' geometry (``formulas.leg_geometry``: S_i from the
+    platform's pose, the leg's length, unit vector and components in the U-joint frame),
+    what benchmarks/roofline.py's layout rows run; the attitude comes in precomputed."""
+    F = _formulas()
+    C, q, *_ = _state(robot)
+    R = tuple(tuple(Counted(x) for x in row) for row in np.eye(3))
+    COUNT.clear()
+    for i in range(6):
+        F.leg_geometry(tuple(q[:3]), R, tuple(C.leg_s[i]), tuple(C.leg_P[i]),
+                       tuple(C.leg_X[i]), tuple(C.leg_Y[i]), tuple(C.leg_Z[i]))
+    return Counter(COUNT)

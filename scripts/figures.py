@@ -250,6 +250,17 @@ def roofline_rows(r: dict) -> dict:
            f"vector width {width} doubles, so {peak / width:.1f} GFLOP/s for scalar code; "
            f"memory copy {r['bandwidth_gbs']:.1f} GB/s; Pinocchio's `rneaInParallel(1)` "
            f"{r['floor_us']:.2f} µs a sample; N = {_count(r['n'])}, run of {r['date']}"}
+    per = {k["kernel"]: k for k in r["kernels"]}
+    kernels = [k for k in r["kernels"] if not k["kernel"].startswith("legs' geometry")]
+    scalar = [100 * k["scalar_share"] for k in kernels]
+    out[("README.md", "figure roofline-verdict")] = (
+        f"scalar code at {min(scalar):.0f}–{max(scalar):.0f} % of the scalar roof and under "
+        f"{max(100 * k['peak_share'] for k in kernels):.0f} % of the machine's peak")
+    a, b = per["legs' geometry, per sample"], per["legs' geometry, arrays"]
+    out[("README.md", "figure roofline-layout")] = (
+        f"{a['us'] * 1e3:.0f} → {b['us'] * 1e3:.0f} ns a sample ({a['us'] / b['us']:.1f}×, "
+        f"{a['gflops']:.1f} → {b['gflops']:.1f} GFLOP/s, {b['verdict'].split(' (')[0]}: "
+        "its outputs stream to memory)")
     for k in r["kernels"]:
         out[("README.md", f"roofline, {k['kernel']}")] = (
             f"| roofline, {k['kernel']} | {_count(k['flop'])} (+{k['trig']} sin, cos) | "
