@@ -73,9 +73,14 @@ def _resolves(dotted: str) -> bool:
     return False
 
 
+def _sources() -> list[Path]:
+    """The package's source files (not the generated kernels of its caches)."""
+    return [p for p in sorted(PACKAGE.rglob("*.py")) if "__pycache__" not in p.parts]
+
+
 def _dotted_names() -> dict[str, str]:
     found = {}
-    sources = DOCS + sorted(PACKAGE.rglob("*.py"))
+    sources = DOCS + _sources()
     for path in sources:
         for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
             for name in DOTTED.findall(line):
@@ -110,7 +115,7 @@ def test_relative_docstring_references_resolve():
     """``:mod:`.formulas``` in a docstring names a module beside it (or inside it, for a
     package's ``__init__``); ``..x`` one package up."""
     bad = []
-    for path in sorted(PACKAGE.rglob("*.py")):
+    for path in _sources():
         parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
         module = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
         package = module if parts[-1] == "__init__" else module.rsplit(".", 1)[0]

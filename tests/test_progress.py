@@ -157,9 +157,11 @@ def test_a_cold_simulate_says_it_compiles_within_a_second(tmp_path):
 
 
 def test_a_methods_time_excludes_loading_and_compiling_its_kernels(monkeypatch):
-    """scenes.run runs each method on two samples first (kernels loaded or compiled) and
+    """scenes.run runs each method on its first samples first (kernels loaded or
+    compiled: LANES of them when the run has as many, as the block kernel runs them) and
     times the run itself: a first call that takes 0.5 s (as a compile) lands in
     ``prepare``, not in ``seconds``; the id command words both."""
+    from offshore_crane.conventions import LANES
     from offshore_crane import scenes
     from offshore_crane.cli.id import _kernel_time
     from offshore_crane.scenes import running
@@ -176,7 +178,7 @@ def test_a_methods_time_excludes_loading_and_compiling_its_kernels(monkeypatch):
     monkeypatch.setattr(running, "solve_scene", slow_first)
     scene = scenes.Scene(name="t", duration=0.5, methods=("kane",))
     done = scenes.run(scene, backend="numpy")
-    assert calls == [2, len(done.trajectory.t)]
+    assert calls == [LANES, len(done.trajectory.t)]
     assert done.prepare["kane"] >= 0.5 > done.seconds["kane"]
     assert "kernels loaded in 0.5" in _kernel_time(done)
     done.compiled = 3

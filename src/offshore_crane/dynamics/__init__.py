@@ -1,11 +1,15 @@
 """Dynamics of the hybrid robot: inverse dynamics (:mod:`.inverse`: Kane fused and
 explicit, the RNEA reference path), forward dynamics (:mod:`.forward`), the hanging load
 (:mod:`.cable`); the formulas (:mod:`.formulas`), their backends (:mod:`.backends`,
-:mod:`.compiled`, :mod:`.extended`) and where they run (:mod:`.runtime`).
+:mod:`.compiled`, :mod:`.extended`, :mod:`.tracing` with :mod:`.lanes`) and where they
+run (:mod:`.runtime`).
 """
 
 from __future__ import annotations
 
+import numpy as np
+
+from offshore_crane.conventions import LANES
 from offshore_crane.dynamics.inverse import (APPROXIMATIONS, LEG_MODELS, METHODS, PYTHON_MAX, REGISTRY,
                                              STATIC_MIN, Result, inverse_dynamics, solve)
 from offshore_crane.dynamics.runtime import BACKENDS, numba_available, quick_backend, resolve_backend
@@ -38,6 +42,10 @@ def warm_up(robot=None, methods: tuple[str, ...] = METHODS,
     for method in dict.fromkeys(methods):
         t0 = time.perf_counter()
         solve(robot, q, 0 * q, 0 * q, method=method, backend="numba", limits=False)
+        if method == "kane":                  # and the block kernel of longer motions
+            moving = np.repeat(q, LANES, axis=0)
+            solve(robot, moving, moving * 0 + 1e-3, 0 * moving, backend="numba",
+                  limits=False)
         out.append((f"{method} kernels", time.perf_counter() - t0))
     if not forward:
         return out

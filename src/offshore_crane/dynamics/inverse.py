@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from offshore_crane.conventions import ACTUATORS, GRAVITY
+from offshore_crane.conventions import ACTUATORS, GRAVITY, LANES
 from offshore_crane.errors import InputError
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.robot.kinematics.formulas import LEG_MODEL_CODES
@@ -93,15 +93,28 @@ class Result:
 
 # --------------------------------------------------------------------------- entries
 def _kane_numba(robot, q, qd, qdd, g, opts: Options, threads: int):
+    """The fused Kane pass compiled: on blocks of samples vectorised across them
+    (:mod:`.lanes`) when there are enough samples, the platform moves and every leg
+    force is wanted; else one sample at a time. The same numbers either way."""
     c = compiled_kernels()
     arrays = robot_arrays(robot)
     X, kappa = allocate(len(q), opts)
     kap = kappa if kappa is not None else np.empty((3, 1))
+    block = None
+    if opts.legs and not opts.static and len(q) >= LANES:
+        from offshore_crane.dynamics.lanes import kane_kernel
+
+        block = kane_kernel(arrays, opts.leg_model)
 
     def run(start, stop, health):
-        c.kane(arrays.flat, arrays.layout, arrays.prismatic, q, qd, qdd, g, opts.static,
-               opts.leg_model, opts.legs, opts.conditioning, opts.limits, opts.warn,
-               opts.error, start, stop, X, kap, health)
+        if block is not None:
+            block(arrays.flat, arrays.layout, arrays.prismatic, q, qd, qdd, g,
+                  opts.conditioning, opts.limits, opts.warn, opts.error, start, stop, X, kap,
+                  health)
+        else:
+            c.kane(arrays.flat, arrays.layout, arrays.prismatic, q, qd, qdd, g, opts.static,
+                   opts.leg_model, opts.legs, opts.conditioning, opts.limits, opts.warn,
+                   opts.error, start, stop, X, kap, health)
 
     return X, kappa, run_threaded(run, len(q), threads)
 

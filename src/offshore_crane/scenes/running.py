@@ -246,14 +246,18 @@ def run(scene: Scene, robot=None, trajectory=None, **options) -> SceneRun:
 
 
 def _prepare(scene: Scene, robot, traj, method: str, **options) -> None:
-    """Run ``method`` on the trajectory's first two samples, so that its kernels are
-    loaded (or compiled) before its run is timed. Its result is dropped, and so is an
-    error: the run itself meets it and reports it."""
+    """Run ``method`` on the trajectory's first samples, so that its kernels are loaded
+    (or compiled) before its run is timed: :data:`~offshore_crane.conventions.LANES` of
+    them when the run has as many (the fused Kane pass then runs on blocks of samples),
+    else two. Its result is dropped, and so is an error: the run itself meets it and
+    reports it."""
+    from offshore_crane.conventions import LANES
     from offshore_crane.errors import OffshoreCraneError
 
     if len(traj.t) <= 2:
         return
-    head = replace(traj, t=traj.t[:2], q=traj.q[:2], qd=traj.qd[:2], qdd=traj.qdd[:2])
+    n = LANES if len(traj.t) >= LANES else 2
+    head = replace(traj, t=traj.t[:n], q=traj.q[:n], qd=traj.qd[:n], qdd=traj.qdd[:n])
     try:
         solve_scene(scene, robot, head, method, scene.leg_model, **options)
     except OffshoreCraneError:

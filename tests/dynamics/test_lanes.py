@@ -1,0 +1,105 @@
+"""The fused Kane pass on blocks of samples (offshore_crane.dynamics.lanes): the traced
+text vectorised across samples gives the per-sample kernel's numbers bit for bit."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import offshore_crane as oc
+from offshore_crane.conventions import LANES
+from offshore_crane.dynamics import compiled as c
+from offshore_crane.dynamics import lanes, solve
+from offshore_crane.dynamics.constants import robot_arrays
+from offshore_crane.dynamics.tracing import Symbol, TraceError
+from offshore_crane.errors import WorkspaceError
+from offshore_crane.robot.kinematics import workspace as ws
+from offshore_crane.robot.kinematics.formulas import LEG_MODEL_CODES
+from offshore_crane.validation import as_gravity
+from problems import random_states
+
+
+def _both(robot, q, qd, qdd, leg_model, want_cond=True, want_limits=True):
+    """(X, κ, health) of the block kernel and of the per-sample kernel, same inputs (κ
+    starts NaN: a sample with a non-finite input is skipped, its κ not written)."""
+    arrays = robot_arrays(robot)
+    g = as_gravity((0.0, 0.0, -9.81))
+    out = []
+    for block in (True, False):
+        n = len(q)
+        X, kappa, health = np.empty((n, 9)), np.full((3, n), np.nan), ws.new_health()
+        if block:
+            kernel = lanes.kane_kernel(arrays, LEG_MODEL_CODES[leg_model])
+            kernel(arrays.flat, arrays.layout, arrays.prismatic, q, qd, qdd, g, want_cond,
+                   want_limits, 10.0, 50.0, 0, n, X, kappa, health)
+        else:
+            c.kane(arrays.flat, arrays.layout, arrays.prismatic, q, qd, qdd, g, False,
+                   LEG_MODEL_CODES[leg_model], True, want_cond, want_limits, 10.0, 50.0, 0,
+                   n, X, kappa, health)
+        out.append((X, kappa, health))
+    return out
+
+
+@pytest.mark.parametrize("leg_model", ["full", "thin-rod", "massless"])
+def test_block_kernel_is_the_per_sample_kernel_bit_for_bit(leg_model):
+    """Seeded random states, a count that leaves a partial last block (1000 + 7), a sample
+    with a NaN input, one outside the workspace and one at the attitude singularity's
+    edge: X, the condition numbers and the health record (first violations, worst κ with
+    their samples) are equal bit for bit - the traced program does the per-sample
+    formulas' operations in their order, and the epilogue is the same code."""
+    robot = oc.load_robot()
+    q, qd, qdd = random_states(robot, 1007, seed=25)
+    q[13, 4] = 1.5                                    # |cos q5| small: κ_attitude large
+    q[500, 2] = 0.9                                   # legs beyond their stroke
+    qd[777, 3] = np.nan                               # a non-finite input
+    (Xb, kb, hb), (Xs, ks, hs) = _both(robot, q, qd, qdd, leg_model)
+    np.testing.assert_array_equal(Xb, Xs)
+    np.testing.assert_array_equal(kb, ks)
+    np.testing.assert_array_equal(hb, hs)
+    assert np.isnan(Xb[777]).all() and not ws.is_clean(hb)
+    assert np.isfinite(Xb[:777]).all()
+
+
+def test_solve_takes_the_blocks_from_lanes_samples_with_the_same_result():
+    """The public path: LANES samples and more go through the block kernel, fewer one at a
+    time; the same forces either way (each sample alone through ``solve``), in one thread
+    or two, and the same error naming the same sample."""
+    robot = oc.load_robot()
+    q, qd, qdd = random_states(robot, 3 * LANES + 5, seed=3)
+    X = solve(robot, q, qd, qdd).X
+    one = np.array([solve(robot, q[k], qd[k], qdd[k]).X[0] for k in range(len(q))])
+    np.testing.assert_array_equal(X, one)
+    np.testing.assert_array_equal(X, solve(robot, q, qd, qdd, threads=2).X)
+    q[40, 2] = 0.9
+    messages = []
+    for rows in (slice(None), slice(40, 41)):
+        with pytest.raises(WorkspaceError, match="sample") as info:
+            solve(robot, q[rows], qd[rows], qdd[rows])
+        messages.append(str(info.value).replace("sample 0", "sample 40"))
+    assert "sample 40" in messages[0] and messages[0] == messages[1]
+
+
+def test_a_branch_on_a_value_stops_the_trace():
+    """The straight-line program cannot branch on a value: a comparison of traced
+    numbers raises TraceError (the caller keeps the per-sample kernel)."""
+    x = Symbol("q0")
+    with pytest.raises(TraceError, match="a branch on a value cannot be traced"):
+        bool(x > 0.0)
+    with pytest.raises(TraceError, match="cannot trace an operation with str"):
+        x + "a"
+
+
+def test_the_generated_module_reads_constants_from_the_description():
+    """The program copies no value of the robot: its constants are the description's
+    array read by index, so a heavier payload (another URDF, same structure) reuses the
+    same module and gives its own forces."""
+    heavy = oc.load_robot(overrides={"payload.mass": 7.5})
+    light = oc.load_robot()
+    a, b = robot_arrays(heavy), robot_arrays(light)
+    assert lanes._structure_key(a, 0) == lanes._structure_key(b, 0)
+    text = lanes.source(b, 0)
+    assert "7.5" not in text and "c_0 = flat[0]" in text.replace("\n    ", "\n")
+    q, qd, qdd = random_states(light, LANES, seed=9)
+    assert not np.array_equal(solve(heavy, q, qd, qdd).X, solve(light, q, qd, qdd).X)
+    (Xb, _, _), (Xs, _, _) = _both(heavy, q, qd, qdd, "full")
+    np.testing.assert_array_equal(Xb, Xs)
