@@ -103,3 +103,33 @@ def test_the_generated_module_reads_constants_from_the_description():
     assert not np.array_equal(solve(heavy, q, qd, qdd).X, solve(light, q, qd, qdd).X)
     (Xb, _, _), (Xs, _, _) = _both(heavy, q, qd, qdd, "full")
     np.testing.assert_array_equal(Xb, Xs)
+
+
+def test_the_hanging_loads_block_kernel_is_its_per_sample_kernel_bit_for_bit():
+    """The swing's Kane pass (the arm continued by the two sway joints, the cable's pull,
+    tension and residual into F) on blocks: X, F, κ and the health record equal the
+    per-sample kernel's bit for bit, on seeded random states with swinging sway angles,
+    a NaN input and a partial last block."""
+    from offshore_crane.dynamics.cable import kernels as ck
+    from offshore_crane.dynamics.constants import cable_arrays
+
+    robot = oc.load_robot(overrides={"payload.cable_length": 1.2, "payload.mass": 3.0})
+    arrays = cable_arrays(robot)
+    rng = np.random.default_rng(11)
+    q9, qd9, qdd9 = random_states(robot, 3 * LANES + 3, seed=12)
+    q, qd, qdd = (np.column_stack([x, rng.uniform(-s, s, (len(x), 2))])
+                  for x, s in ((q9, 0.6), (qd9, 1.0), (qdd9, 3.0)))
+    qdd[7, 2] = np.nan
+    g = as_gravity((0.0, 0.0, -9.81))
+    damp = np.array([0.05, 0.07])
+    out = []
+    for kernel in (lanes.kane_kernel(arrays, LEG_MODEL_CODES["full"], cable=True), ck.kane):
+        n = len(q)
+        X, F = np.empty((n, 9)), np.full((n, 6), np.nan)       # F: not written at a NaN
+        kappa, health = np.full((3, n), np.nan), ws.new_health()
+        kernel(arrays.flat, arrays.layout, arrays.prismatic, damp, q, qd, qdd, g, True,
+               True, 10.0, 50.0, 0, n, X, kappa, health, F)
+        out.append((X, F, kappa, health))
+    for a, b in zip(*out):
+        np.testing.assert_array_equal(a, b)
+    assert np.isnan(out[0][0][7]).all() and np.isfinite(out[0][1][8:]).all()

@@ -45,8 +45,7 @@ L = {lanes}
 
 
 @njit(**JIT)
-def kane(flat, lay, prism, q, qd, qdd, g, want_cond, want_limits, warn, error, start, stop,
-         X, kappa, health):
+def kane({signature}):
     C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
     tb = tangent_bounds(lim_ujoint)
     na = C.n_arm
@@ -60,15 +59,30 @@ def kane(flat, lay, prism, q, qd, qdd, g, want_cond, want_limits, warn, error, s
     ob = np.empty({n_out} * L)
 '''
 
+#: The two drivers: the robot's (``compiled.kane`` without ``static``, ``leg_model``,
+#: ``want_legs``) and the hanging load's (``cable.kernels.kane``, q ``(N, 11)``, the
+#: cable's pull, tension and the sway equations' residual into F): their arguments and
+#: what each sample does after the block (the same as the per-sample drivers).
+_DRIVERS = {
+    False: ("flat, lay, prism, q, qd, qdd, g, want_cond, want_limits, warn, error, start, "
+            "stop, X, kappa, health", "            for b in range(na):\n"
+            "                X[kk, b] = ob[b * L + k]\n"),
+    True: ("flat, lay, prism, damp, q, qd, qdd, g, want_cond, want_limits, warn, error, "
+           "start, stop, X, kappa, health, F", "            for b in range(3):\n"
+           "                X[kk, b] = ob[b * L + k]\n"
+           "            for j in range(4):\n"
+           "                F[kk, j] = ob[(na + 84 + j) * L + k]\n"
+           "            F[kk, 4] = ob[(na - 2) * L + k] + damp[0] * qd[kk, 4 + na]\n"
+           "            F[kk, 5] = ob[(na - 1) * L + k] + damp[1] * qd[kk, 5 + na]\n"),
+}
+
 _TAIL = '''        for k in range(m):
             kk = s + k
             if not finite_inputs(q, qd, qdd, kk, health):
                 for j in range(9):
                     X[kk, j] = np.nan
                 continue
-            for b in range(na):
-                X[kk, b] = ob[b * L + k]
-            for i in range(6):
+{rows}            for i in range(6):
                 rhs[i] = ob[(na + 36 + i) * L + k]
                 for j in range(6):
                     A[i, j] = ob[(na + 6 * i + j) * L + k]
@@ -80,36 +94,39 @@ _TAIL = '''        for k in range(m):
 '''
 
 
-def source(arrays, leg_model: int, key: str = "") -> str | None:
-    """The generated module's text for the robot of ``arrays`` and ``leg_model``, or None
-    when the formulas cannot be traced (:class:`~.tracing.TraceError`)."""
+def source(arrays, leg_model: int, key: str = "", cable: bool = False) -> str | None:
+    """The generated module's text for the robot of ``arrays`` and ``leg_model`` (with
+    ``cable``, the hanging load's driver), or None when the formulas cannot be traced
+    (:class:`~.tracing.TraceError`)."""
     from offshore_crane.dynamics.tracing import TraceError, trace_kane
 
+    n = 6 + arrays.kane.n_arm
     try:
         tr = trace_kane(arrays, leg_model, lambda col: f"ib[{col} * L + k]",
-                        lambda m: f"ib[{27 + m} * L + k]", lambda i: f"c_{i}")
+                        lambda m: f"ib[{3 * n + m} * L + k]", lambda i: f"c_{i}", cable)
     except TraceError:
         return None
     used = sorted({int(w[2:]) for line in tr.lines + tr.outputs
                    for w in line.replace("(", " ").replace(")", " ").split()
                    if w.startswith("c_") and w[2:].isdigit()})
-    out = [_HEAD.format(key=key, lanes=LANES, n_in=27 + len(tr.trig),
-                        n_out=len(tr.outputs))]
+    signature, rows = _DRIVERS[cable]
+    out = [_HEAD.format(key=key, lanes=LANES, n_in=3 * n + len(tr.trig),
+                        n_out=len(tr.outputs), signature=signature)]
     out += [f"    c_{i} = flat[{i}]\n" for i in used]
     out.append("    for s in range(start, stop, L):\n        m = min(L, stop - s)\n"
                "        for k in range(m):\n")
-    out += [f"            ib[{9 * v + j} * L + k] = {name}[s + k, {j}]\n"
-            for v, name in enumerate(("q", "qd", "qdd")) for j in range(9)]
-    out += [f"            ib[{27 + m} * L + k] = np.{f}(q[s + k, {col}])\n"
+    out += [f"            ib[{n * v + j} * L + k] = {name}[s + k, {j}]\n"
+            for v, name in enumerate(("q", "qd", "qdd")) for j in range(n)]
+    out += [f"            ib[{3 * n + m} * L + k] = np.{f}(q[s + k, {col}])\n"
             for m, (f, col) in enumerate(tr.trig)]
     out.append("        for k in range(L):\n")
     out += [f"            {line}\n" for line in tr.lines]
     out += [f"            ob[{r} * L + k] = {e}\n" for r, e in enumerate(tr.outputs)]
-    out.append(_TAIL)
+    out.append(_TAIL.format(rows=rows))
     return "".join(out)
 
 
-def _structure_key(arrays, leg_model: int) -> str:
+def _structure_key(arrays, leg_model: int, cable: bool = False) -> str:
     import inspect
 
     from offshore_crane.dynamics.backends import source_stamp
@@ -117,7 +134,7 @@ def _structure_key(arrays, leg_model: int) -> str:
 
     h = hashlib.sha256()
     for part in (source_stamp(), inspect.getsource(sys.modules[__name__]),
-                 inspect.getsource(tracing), str(LANES), str(leg_model),
+                 inspect.getsource(tracing), str(LANES), str(leg_model), str(cable),
                  str(arrays.kane.n_arm), arrays.prismatic.tobytes(),
                  arrays.layout.tobytes(), str(len(arrays.flat))):
         h.update(part.encode() if isinstance(part, str) else part)
@@ -138,22 +155,23 @@ def _folder() -> Path:
     return Path.home() / ".cache" / "offshore_crane" / "lanes"
 
 
-def kane_kernel(arrays, leg_model: int):
+def kane_kernel(arrays, leg_model: int, cable: bool = False):
     """The block kernel of the robot of ``arrays`` and ``leg_model`` (its signature is
     the per-sample ``kane``'s without ``static``, ``leg_model``, ``want_legs``: the
-    platform in motion and every leg force wanted), or None when it cannot be traced.
-    Generated and imported once per process and structure."""
-    key = _structure_key(arrays, leg_model)
+    platform in motion and every leg force wanted; with ``cable``, that of the hanging
+    load's ``cable.kernels.kane``), or None when it cannot be traced. Generated and
+    imported once per process and structure."""
+    key = _structure_key(arrays, leg_model, cable)
     if key not in _KERNELS:
-        _KERNELS[key] = _load(key, arrays, leg_model)
+        _KERNELS[key] = _load(key, arrays, leg_model, cable)
     return _KERNELS[key]
 
 
-def _load(key: str, arrays, leg_model: int):
+def _load(key: str, arrays, leg_model: int, cable: bool):
     folder = _folder()
     path = folder / f"kane_lanes_{key}.py"
     if not path.exists():
-        text = source(arrays, leg_model, key)
+        text = source(arrays, leg_model, key, cable)
         if text is None:
             return None
         folder.mkdir(parents=True, exist_ok=True)

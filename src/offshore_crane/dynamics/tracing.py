@@ -112,21 +112,26 @@ class Trace:
 _TRACE = Trace([], [], [])
 
 
-def trace_kane(arrays, leg_model: int, inputs, trig_input, flat_name) -> Trace:
+def trace_kane(arrays, leg_model: int, inputs, trig_input, flat_name,
+               cable: bool = False) -> Trace:
     """The fused Kane formulas of one sample with every leg force wanted (platform in
     motion), traced for the robot of ``arrays``
     (:class:`~offshore_crane.dynamics.constants.RobotArrays`) and ``leg_model``.
 
     Args:
-        inputs: ``inputs(column)``: the expression of input column 0..26 (q, q̇, q̈).
+        inputs: ``inputs(column)``: the expression of input column ``0 .. 3 n − 1``
+            (q, q̇, q̈ of the n = 6 + n_arm coordinates, each ``n`` columns).
         trig_input: ``trig_input(m)``: the expression of the m-th trigonometric value.
         flat_name: ``flat_name(i)``: the expression of the constant ``flat[i]``.
+        cable: The arm continued by the two sway joints and the payload
+            (:func:`~offshore_crane.dynamics.constants.cable_arrays`): the cable's pull
+            and tension are traced too (:func:`~offshore_crane.dynamics.sway.cable_force`).
 
     Returns:
         A :class:`Trace` whose ``outputs`` are, in order, the arm's rows (n_arm), the
-        Stewart matrix A by rows (36), its right-hand side (6) and the legs' diagnostics
+        Stewart matrix A by rows (36), its right-hand side (6), the legs' diagnostics
         by rows (7 x 6) (:func:`~offshore_crane.dynamics.formulas.kane_sample`'s
-        workspaces).
+        workspaces) and with ``cable`` the pull (3) [N] and the tension [N].
 
     Raises:
         TraceError: the formulas branched on a value.
@@ -149,7 +154,8 @@ def trace_kane(arrays, leg_model: int, inputs, trig_input, flat_name) -> Trace:
                 fields[name] = (flat[o] if np.ndim(x) == 0 else
                                 flat[o:o + np.size(x)].reshape(np.shape(x)))
         C = KaneConstants(**fields, n_arm=real.n_arm, arm_prism=real.arm_prism)
-        q, qd, qdd = ([Symbol(inputs(9 * v + j), 9 * v + j) for j in range(9)]
+        n = 6 + real.n_arm
+        q, qd, qdd = ([Symbol(inputs(n * v + j), n * v + j) for j in range(n)]
                       for v in range(3))
         g = (Symbol("g0"), Symbol("g1"), Symbol("g2"))
 
@@ -162,7 +168,12 @@ def trace_kane(arrays, leg_model: int, inputs, trig_input, flat_name) -> Trace:
         rows, A, rhs = zeros(max(na, 1)), zeros(6, 6), zeros(6)
         diag, store = zeros(DIAG_ROWS, 6), zeros(max(na, 1), STORE_WIDTH)
         F.kane_sample(C, q, qd, qdd, g, False, leg_model, True, rows, A, rhs, diag, store)
-        trace.outputs = [_operand(x) for x in (*rows[:na], *A.ravel(), *rhs, *diag.ravel())]
+        extra = ()
+        if cable:
+            f, tension = F.cable_force(C, store)
+            extra = (*f, tension)
+        trace.outputs = [_operand(x) for x in (*rows[:na], *A.ravel(), *rhs, *diag.ravel(),
+                                               *extra)]
     finally:
         _TRACE = Trace([], [], [])
     return trace

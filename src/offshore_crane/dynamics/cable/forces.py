@@ -1,11 +1,14 @@
 """X of the robot with its hanging load by the compiled Kane pass
-(:func:`offshore_crane.dynamics.cable.kernels.kane`)."""
+(:func:`offshore_crane.dynamics.cable.kernels.kane`, or from 16 samples on its block form
+vectorised across samples, :mod:`offshore_crane.dynamics.lanes`: the same numbers)."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from offshore_crane.conventions import LANES
 from offshore_crane.robot.kinematics import workspace as ws
+from offshore_crane.robot.kinematics.formulas import FULL
 
 
 #: Samples per chunk of the Kane pass: its 11-column rows are formed a chunk at a time,
@@ -50,6 +53,11 @@ def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, 
         F[:, 0:3], F[:, 3], F[:, 4:6] = P, np.linalg.norm(P, axis=1), 0.0
     chunks = [(a, min(a + CHUNK, n)) for a in range(0, n, CHUNK)]
     records = [ws.new_health() for _ in chunks]
+    kane = ck.kane
+    if P is None and n >= LANES:      # blocks of samples vectorised across them
+        from offshore_crane.dynamics.lanes import kane_kernel
+
+        kane = kane_kernel(arrays, FULL, cable=True) or ck.kane
 
     def run(i):
         start, stop = chunks[i]
@@ -61,9 +69,9 @@ def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, 
             out[start:stop, :9] = given[start:stop]
             out[start:stop, 9:] = Y[start:stop, col:col + 2]
         if P is None:
-            ck.kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping,
-                    q11, qd11, qdd11, g, checks, limits, thresholds.warn, thresholds.error,
-                    start, stop, X, kappa, records[i], F)
+            kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping,
+                 q11, qd11, qdd11, g, checks, limits, thresholds.warn, thresholds.error,
+                 start, stop, X, kappa, records[i], F)
         else:
             ck.kane_pulled(arrays.flat, arrays.layout, arrays.prismatic, q11, qd11, qdd11, P,
                            g, checks, limits, thresholds.warn, thresholds.error, start, stop,
