@@ -208,9 +208,12 @@ def _stop(ok, y, k1):
 
 def _finish(robot, res, sway_acc, g, limits) -> None:
     """The tension, the actuators' power and the energy's gravitational part are filled in
-    from the recorded samples (one vectorised pass of the cable's Kane kernel)."""
+    from the recorded samples (one pass of the cable's Kane kernel, on blocks of samples
+    vectorised across them)."""
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
+    from offshore_crane.dynamics.lanes import kane_kernel
+    from offshore_crane.robot.kinematics.formulas import FULL
     from offshore_crane.simulation.record import actuator_power
     from offshore_crane.robot.kinematics import workspace as ws
 
@@ -222,9 +225,10 @@ def _finish(robot, res, sway_acc, g, limits) -> None:
     qd11 = np.ascontiguousarray(np.concatenate([res.qd, res.sway_rate], 1))
     qdd11 = np.ascontiguousarray(np.concatenate([res.qdd, sway_acc], 1))
     F = np.full((n, 6), np.nan)              # a non-finite sample is skipped: NaN row
-    ck.kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11,
-            qd11, qdd11, g, False, False, np.inf, np.inf, 0, n, np.empty((n, 9)),
-            np.empty((3, 1)), ws.new_health(), F)
+    kane = kane_kernel(arrays, FULL, cable=True) or ck.kane      # blocks of samples
+    kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11, qd11,
+         qdd11, g, False, False, np.inf, np.inf, 0, n, np.empty((n, 9)), np.empty((3, 1)),
+         ws.new_health(), F)
     res.tension = F[:, 3]
     res.power = actuator_power(robot, res.q, res.qd, res.X)
 

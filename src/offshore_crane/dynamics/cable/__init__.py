@@ -384,9 +384,4 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     inverse_dynamics(robot, q, 0 * q, 0 * q, limits=False, t=t,
                      hoist=lambda tt: (np.full(len(tt), length), 0 * tt, 0 * tt))
     elastic_inverse_dynamics(robot, q, 0 * q, 0 * q, limits=False, t=t, ea=1e4)
-    from offshore_crane.conventions import LANES
-
-    t = np.arange(LANES) * 1e-3                      # and the Kane pass's block kernel
-    q = np.repeat(robot.home_pose()[None, :], LANES, axis=0)
-    inverse_dynamics(robot, q, 0 * q, 0 * q, limits=False, t=t)
     return [("hanging-load kernels", time.perf_counter() - t0)]

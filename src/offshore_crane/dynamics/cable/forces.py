@@ -1,12 +1,12 @@
 """X of the robot with its hanging load by the compiled Kane pass
-(:func:`offshore_crane.dynamics.cable.kernels.kane`, or from 16 samples on its block form
-vectorised across samples, :mod:`offshore_crane.dynamics.lanes`: the same numbers)."""
+(:func:`offshore_crane.dynamics.cable.kernels.kane`'s block form vectorised across
+samples, :mod:`offshore_crane.dynamics.lanes`: the same numbers; the per-sample kernel when
+the formulas cannot be traced)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from offshore_crane.conventions import LANES
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.robot.kinematics.formulas import FULL
 
@@ -54,10 +54,11 @@ def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, 
     chunks = [(a, min(a + CHUNK, n)) for a in range(0, n, CHUNK)]
     records = [ws.new_health() for _ in chunks]
     kane = ck.kane
-    if P is None and n >= LANES:      # blocks of samples vectorised across them
-        from offshore_crane.dynamics.lanes import kane_kernel
+    if P is None:       # blocks of samples vectorised across them, whatever the count: a
+        from offshore_crane.dynamics.lanes import kane_kernel      # swing's few samples
 
-        kane = kane_kernel(arrays, FULL, cable=True) or ck.kane
+        kane = kane_kernel(arrays, FULL, cable=True) or ck.kane    # cost microseconds,
+        # and the per-sample kernel (15 s to compile) is then compiled only as a fallback
 
     def run(i):
         start, stop = chunks[i]
