@@ -252,10 +252,16 @@ def roofline_rows(r: dict) -> dict:
            f"{r['floor_us']:.2f} µs a sample; N = {_count(r['n'])}, run of {r['date']}"}
     per = {k["kernel"]: k for k in r["kernels"]}
     kernels = [k for k in r["kernels"] if not k["kernel"].startswith("legs' geometry")]
-    scalar = [100 * k["scalar_share"] for k in kernels]
+    fast = [k for k in kernels if not k["verdict"].startswith("latency")]
+    slow = [k for k in kernels if k["verdict"].startswith("latency")]
+    scalar = [100 * k["scalar_share"] for k in slow]
+    rates = ", ".join(f"{k['kernel']} {k['gflops']:.1f} GFLOP/s" for k in fast)
+    lead = (f"{rates}: {fast[0]['verdict'].split(' (')[0]} (blocks of samples vectorised "
+            "across them); " if fast else "")
     out[("README.md", "figure roofline-verdict")] = (
-        f"scalar code at {min(scalar):.0f}–{max(scalar):.0f} % of the scalar roof and under "
-        f"{max(100 * k['peak_share'] for k in kernels):.0f} % of the machine's peak")
+        f"{lead}the {len(slow)} others, one sample at a time, latency-bound: scalar code at "
+        f"{min(scalar):.0f}–{max(scalar):.0f} % of the scalar roof and under "
+        f"{max(100 * k['peak_share'] for k in slow):.0f} % of the machine's peak")
     a, b = per["legs' geometry, per sample"], per["legs' geometry, arrays"]
     out[("README.md", "figure roofline-layout")] = (
         f"{a['us'] * 1e3:.0f} → {b['us'] * 1e3:.0f} ns a sample ({a['us'] / b['us']:.1f}×, "
