@@ -133,3 +133,34 @@ def test_the_hanging_loads_block_kernel_is_its_per_sample_kernel_bit_for_bit():
     for a, b in zip(*out):
         np.testing.assert_array_equal(a, b)
     assert np.isnan(out[0][0][7]).all() and np.isfinite(out[0][1][8:]).all()
+
+
+def test_an_untraceable_text_keeps_the_per_sample_kernel(tmp_path, monkeypatch):
+    """When the formulas cannot be traced (a branch on a value: TraceError), no module is
+    written and the callers keep the per-sample kernel: the same forces, through solve
+    and through the swing's Kane pass."""
+    from offshore_crane.dynamics import tracing
+
+    def refuse(*args, **kwargs):
+        raise tracing.TraceError("a branch on a value cannot be traced")
+
+    monkeypatch.setattr(tracing, "trace_kane", refuse)
+    monkeypatch.setattr(lanes, "_folder", lambda: tmp_path)
+    monkeypatch.setattr(lanes, "_KERNELS", {})
+    monkeypatch.setattr(lanes, "_BY_ARRAYS", {})
+    monkeypatch.setattr(lanes, "_SOURCES", ["another text"])     # another key: no file
+    robot = oc.load_robot()
+    assert lanes.kane_kernel(robot_arrays(robot), LEG_MODEL_CODES["full"]) is None
+    assert list(tmp_path.iterdir()) == []
+    q, qd, qdd = random_states(robot, LANES + 1, seed=4)
+    X = solve(robot, q, qd, qdd).X
+    one = np.array([solve(robot, q[k], qd[k], qdd[k]).X[0] for k in range(len(q))])
+    np.testing.assert_array_equal(X, one)
+
+
+def test_a_read_only_package_keeps_the_programs_in_the_users_cache(tmp_path, monkeypatch):
+    """The generated modules go beside the package's own Numba cache when it can be
+    written, else into the user's cache folder (an installation owned by another user)."""
+    monkeypatch.setattr(lanes.os, "access", lambda path, mode: False)
+    monkeypatch.setattr(lanes.Path, "home", classmethod(lambda cls: tmp_path))
+    assert lanes._folder() == tmp_path / ".cache" / "offshore_crane" / "lanes"
