@@ -31,7 +31,7 @@ COMPILED = [0]
 #: progress.notice`); the figures are the whole set's cold compile on a 2-core machine.
 COMPILE_NOTICE = ("compiling the Numba kernels this run needs, once (they are cached "
                   "afterwards; the whole set takes about 2 min in one process on 2 cores, "
-                  "60 s with 'offshore-crane compile', which does it up front in parallel)")
+                  "65 s with 'offshore-crane compile', which does it up front in parallel)")
 
 
 class KernelCacheWarning(UserWarning):
