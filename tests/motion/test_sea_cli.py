@@ -4,7 +4,6 @@ lists (one line, exit status 2, no partial file)."""
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
@@ -15,9 +14,7 @@ from offshore_crane import scenes
 from offshore_crane.motion import sea
 from offshore_crane.motion import trajectories
 from offshore_crane.__main__ import main
-from offshore_crane.errors import SceneError, SeaStateError
-
-from conftest import relative_error
+from offshore_crane.errors import SceneError
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "scenes" / "sea_state_crane.toml"
@@ -169,6 +166,24 @@ def test_workspace_error_names_the_smallest_scale(tmp_path, capsys):
                            "5", "--duration", "60", "--out", out], capsys)
     assert status == 2 and not out.exists()
     assert "leaves the workspace" in err and "fits from scale 8.0" in err
+
+
+def test_id_on_a_sea_scene_names_the_smallest_scale_too(tmp_path, capsys):
+    """id leaves the record's workspace check to Kane's (limits on: computed once); its
+    error becomes the record's own, the same line as the motion command's, naming the
+    smallest scale that fits. With --no-limits the record is checked when loaded, as
+    before."""
+    path = tmp_path / "small.toml"
+    path.write_text('[trajectory]\nsource = "sea"\nduration = 60\n[sea]\nhs = 4\ntp = 9\n'
+                    "heading = 180\nscale = 5\n", encoding="utf-8")
+    lines = []
+    for extra in ([], ["--no-limits"]):
+        status, _, err = _run(["id", "--scene", path, *extra], capsys)
+        assert status == 2 and "leaves the workspace" in err and "fits from scale 8.0" in err
+        lines.append(err)
+    status, _, err = _run(["motion", "--hs", "4", "--tp", "9", "--heading", "180", "--scale",
+                           "5", "--duration", "60", "--out", tmp_path / "m.csv"], capsys)
+    assert lines == [err, err]
 
 
 @pytest.mark.parametrize("text, key, match", [

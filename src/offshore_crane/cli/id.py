@@ -86,13 +86,19 @@ def run(args) -> int:
     scene = id_scene(args)
     outputs, say = plan(args, scene)
     robot = scenes.load_robot(scene)
-    traj = scenes.load_trajectory(scene, robot, threads=args.threads)
+    limits = not args.no_limits           # the dynamics check a sea record's workspace
+    traj = scenes.load_trajectory(scene, robot, threads=args.threads, check=not limits)
     from offshore_crane.dynamics import quick_backend
+    from offshore_crane.errors import WorkspaceError
 
     backend = args.backend or quick_backend(len(traj.t))
-    options = dict(limits=not args.no_limits, thresholds=thresholds(args),
-                   backend=backend, threads=args.threads)
-    done = scenes.run(scene, robot, traj, **options)
+    options = dict(limits=limits, thresholds=thresholds(args), backend=backend,
+                   threads=args.threads)
+    try:
+        done = scenes.run(scene, robot, traj, **options)
+    except WorkspaceError:
+        scenes.sea_workspace_error(robot, traj, args.threads)   # names the scale that fits
+        raise
     res, t = done.result, traj.t
     X = res.X
     cable = res.cable

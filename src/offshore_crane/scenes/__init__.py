@@ -96,7 +96,8 @@ from offshore_crane.scenes.reading import scene_from_dict, load_scene
 from offshore_crane.scenes.assembly import (controller, deck_pose, sea_trajectory, load_robot,
                                             still_water_level, target_deck, lift_deck,
                                             with_robot_overrides, load_trajectory,
-                                            with_trajectory, with_overrides)
+                                            sea_workspace_error, with_trajectory,
+                                            with_overrides)
 from offshore_crane.scenes.running import (SceneRun, CABLE_METHODS, compare_methods, run, run_swing,
                                           elastic_simulation)
 from offshore_crane.scenes.fidelity import Fidelity, compare_fidelity, format_fidelity

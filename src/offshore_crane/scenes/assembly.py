@@ -165,11 +165,15 @@ def with_robot_overrides(scene: Scene, overrides: dict, source: str = "--set") -
                    origin=f"{where} with {source}")
 
 
-def load_trajectory(scene: Scene, robot, threads: int = 1):
+def load_trajectory(scene: Scene, robot, threads: int = 1, check: bool = True):
     """The scene's trajectory; with ``platform = false``, q1..q6 held at the deck pose;
     with ``[control] compensation`` and ``delay``, from the time the first measurement
     has arrived. ``threads`` share a sea record's FFT and workspace check (the same
-    record in any count).
+    record in any count). ``check=False`` leaves a sea record's workspace check to the
+    caller, whose dynamics check the same limits anyway (``limits=True``): on their
+    :class:`~offshore_crane.errors.WorkspaceError` it calls :func:`sea_workspace_error`
+    for the error that names the smallest scale that fits (a compensated record is
+    checked here all the same: its source is not the sea's).
 
     Returns:
         :class:`offshore_crane.motion.trajectories.Trajectory` (``(N, 9)`` arrays).
@@ -177,7 +181,7 @@ def load_trajectory(scene: Scene, robot, threads: int = 1):
     from offshore_crane.motion import trajectories
 
     if scene.trajectory == "sea":
-        traj = sea_trajectory(scene, robot, threads=threads)
+        traj = sea_trajectory(scene, robot, check or scene.compensation != "none", threads)
         if scene.compensation == "none":
             return traj
         from offshore_crane.simulation.compensation import measured_from
@@ -192,6 +196,16 @@ def load_trajectory(scene: Scene, robot, threads: int = 1):
     qd[:, :6] = 0.0
     qdd[:, :6] = 0.0
     return trajectories.Trajectory(f"{traj.name} on a fixed deck", traj.t, q, qd, qdd)
+
+
+def sea_workspace_error(robot, traj, threads: int = 1) -> None:
+    """Raise the :class:`~offshore_crane.errors.SeaWorkspaceError` of a sea record loaded
+    with ``check=False`` (:func:`load_trajectory`) that the dynamics found outside the
+    workspace: the record's own check, which names the smallest scale that fits; nothing
+    for another trajectory (its caller re-raises the dynamics' error)."""
+    check = getattr(traj.source, "check", None)
+    if check is not None:
+        check(robot, traj, threads)
 
 
 def with_trajectory(scene: Scene, where: str, source: str | None) -> Scene:
