@@ -19,6 +19,12 @@ def table1():
     return (t, *trajectories.table1(t))
 
 
+def package_sources(package) -> list:
+    """The package's source files under ``package`` (a Path), not the generated kernels
+    of its caches (``__pycache__``)."""
+    return [p for p in sorted(package.rglob("*.py")) if "__pycache__" not in p.parts]
+
+
 def relative_error(X, Y) -> float:
     """max |X - Y| / max |Y|."""
     return float(np.abs(np.asarray(X) - np.asarray(Y)).max() / np.abs(np.asarray(Y)).max())

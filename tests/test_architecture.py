@@ -21,6 +21,8 @@ from importlinter.cli import lint_imports
 
 import offshore_crane
 
+from conftest import package_sources
+
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = Path(offshore_crane.__file__).resolve().parent
 #: The most lines a source file may have: beyond it a file holds more than one concept.
@@ -93,14 +95,9 @@ def test_no_import_cycle():
     assert not cycles, "import cycles: " + "; ".join(" <-> ".join(c) for c in cycles)
 
 
-def _sources() -> list[Path]:
-    """The package's source files (not the generated kernels of its caches)."""
-    return [p for p in sorted(PACKAGE.rglob("*.py")) if "__pycache__" not in p.parts]
-
-
 def _modules() -> list[tuple[Path, str, bool]]:
     out = []
-    for path in _sources():
+    for path in package_sources(PACKAGE):
         parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
         is_package = parts[-1] == "__init__"
         if is_package:
@@ -217,6 +214,6 @@ def test_no_undefined_name():
                 self.found.append(str(message))
 
     reporter = Collect()
-    for path in _sources():
+    for path in package_sources(PACKAGE):
         api.checkPath(str(path), reporter)
     assert reporter.found == []

@@ -9,6 +9,8 @@ import importlib
 import re
 from pathlib import Path
 
+from conftest import package_sources
+
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "src" / "offshore_crane"
 DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
@@ -73,14 +75,9 @@ def _resolves(dotted: str) -> bool:
     return False
 
 
-def _sources() -> list[Path]:
-    """The package's source files (not the generated kernels of its caches)."""
-    return [p for p in sorted(PACKAGE.rglob("*.py")) if "__pycache__" not in p.parts]
-
-
 def _dotted_names() -> dict[str, str]:
     found = {}
-    sources = DOCS + _sources()
+    sources = DOCS + package_sources(PACKAGE)
     for path in sources:
         for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
             for name in DOTTED.findall(line):
@@ -115,7 +112,7 @@ def test_relative_docstring_references_resolve():
     """``:mod:`.formulas``` in a docstring names a module beside it (or inside it, for a
     package's ``__init__``); ``..x`` one package up."""
     bad = []
-    for path in _sources():
+    for path in package_sources(PACKAGE):
         parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
         module = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
         package = module if parts[-1] == "__init__" else module.rsplit(".", 1)[0]
