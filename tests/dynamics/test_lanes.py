@@ -164,3 +164,15 @@ def test_a_read_only_package_keeps_the_programs_in_the_users_cache(tmp_path, mon
     monkeypatch.setattr(lanes.os, "access", lambda path, mode: False)
     monkeypatch.setattr(lanes.Path, "home", classmethod(lambda cls: tmp_path))
     assert lanes._folder() == tmp_path / ".cache" / "offshore_crane" / "lanes"
+
+
+def test_literals_are_written_as_python_reads_them():
+    """A literal of the text is written so that the program reads the same double back
+    (repr), non-finite ones as NumPy's names."""
+    from offshore_crane.dynamics.tracing import _operand
+
+    values = (1.5, -0.0, 1e-300, 0.1, float("inf"), -float("inf"))
+    written = [_operand(v) for v in values]
+    assert written[4:] == ["np.inf", "-np.inf"] and _operand(float("nan")) == "np.nan"
+    assert [float(eval(w, {"np": np})) for w in written] == list(values)
+    assert str(float(eval(written[1]))) == "-0.0"

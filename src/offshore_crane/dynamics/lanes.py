@@ -111,8 +111,8 @@ def source(arrays, leg_model: int, key: str = "", cable: bool = False) -> str | 
     try:
         tr = trace_kane(arrays, leg_model, lambda col: f"ib[{col} * L + k]",
                         lambda m: f"ib[{3 * n + m} * L + k]", lambda i: f"c_{i}", cable)
-    except TraceError:
-        return None
+    except (TraceError, TypeError):      # a branch on a value, or an operation the
+        return None                       # symbols do not write (e.g. a power)
     used = sorted({int(i) for line in tr.lines + tr.outputs
                    for i in re.findall(r"\bc_(\d+)\b", line)})
     signature, rows = _DRIVERS[cable]

@@ -61,7 +61,12 @@ def _operand(x) -> str:
     if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, float, np.integer,
                                                               np.floating)):
         raise TraceError(f"cannot trace an operation with {type(x).__name__} {x!r}")
-    return repr(float(x))
+    x = float(x)
+    if np.isnan(x):
+        return "np.nan"
+    if np.isinf(x):
+        return "np.inf" if x > 0 else "-np.inf"
+    return repr(x)
 
 
 def _binary(op: str):
