@@ -176,3 +176,15 @@ def test_literals_are_written_as_python_reads_them():
     assert written[4:] == ["np.inf", "-np.inf"] and _operand(float("nan")) == "np.nan"
     assert [float(eval(w, {"np": np})) for w in written] == list(values)
     assert str(float(eval(written[1]))) == "-0.0"
+
+
+def test_a_robot_without_arm_takes_its_own_block_kernel_bit_for_bit():
+    """The structure decides the program: the platform alone (no arm joint: its rows,
+    the arm pass and the arm's outputs vanish from the trace) gets a kernel of its own,
+    equal to the per-sample kernel bit for bit."""
+    robot = oc.load_robot(with_arm=0)
+    q, qd, qdd = random_states(robot, 2 * LANES + 3, seed=31)
+    (Xb, kb, hb), (Xs, ks, hs) = _both(robot, q, qd, qdd, "full")
+    for a, b in ((Xb, Xs), (kb, ks), (hb, hs)):
+        np.testing.assert_array_equal(a, b)
+    assert np.isnan(Xb[:, :3]).all() and np.isfinite(Xb[:, 3:]).all()
