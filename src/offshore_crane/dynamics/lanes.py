@@ -192,12 +192,14 @@ def kane_kernel(arrays, leg_model: int, cable: bool = False):
 
 def _load(key: str, arrays, leg_model: int, cable: bool):
     folder = _folder()
-    path = folder / f"kane_lanes_{key}.py"
+    version = _sources_hash()[:8]
+    path = folder / f"kane_lanes_{version}_{key}.py"
     if not path.exists():
         text = source(arrays, leg_model, key, cable)
         if text is None:
             return None
         folder.mkdir(parents=True, exist_ok=True)
+        _remove_stale(folder, version)
         tmp = path.with_suffix(f".{os.getpid()}.tmp")
         tmp.write_text(text)
         os.utime(tmp, (_MTIME, _MTIME))
@@ -209,3 +211,17 @@ def _load(key: str, arrays, leg_model: int, cable: bool):
     spec.loader.exec_module(module)
     return module.kane
 
+
+
+def _remove_stale(folder: Path, version: str) -> None:
+    """Remove the programs of other versions of the text (an edited formula, another
+    release of the package) and their compiled code, so that the folder keeps one version:
+    the other structures of this version stay."""
+    stale = [p for p in folder.glob("kane_lanes_*.py") if not p.name.startswith(
+        f"kane_lanes_{version}_")]
+    for p in stale:
+        for old in [p, *(folder / "__pycache__").glob(f"{p.stem}.*")]:
+            try:
+                old.unlink()
+            except OSError:                  # another process removed it first
+                pass
