@@ -44,7 +44,7 @@ def warm_up(robot=None, methods: tuple[str, ...] = METHODS,
         solve(robot, q, 0 * q, 0 * q, method=method, backend="numba", limits=False)
         if method == "kane":                  # and the block kernel of longer motions
             moving = np.repeat(q, LANES, axis=0)
-            solve(robot, moving, moving * 0 + 1e-3, 0 * moving, backend="numba",
+            solve(robot, moving, np.full_like(moving, 1e-3), 0 * moving, backend="numba",
                   limits=False)
         out.append((f"{method} kernels", time.perf_counter() - t0))
     if not forward:

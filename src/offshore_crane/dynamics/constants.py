@@ -73,6 +73,15 @@ def build(model) -> RobotArrays:
     return pack(kane, limits_of(model))
 
 
+def field_view(buffer, offset: int, shape: tuple, scalar=float):
+    """A field of :data:`FIELDS` in ``buffer``, laid out as :attr:`RobotArrays.flat`
+    (``offset``: the field's row of :attr:`RobotArrays.layout`, ``shape`` its own):
+    ``scalar(buffer[offset])`` for a scalar, else the view of that shape."""
+    if not shape:
+        return scalar(buffer[offset])
+    return buffer[offset:offset + int(np.prod(shape))].reshape(shape)
+
+
 def pack(kane: KaneConstants, limits: Limits) -> RobotArrays:
     """``kane`` and ``limits`` packed into one buffer (:attr:`RobotArrays.flat`, its
     ``layout``), the constants then views into it: what the compiled kernels receive."""
@@ -86,7 +95,7 @@ def pack(kane: KaneConstants, limits: Limits) -> RobotArrays:
         layout[i] = (offset, *shape)
         offset += x.size
     flat = np.concatenate([x.ravel() for x in parts])
-    views = {name: flat[o:o + x.size].reshape(x.shape) if x.ndim else float(x)
+    views = {name: field_view(flat, o, x.shape)
              for name, x, (o, *_) in zip(FIELDS, parts, layout)}
     kane = kane._replace(**{k: v for k, v in views.items() if k in KaneConstants._fields})
     limits = Limits(views["lim_arm"], views["lim_stroke"], views["lim_ujoint"])

@@ -212,7 +212,6 @@ def _load(key: str, arrays, leg_model: int, cable: bool):
     return module.kane
 
 
-
 def _remove_stale(folder: Path, version: str) -> None:
     """Remove the programs of other versions of the text (an edited formula, another
     release of the package) and their compiled code, so that the folder keeps one version:

@@ -142,7 +142,7 @@ def trace_kane(arrays, leg_model: int, inputs, trig_input, flat_name,
         TraceError: the formulas branched on a value.
     """
     from offshore_crane.dynamics.backends import bind
-    from offshore_crane.dynamics.constants import FIELDS
+    from offshore_crane.dynamics.constants import FIELDS, field_view
     from offshore_crane.dynamics.formulas import DIAG_ROWS, STORE_WIDTH, KaneConstants
 
     global _TRACE
@@ -152,12 +152,9 @@ def trace_kane(arrays, leg_model: int, inputs, trig_input, flat_name,
         real = arrays.kane
         flat = np.array([Symbol(flat_name(i)) for i in range(len(arrays.flat))],
                         dtype=object)
-        fields = {}
-        for i, name in enumerate(FIELDS):
-            if name in KaneConstants._fields:
-                o, x = arrays.layout[i, 0], getattr(real, name)
-                fields[name] = (flat[o] if np.ndim(x) == 0 else
-                                flat[o:o + np.size(x)].reshape(np.shape(x)))
+        fields = {name: field_view(flat, o, np.shape(getattr(real, name)), lambda x: x)
+                  for name, (o, *_) in zip(FIELDS, arrays.layout)
+                  if name in KaneConstants._fields}
         C = KaneConstants(**fields, n_arm=real.n_arm, arm_prism=real.arm_prism)
         n = 6 + real.n_arm
         q, qd, qdd = ([Symbol(inputs(n * v + j), n * v + j) for j in range(n)]

@@ -54,11 +54,13 @@ def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, 
     chunks = [(a, min(a + CHUNK, n)) for a in range(0, n, CHUNK)]
     records = [ws.new_health() for _ in chunks]
     kane = ck.kane
-    if P is None:       # blocks of samples vectorised across them, whatever the count: a
-        from offshore_crane.dynamics.lanes import kane_kernel      # swing's few samples
+    if P is None:
+        # blocks of samples vectorised across them, whatever the count (a swing's few
+        # samples cost microseconds more); the per-sample kernel, 15 s to compile, is
+        # then compiled only when the formulas cannot be traced
+        from offshore_crane.dynamics.lanes import kane_kernel
 
-        kane = kane_kernel(arrays, FULL, cable=True) or ck.kane    # cost microseconds,
-        # and the per-sample kernel (15 s to compile) is then compiled only as a fallback
+        kane = kane_kernel(arrays, FULL, cable=True) or ck.kane
 
     def run(i):
         start, stop = chunks[i]
