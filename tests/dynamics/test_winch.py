@@ -210,13 +210,14 @@ def test_size_judges_the_winch_against_its_capacities(tmp_path, capsys):
     from offshore_crane.__main__ import main
 
     scene = Path(__file__).resolve().parents[2] / "scenes" / "winch_lift.toml"
-    assert main(["size", "--scene", str(scene), "--json"]) == 0
+    own = ["--record", "scene"]                 # the profile's demand: one cycle suffices
+    assert main(["size", "--scene", str(scene), "--json", *own]) == 0
     load = json.loads(capsys.readouterr().out)["verdict"]["load"]
     assert load["observed"]["winch speed"] == pytest.approx(0.075, rel=1e-12)
     assert load["utilisation"]["winch speed"] == pytest.approx(0.15, rel=1e-12)
     slow = tmp_path / "slow.toml"
     slow.write_text(scene.read_text().replace("speed_max = 0.5 ", "speed_max = 0.05 "))
-    assert main(["size", "--scene", str(slow)]) == 1
+    assert main(["size", "--scene", str(slow), *own]) == 1
     out = capsys.readouterr().out
     assert "winch speed 0.075 m/s" in out and "150.0 % EXCEEDED" in out
     assert "EXCEEDS its limits: winch speed" in out

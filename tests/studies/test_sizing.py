@@ -64,9 +64,12 @@ def test_size_equals_what_id_out_csv_gives(tmp_path, capsys):
     """Peaks (push and pull apart, with times), RMS, speeds, powers and strokes of
     ``size --json`` recomputed from ``id --out``'s CSV and independent kinematics."""
     csv = tmp_path / "x.csv"
-    assert main(["id", "--duration", "3", "--rate", "100", "--out", str(csv)]) == 0
+    # one backend for both: id's default takes NumPy in a process that has not loaded
+    # Numba (dynamics.quick_backend), whose forces differ from Numba's in the last bits
+    backend = ["--backend", "numba"]
+    assert main(["id", "--duration", "3", "--rate", "100", "--out", str(csv), *backend]) == 0
     capsys.readouterr()
-    status, doc = _size_json(["--duration", "3", "--rate", "100"], capsys)
+    status, doc = _size_json(["--duration", "3", "--rate", "100", *backend], capsys)
     env = doc["envelopes"][0]
     data = np.loadtxt(csv, delimiter=",", skiprows=1)
     t, X = data[:, 0], data[:, 1:]
@@ -121,20 +124,34 @@ def test_size_exit_1_when_a_capacity_is_exceeded(capsys):
 
 
 def test_size_seeds_gumbel(tmp_path, capsys):
-    """Five seeds of a sea: the verdict rests on the Gumbel most probable maximum over
-    3 h, from the per-seed peaks, and says so."""
+    """Five seeds of a sea, each a stationary record as long as the exposure (here 0.25 h
+    full scale, to stay cheap): the verdict is the mode of the Gumbel fit of the five
+    records' maxima (no extrapolation: one record per exposure), and says so; the
+    records are the judged windows (the exposure at model scale, to one sample)."""
     scene = tmp_path / "sea.toml"
     scene.write_text(SEA_SCENE)
-    status, doc = _size_json(["--scene", str(scene), "--seeds", "5"], capsys)
+    status, doc = _size_json(["--scene", str(scene), "--exposure", "0.25"], capsys)
     v = doc["verdict"]
     assert v["basis"] == "gumbel" and v["seeds"] == 5 and doc["seeds"] == [3, 4, 5, 6, 7]
-    record = 5.0 * math.sqrt(20.0)
-    assert v["record_s"] == pytest.approx(record, rel=1e-15)
+    exposure = 0.25 * 3600.0
+    # the judged window ends on the last sample within the exposure (50 Hz: 0.02 s model)
+    assert exposure - 0.02 * math.sqrt(20.0) <= v["record_s"] <= exposure
+    assert doc["records"]["judged_s"] == pytest.approx(exposure / math.sqrt(20.0), rel=1e-15)
+    assert doc["records"]["modes"] == [] and doc["records"]["spin_up_s"] == 0.0
     peaks = [e["Fl6_peak_push"] for e in doc["envelopes"]]
+    mu, beta = sizing.gumbel_fit(peaks)
     assert v["peaks"]["push"][8] == pytest.approx(
-        sizing.most_probable_maximum(peaks, record, 3 * 3600.0), rel=1e-15)
-    assert v["peaks"]["push"][8] > max(peaks)       # 3 h » 5 records of 22 s
-    assert "Gumbel, maximum likelihood, 5 seeds" in v["describe"]
+        mu + beta * math.log(exposure / v["record_s"]), rel=1e-15)
+    assert v["peaks"]["push"][8] == pytest.approx(mu, rel=1e-5)     # ln n ~ 2e-5
+    assert "mode of the Gumbel fit (maximum likelihood) of the maxima of 5 records" in \
+        v["describe"]
+    # the scene's own 5 s records: observed, not extrapolated to the exposure
+    status, doc = _size_json(["--scene", str(scene), "--record", "scene"], capsys)
+    v = doc["verdict"]
+    assert v["basis"] == "observed" and doc["records"] is None
+    assert v["record_s"] == pytest.approx(5.0 * math.sqrt(20.0), rel=1e-15)
+    assert v["peaks"]["push"][8] == max(e["Fl6_peak_push"] for e in doc["envelopes"])
+    assert "shorter than the 3 h exposure: observed, not extrapolated" in v["describe"]
 
 
 def test_gumbel_fit_matches_scipy():
@@ -177,14 +194,26 @@ def test_too_few_seeds_and_bad_exposure():
 
 
 def test_verdict_falls_back_to_observed_below_min_seeds(robot):
+    """Fewer than 5 records that cover the exposure, or 5 records shorter than it: the
+    largest observed peak, and the verdict says which; 5 covering records: Gumbel."""
     t = np.linspace(0.0, 2.0, 101)
     q, qd, qdd = trajectories.table1(t)
     X = oc.inverse_dynamics(robot, q, qd, qdd)
-    envs = [sizing.envelope(robot, t, q, qd, X * s) for s in (1.0, 1.5, 1.2)]
-    v = sizing.verdict(envs, scale=20.0)
-    assert v.basis == "observed" and v.seeds == 3
-    assert "fewer than 5 seeds, no Gumbel fit" in v.describe()
+    envs = [sizing.envelope(robot, t, q, qd, X * s) for s in (1.0, 1.5, 1.2, 1.1, 1.3)]
+    # 2 s at 1:20 is 8.94 s full scale: an exposure of 8.9 s is covered, 3 h is not
+    v = sizing.verdict(envs[:3], scale=20.0, exposure=8.9)
+    assert v.basis == "observed" and v.seeds == 3 and v.covered
+    assert "fewer than 5 records for a Gumbel fit" in v.describe()
     np.testing.assert_array_equal(v.peaks["push"], envs[1].peak_push)
+    v = sizing.verdict(envs, scale=20.0)
+    assert v.basis == "observed" and v.covered is False
+    assert "shorter than the 3 h exposure: observed, not extrapolated" in v.describe()
+    np.testing.assert_array_equal(v.peaks["push"], envs[1].peak_push)
+    assert sizing.verdict(envs, scale=20.0, exposure=8.9).basis == "gumbel"
+    # covered within one sample interval (0.02 s model), not beyond
+    full = 2.0 * math.sqrt(20.0)
+    assert sizing.covers_exposure(2.0, 101, 20.0, full + 0.02 * math.sqrt(20.0))
+    assert not sizing.covers_exposure(2.0, 101, 20.0, full + 0.021 * math.sqrt(20.0))
 
 
 def test_envelope_absent_actuators_and_conditions(robot):
@@ -283,27 +312,31 @@ def test_zero_capacity_is_no_headroom_not_no_limit():
 
 
 # --------------------------------------------------------------------------- the hanging load
-def test_size_judges_the_hanging_load_over_3_hours(tmp_path, capsys):
-    """scenes/hanging_load.toml, 5 seeds: the sway and tension verdict rests on the same
-    Gumbel extrapolation to 3 h as the forces, each value beside its limit, degrees for
-    angles; a sway limit below the sway makes the verdict fail (exit 1, and in --json)."""
+def test_size_judges_the_hanging_load_over_its_exposure(tmp_path, capsys):
+    """scenes/hanging_load.toml, 5 seeds of stationary records over an exposure of 0.5 h
+    (to stay cheap): the sway and tension verdict rests on the same Gumbel fit as the
+    forces, each value beside its limit, degrees for angles; the records' spin-up comes
+    from the sway mode; a sway limit below the sway makes the verdict fail (exit 1, and
+    in --json)."""
     from pathlib import Path
 
     scene = Path(__file__).resolve().parents[2] / "scenes" / "hanging_load.toml"
-    assert main(["size", "--scene", str(scene), "--seeds", "5"]) == 0
+    assert main(["size", "--scene", str(scene), "--exposure", "0.5"]) == 0
     out = capsys.readouterr().out
-    assert "most probable maximum over 3 h full scale (Gumbel" in out
+    assert "most probable maximum over 0.5 h full scale: the mode of the Gumbel" in out
+    assert ("each after a 120 s spin-up (5 decay times of the sway mode, 16 s each, "
+            "rounded up to whole 60 s cycles), discarded") in out
     assert "limit 45°:" in out and "limit ≥ 0.1:" in out
     assert "hanging load: max sway" in out and "°" in out.split("hanging load: max sway")[1]
     tight = tmp_path / "tight.toml"
     tight.write_text(scene.read_text().replace("sway_max_deg = 45.0", "sway_max_deg = 20.0"))
-    status, doc = _size_json(["--scene", str(tight), "--seeds", "5"], capsys)
+    status, doc = _size_json(["--scene", str(tight), "--exposure", "0.5"], capsys)
     load = doc["verdict"]["load"]
     assert status == 1 and load["exceeded"] and doc["verdict"]["exceeded"]
     assert load["limits"]["sway_max_deg"] == pytest.approx(20.0)
     assert load["utilisation"]["sway"] == pytest.approx(load["sway_max_deg"] / 20.0)
     assert load["sway_max_deg"] > 20.0 and load["tension_ratio_min"] > 0.1
-    assert main(["size", "--scene", str(tight), "--seeds", "5"]) == 1
+    assert main(["size", "--scene", str(tight), "--exposure", "0.5", "--seeds", "1"]) == 1
     assert "the hanging load EXCEEDS its limits: sway" in capsys.readouterr().out
 
 

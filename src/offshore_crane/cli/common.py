@@ -4,6 +4,7 @@ same), output planning, comma-separated numbers."""
 
 from __future__ import annotations
 
+import math
 import sys
 
 from offshore_crane.conventions import ACTUATORS
@@ -67,6 +68,40 @@ def robot_scene(args, scene):
                              path=scene.path, name="robot.description")
         scene = replace(scene, robot_description=args.robot, arm=None, payload=None)
     return with_robot_overrides(scene, parse_set(args.set))
+
+
+def add_extremes_options(p, what: str) -> None:
+    """``--exposure HOURS`` and ``--record exposure|scene``: how a sea scene's extremes
+    are judged (the scene's ``[extremes]``, :mod:`offshore_crane.scenes.exposure`)."""
+    p.add_argument("--exposure", type=float, metavar="HOURS",
+                   help="full-scale exposure [h]: the length of each seed's stationary "
+                   f"record and of {what} (default: the scene's [extremes] exposure, 3)")
+    p.add_argument("--record", choices=("exposure", "scene"),
+                   help="sea scenes: run stationary records as long as the exposure "
+                   "(default), or the scene's own record (observed extremes only)")
+
+
+def extremes_scene(args, scene):
+    """``scene`` with ``--exposure`` and ``--record`` in its ``[extremes]``.
+
+    Raises:
+        InputError: either flag on a scene without a sea, or a non-positive exposure.
+    """
+    from offshore_crane.scenes import with_overrides
+
+    given = {k: v for k, v in (("exposure", args.exposure), ("record", args.record))
+             if v is not None}
+    if not given:
+        return scene
+    flag = f"--{next(iter(given))}"
+    if args.exposure is not None and not (math.isfinite(args.exposure) and args.exposure > 0):
+        raise InputError(f"--exposure {args.exposure:g}: must be a positive number of hours",
+                         name="--exposure")
+    if scene.trajectory != "sea":
+        raise InputError(f"{flag}: applies to a random sea, but the trajectory is "
+                         f"{scene.trajectory!r} (deterministic): use a sea scene", name=flag)
+    where = f"{scene.path or 'the scene'} with the command-line options"
+    return with_overrides(scene, where, extremes={**scene.extremes, **given})
 
 
 def comma_numbers(text: str, n: int, option: str) -> list[float]:

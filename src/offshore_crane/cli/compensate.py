@@ -15,7 +15,7 @@ from __future__ import annotations
 
 
 def add_parser(sub) -> None:
-    from offshore_crane.cli.common import add_robot_options
+    from offshore_crane.cli.common import add_extremes_options, add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("compensate", help="compare uncompensated and motion-compensated "
@@ -27,41 +27,40 @@ def add_parser(sub) -> None:
                    "delay, else 0)")
     p.add_argument("--plot", metavar="FIGURE", help="write the payload's residual motion "
                    "per mode to this figure (PNG, PDF, SVG)")
+    add_extremes_options(p, "each mode's run")
     add_robot_options(p)
     p.set_defaults(run=run)
 
 
 def run(args) -> int:
     from offshore_crane import scenes
-    from offshore_crane.cli.common import plan, robot_scene
+    from offshore_crane.cli.common import extremes_scene, plan, robot_scene
     from offshore_crane.studies.compensation import compare_compensation, format_comparison
 
     scene = robot_scene(args, scenes.load_scene(args.scene))
     args.out = None
     outputs, say = plan(args, scene)
     target = outputs.get("--plot")
-    from dataclasses import replace
-
     from offshore_crane.errors import InputError
-    from offshore_crane.simulation.compensation import measured_from
 
     if scene.trajectory != "sea":
         raise InputError(f"compensate cancels the ship's motion: {args.scene} has no sea "
                          f"(its trajectory is {scene.trajectory!r}); give a scene with "
                          "[trajectory] source = \"sea\"", name="--scene")
+    scene = extremes_scene(args, scene)
     delay = args.delay if args.delay is not None else scene.control.get("delay", 0.0)
     if not (delay >= 0.0 and delay < float("inf")):
         raise InputError(f"--delay {delay:g} s: give a finite number >= 0 (the "
                          "measurement's delay)", name="--delay")
-    robot = scenes.load_robot(scene)
-    record = replace(scene, control={})          # the sea record itself, not yet late
-    traj = measured_from(scenes.load_trajectory(record, robot), delay)
-    deck = scenes.target_deck(scene)
-    runs = compare_compensation(robot, traj, scene.cable, scene.gravity, delay=delay,
-                                deck=deck)
-    say(f"offshore-crane compensate: {scene.name} ({args.scene}), {traj.name}, "
-        f"{len(runs[0].residual)} samples, measurement delay {delay:g} s")
-    if deck is not None:
+    runs = compare_compensation(scene, delay=delay)
+    run = runs[0].run
+    say(f"offshore-crane compensate: {scene.name} ({args.scene}), {run.trajectory.name}, "
+        f"{len(runs[0].residual)} samples judged, measurement delay {delay:g} s")
+    if run.exposure is not None:
+        say(f"records: {run.exposure.describe()}; each mode's figures are observed over "
+            f"that one record (seed {scene.sea.get('seed', 0)}): `size` judges the extremes "
+            "over seeds")
+    if "target" in scene.control:
         deck_point = scene.control["target"]
         vessel = deck_point.get("vessel", scene.sea.get("vessel", "supply"))
         say(f"tracking a point on a second vessel's deck: point "

@@ -4,9 +4,10 @@ Runs the scene as ``id`` does (the same flags; a scene with ``[control]`` is sim
 then prints per actuator the peak push and pull with their times, the RMS, the peak
 speed, the peak and mean absolute power and the stroke used, the worst condition
 numbers, and the utilisation of every capacity of the robot description (and the
-scene's ``[actuators]``). For a sea, ``--seeds N`` runs N seeds and, from 5 seeds, judges
-the most probable maximum over ``--exposure`` hours (Gumbel fit). Exit status 1 when a
-utilisation exceeds 100 % (or ``--method both`` disagrees), 0 otherwise.
+scene's ``[actuators]``). A sea runs ``--seeds`` stationary records as long as the
+exposure (3 h full scale; ``[extremes]``) and judges their most probable maximum (Gumbel
+fit of their maxima, from 5 seeds). Exit status 1 when a utilisation exceeds 100 % (or
+``--method both`` disagrees), 0 otherwise.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from offshore_crane.errors import InputError
 
 def add_parser(sub) -> None:
     from offshore_crane.cli import id as id_command
+    from offshore_crane.cli.common import add_extremes_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("size", help="actuator envelope and utilisation of one run",
@@ -25,11 +27,11 @@ def add_parser(sub) -> None:
                            line.strip() for line in doc[2:9]))
     id_command.add_options(p, plot_help="write the per-actuator utilisation chart to this "
                            "figure (PNG, PDF, SVG)")
-    p.add_argument("--seeds", type=int, default=1, metavar="N",
-                   help="sea scenes: run N seeds from the scene's [sea] seed (default 1); "
-                   "from 5 the verdict rests on the Gumbel most probable maximum")
-    p.add_argument("--exposure", type=float, default=3.0, metavar="HOURS",
-                   help="full-scale exposure of the most probable maximum [h] (default 3)")
+    p.add_argument("--seeds", type=int, metavar="N",
+                   help="sea scenes: run N seeds from the scene's [sea] seed (default: the "
+                   "scene's [extremes] seeds, 5); from 5 the verdict rests on the Gumbel "
+                   "most probable maximum")
+    add_extremes_options(p, "the most probable maximum")
     p.add_argument("--json", action="store_true",
                    help="print the envelopes and the verdict as JSON on standard output "
                    "(instead of the tables)")
@@ -59,18 +61,19 @@ def run(args) -> int:
     from offshore_crane import scenes
     from offshore_crane.studies import sweep
     from offshore_crane.conventions import ACTUATORS
-    from offshore_crane.studies.sizing import CAPACITIES, format_envelope, format_verdict, verdict
+    from offshore_crane.studies.sizing import (CAPACITIES, EXPOSURE, format_envelope,
+                                               format_verdict, verdict)
     from offshore_crane.cli.common import plan
-    from offshore_crane.cli.common import id_scene, thresholds
+    from offshore_crane.cli.common import extremes_scene, id_scene, thresholds
     from offshore_crane.cli.id import RELATIVE_LIMIT
+    from offshore_crane.scenes.exposure import extremes_option
 
-    if args.seeds < 1:
+    if args.seeds is not None and args.seeds < 1:
         raise InputError(f"--seeds {args.seeds}: must be ≥ 1", name="--seeds")
-    if not (math.isfinite(args.exposure) and args.exposure > 0):
-        raise InputError(f"--exposure {args.exposure:g}: must be a positive number of hours",
-                         name="--exposure")
-    scene = id_scene(args)
+    scene = extremes_scene(args, id_scene(args))
     sea = scene.trajectory == "sea"
+    args.seeds = args.seeds or (extremes_option(scene, "seeds") if sea and not scene.lift
+                                else 1)
     if args.seeds > 1 and not sea:
         raise InputError(f"--seeds {args.seeds}: seeds draw random seas, but the trajectory "
                          f"is {scene.trajectory!r} (deterministic): use a sea scene",
@@ -93,7 +96,7 @@ def run(args) -> int:
             with progress.suspended():          # the bar counts the seeds
                 runs.append(sweep.record(case, robot, **options))
             shown.update()
-    exposure = args.exposure * 3600.0
+    exposure = extremes_option(scene, "exposure") * 3600.0 if sea else EXPOSURE
     v = verdict([r.envelope for r in runs], scale=scene.sea["scale"] if sea else None,
                 exposure=exposure)
     head = runs[0]
@@ -115,6 +118,12 @@ def run(args) -> int:
                "duration_s": env.duration,
                "seeds": [first + s for s in range(args.seeds)] if sea else None,
                "envelopes": [r.envelope.row() for r in runs],
+               "records": None if head.exposure is None else {
+                   "describe": head.exposure.describe(),
+                   "judged_s": head.exposure.length, "spin_up_s": head.exposure.spin_up,
+                   "cycle_s": head.exposure.cycle,
+                   "modes": [{"name": m.name, "omega_rad_s": m.omega, "zeta": m.zeta,
+                              "decay_time_s": m.decay_time} for m in head.exposure.modes]},
                "verdict": {"basis": v.basis, "describe": v.describe(), "seeds": v.seeds,
                            "exposure_s": v.exposure, "record_s": v.record,
                            "peaks": v.peaks,
@@ -143,9 +152,13 @@ def run(args) -> int:
     else:
         where = f" ({args.scene})" if args.scene else ""
         say(f"offshore-crane size: scene {scene.name}{where}: {scene.describe()}")
-        say(f"{head.kind} of {head.trajectory.name}, {env.samples} samples, "
+        if head.exposure is not None:
+            say(f"records: {head.exposure.describe()}")
+        say(f"{head.kind} of {head.trajectory.name}, {env.samples} samples judged, "
             f"t = {head.t[0]:.2f}..{head.t[-1]:.2f} s"
-            + (f"; envelope of seed {first} (of {args.seeds})" if sea else ""))
+            + (f"; envelope of seed {first} (of {args.seeds}), observed over "
+               f"{env.duration:.6g} s ({env.duration * math.sqrt(scene.sea['scale']):.6g} s "
+               "full scale)" if sea else "; observed"))
         say(format_envelope(env))
         say()
         say(format_verdict(v, env.present))

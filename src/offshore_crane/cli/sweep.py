@@ -17,7 +17,7 @@ from offshore_crane.errors import InputError
 
 
 def add_parser(sub) -> None:
-    from offshore_crane.cli.common import add_robot_options
+    from offshore_crane.cli.common import add_extremes_options, add_robot_options
 
     doc = __doc__.splitlines()
     p = sub.add_parser("sweep", help="sizing over a grid of sea states and parameters",
@@ -47,8 +47,7 @@ def add_parser(sub) -> None:
     p.add_argument("--scatter", metavar="FILE.csv",
                    help="a wave scatter diagram (Hs x Tp occurrences): print the "
                    "operability in percent of time per heading and overall")
-    p.add_argument("--exposure", type=float, default=3.0, metavar="HOURS",
-                   help="full-scale exposure of the most probable maximum [h] (default 3)")
+    add_extremes_options(p, "the verdicts' most probable maximum")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     add_robot_options(p)
     p.set_defaults(run=run)
@@ -82,14 +81,11 @@ def run(args) -> int:
     from offshore_crane.studies import sweep
     from offshore_crane.io import plan_outputs, refuse_inside
     from offshore_crane.studies.sizing import CAPACITIES
-    from offshore_crane.cli.common import robot_scene
+    from offshore_crane.cli.common import extremes_scene, robot_scene
 
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers {args.workers}: must be ≥ 1", name="--workers")
-    if not (math.isfinite(args.exposure) and args.exposure > 0):
-        raise InputError(f"--exposure {args.exposure:g}: must be a positive number of hours",
-                         name="--exposure")
-    scene = robot_scene(args, scenes.load_scene(args.scene))
+    scene = extremes_scene(args, robot_scene(args, scenes.load_scene(args.scene)))
     grid = sweep.check_grid(scene, sweep.load_grid(args.grid), args.grid,
                             sweep.MAX_CASES if args.max_cases is None else args.max_cases)
     scatter = sweep.load_scatter(args.scatter) if args.scatter else None
@@ -110,18 +106,14 @@ def run(args) -> int:
     print(f"{stats['ran']} run in {stats.get('seconds', 0.0):.2f} s"
           + (f" {stats['backend']}" if stats["ran"] else "")
           + f", {int((df['status'] != 'ok').sum())} failed)")
-    exposure = args.exposure * 3600.0
-    v = sweep.verdicts(df, scene, exposure)
+    from offshore_crane.scenes.exposure import extremes_option
+
+    hours = extremes_option(scene, "exposure") if scene.trajectory == "sea" else 3.0
+    v = sweep.verdicts(df, scene, hours * 3600.0)
     keys = sweep.group_keys(df)
     criteria = _criteria(v)
     _print_verdicts(v, keys, "all" in criteria)
-    bases = set(v["basis"])
-    if "observed" in bases:
-        from offshore_crane.studies.sizing import MIN_SEEDS
-
-        print(f"(observed: fewer than {MIN_SEEDS} seeds or no sea, the largest observed "
-              "peak; gumbel: most probable maximum over "
-              f"{args.exposure:g} h full scale)")
+    print(_bases(v, hours))
     op = {}
     if scatter is not None:
         op = {c: sweep.operability(v, scatter, scene, c) for c in criteria}
@@ -132,8 +124,21 @@ def run(args) -> int:
         write_text(planned["--csv"], df.to_csv(index=False))
         print(f"wrote {args.csv}")
     if plot_dir is not None:
-        _plots(plot_dir, df, v, op, scene, CAPACITIES, criteria)
+        _plots(plot_dir, df, v, op, scene, CAPACITIES, criteria, _bases(v, hours))
     return 0
+
+
+def _bases(v, hours: float) -> str:
+    """What the verdicts' bases mean, as printed under their table and on the diagrams."""
+    from offshore_crane.studies.sizing import MIN_SEEDS
+
+    text = {"gumbel": f"gumbel: most probable maximum over {hours:g} h full scale (Gumbel "
+                      f"fit of the maxima of the seeds' stationary {hours:g}-hour records)",
+            "observed": f"observed: the largest observed peak, not extrapolated (fewer "
+                        f"than {MIN_SEEDS} seeds, records shorter than the exposure, or no "
+                        "sea)",
+            "failed": "failed: a seed's case failed (not operable)"}
+    return "(" + "; ".join(text[b] for b in text if b in set(v["basis"])) + ")"
 
 
 #: What each operability criterion judges, as printed.
@@ -191,7 +196,7 @@ def _print_operability(op: dict, scatter: str) -> None:
                      if r["uncovered_pct"] > 0 else ""))
 
 
-def _plots(plot_dir, df, v, op, scene, capacities, criteria) -> None:
+def _plots(plot_dir, df, v, op, scene, capacities, criteria, bases: str) -> None:
     import numpy as np
 
     from offshore_crane.studies import sweep
@@ -223,7 +228,7 @@ def _plots(plot_dir, df, v, op, scene, capacities, criteria) -> None:
                 percent = dict(zip(sel["heading"], sel["operability_pct"]))
             what = "worst utilisation" if criterion == "actuators" else criterion
             operability_diagram(path, g, title=f"{scene.name}: {what}"
-                                + (f" ({_label(label)})" if label else ""),
+                                + (f" ({_label(label)})" if label else "") + f"\n{bases}",
                                 operability=percent, criterion=criterion)
             print(f"wrote {path}")
     ok = df[df["status"] == "ok"]
@@ -232,7 +237,9 @@ def _plots(plot_dir, df, v, op, scene, capacities, criteria) -> None:
         util = np.array([[r[f"{a}_util_{c}"] for c in capacities] for a in ACTUATORS])
         params = {k: r[k] for k in sweep.group_keys(df) + (["seed"] if "seed" in df else [])}
         path = os.path.join(plot_dir, "utilisation-worst-case.png")
+        full = r["duration_s"] * math.sqrt(float(r.get("scale", scene.sea.get("scale", 1.0))))
         utilisation_chart(path, util, title=f"worst case ({_label(params)}): "
                           f"{r['governing']} {r['governing_capacity']} at "
-                          f"{100 * r['worst_util']:.1f} %")
+                          f"{100 * r['worst_util']:.1f} %, observed over its one record "
+                          f"({full:.6g} s full scale), not the verdict's extreme")
         print(f"wrote {path}")

@@ -167,8 +167,8 @@ def with_robot_overrides(scene: Scene, overrides: dict, source: str = "--set") -
 
 def load_trajectory(scene: Scene, robot, threads: int = 1, check: bool = True):
     """The scene's trajectory; with ``platform = false``, q1..q6 held at the deck pose;
-    with ``[control] compensation`` and ``delay``, from the time the first measurement
-    has arrived. ``threads`` share a sea record's FFT and workspace check (the same
+    with ``[control] compensation`` (any mode, so that every mode runs on the same
+    samples) and ``delay``, from the time the first measurement has arrived. ``threads`` share a sea record's FFT and workspace check (the same
     record in any count). ``check=False`` leaves a sea record's workspace check to the
     caller, whose dynamics check the same limits anyway (``limits=True``): on their
     :class:`~offshore_crane.errors.WorkspaceError` it calls :func:`sea_workspace_error`
@@ -181,8 +181,9 @@ def load_trajectory(scene: Scene, robot, threads: int = 1, check: bool = True):
     from offshore_crane.motion import trajectories
 
     if scene.trajectory == "sea":
-        traj = sea_trajectory(scene, robot, check or scene.compensation != "none", threads)
-        if scene.compensation == "none":
+        named = "compensation" in scene.control           # any mode, "none" included
+        traj = sea_trajectory(scene, robot, check or named, threads)
+        if not named:
             return traj
         from offshore_crane.simulation.compensation import measured_from
 
@@ -210,12 +211,12 @@ def sea_workspace_error(robot, traj, threads: int = 1) -> None:
 
 def with_trajectory(scene: Scene, where: str, source: str | None) -> Scene:
     """``scene`` driven by another trajectory source (``--trajectory``): its ``[sea]``,
-    ``[operation]``, span and finite-difference order belong to its own source and are
-    dropped; the same source (or None) leaves the scene as it is."""
+    ``[operation]``, ``[extremes]``, span and finite-difference order belong to its own
+    source and are dropped; the same source (or None) leaves the scene as it is."""
     if source is None or source == scene.trajectory:
         return scene
     return replace(scene, origin=where, trajectory=source, sea={}, operation=None,
-                   duration=None, rate=None, fd_order=4)
+                   duration=None, rate=None, fd_order=4, extremes={})
 
 
 def with_overrides(scene: Scene, where: str, **changes) -> Scene:

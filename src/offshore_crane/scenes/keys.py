@@ -10,7 +10,7 @@ from offshore_crane.io import toml_value
 
 
 SECTIONS = ("robot", "subsystems", "payload", "cable", "actuators", "trajectory", "sea",
-            "operation", "control", "lift")
+            "operation", "control", "lift", "extremes")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
 PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length", "sway_damping", "limits")
@@ -33,6 +33,18 @@ CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error"
 LIFT_KEYS = ("event", "deck_height", "deck")
 #: [lift] events.
 LIFT_EVENTS = ("lift-off", "set-down")
+#: [extremes] keys: how a sea scene's extremes are judged (scenes.exposure, docs/sizing.md).
+EXTREMES_KEYS = ("exposure", "record", "seeds", "spin_up")
+#: [extremes] record: exposure-length stationary records, or the scene's own record.
+EXTREMES_RECORDS = ("exposure", "scene")
+#: Fewest records a Gumbel fit of their maxima is made on (studies.sizing.MIN_SEEDS): with
+#: 5 maxima the maximum-likelihood scale is within about ±40 % (one standard deviation).
+GUMBEL_MIN_RECORDS = 5
+#: [extremes] defaults: a 3-hour full-scale exposure [h] (the usual duration of a
+#: stationary sea state, DNV-RP-C205) on stationary records that long, as many seeds as a
+#: Gumbel fit needs, the spin-up from the scene's modes.
+EXTREMES_DEFAULTS = {"exposure": 3.0, "record": "exposure", "seeds": GUMBEL_MIN_RECORDS,
+                     "spin_up": None}
 #: [control] target keys: a point on a second vessel's deck (ship-to-ship transfer).
 TARGET_KEYS = ("point", "seed", "vessel")
 #: [control] keys that are Controller arguments (the others: simulate's).

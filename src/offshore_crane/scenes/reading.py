@@ -61,6 +61,16 @@ class _Reader:
             self.fail(key, f"must be ≥ {minimum:g}{f' {unit}' if unit else ''}")
         return float(v)
 
+    def integer(self, key: str, minimum: int, what: str = ""):
+        """An integer ≥ ``minimum`` (not a bool), or None when absent; ``what`` says what
+        it counts, for the message."""
+        if key not in self.table:
+            return None
+        v = self.table[key]
+        if isinstance(v, bool) or not isinstance(v, int) or v < minimum:
+            self.fail(key, f"must be an integer ≥ {minimum}" + (f" ({what})" if what else ""))
+        return v
+
     def vector(self, key: str, n: int, default=None, unit: str = ""):
         if key not in self.table:
             return default
@@ -362,10 +372,7 @@ def _control(where: str, data: dict, base: Path | None = None) -> dict:
     if "saturation" in r.table:
         out["saturation"] = r.boolean("saturation", True)
     if "seed" in r.table:
-        seed = r.get("seed")
-        if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-            r.fail("seed", "must be an integer ≥ 0")
-        out["seed"] = seed
+        out["seed"] = r.integer("seed", 0)
     if "model" in r.table:
         model = r.get("model")
         if not isinstance(model, dict):
@@ -392,10 +399,7 @@ def _cable(where: str, data: dict) -> dict:
     if "initial_rate" in r.table:
         out["initial_rate"] = r.vector("initial_rate", 2, unit="rad/s")
     if "substeps" in r.table:
-        n = r.get("substeps")
-        if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-            r.fail("substeps", "must be an integer ≥ 1 (RK4 steps per sample interval)")
-        out["substeps"] = n
+        out["substeps"] = r.integer("substeps", 1, "RK4 steps per sample interval")
     if "slack" in r.table:
         out["slack"] = r.string("slack", choices=SLACK)
     if "ea" in r.table:
@@ -404,6 +408,24 @@ def _cable(where: str, data: dict) -> dict:
         out["damping"] = r.number("damping", None, "N·s/m", minimum=0.0)
     if "winch" in r.table:
         out["winch"] = r.boolean("winch", False)
+    return out
+
+
+def _extremes(where: str, data: dict) -> dict:
+    """The ``[extremes]`` section (:mod:`offshore_crane.scenes.exposure`): ``exposure``
+    [h], ``record``, ``seeds``, ``spin_up`` [s], checked."""
+    from offshore_crane.scenes.keys import EXTREMES_KEYS, EXTREMES_RECORDS
+
+    r = _section(where, data, "extremes", EXTREMES_KEYS)
+    out: dict = {}
+    if "exposure" in r.table:
+        out["exposure"] = r.number("exposure", None, "h", positive=True)
+    if "record" in r.table:
+        out["record"] = r.string("record", choices=EXTREMES_RECORDS)
+    if "seeds" in r.table:
+        out["seeds"] = r.integer("seeds", 1, "records per sea state")
+    if "spin_up" in r.table:
+        out["spin_up"] = r.number("spin_up", None, "s", minimum=0.0)
     return out
 
 
@@ -436,7 +458,8 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
         gravity=top.vector("gravity", 3, GRAVITY, "m/s²"),
         outputs=top.names("outputs", ACTUATORS),
         methods=top.names("methods", METHODS) or ("kane",), control=control, cable=cable,
-        lift=_lift(where, data, base), **_trajectory(where, data, base),
+        lift=_lift(where, data, base), extremes=_extremes(where, data),
+        **_trajectory(where, data, base),
         **_sea(where, data, base))
 
 

@@ -57,30 +57,43 @@ def solve_scene(scene: Scene, robot, traj, method: str, leg_model: str, **option
 CABLE_METHODS = {"kane": "kane", "rnea": "pinocchio"}
 
 
-def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, checks: bool = True,
-           thresholds=None, threads: int = 1, **ignored):
-    """A scene with a payload on a cable: :func:`offshore_crane.dynamics.cable.swing` (the
-    ``[cable]`` options; ``threads`` split the rigid cable's Kane pass, ``backend`` does
-    not apply), with a winch when
-    ``[cable] winch = true`` (the hoist column of ``[operation]``), or on an elastic cable
-    when ``[cable] ea`` is given (:func:`~offshore_crane.dynamics.cable.elastic_inverse_dynamics`,
-    Kane's path only), as a :class:`~offshore_crane.dynamics.Result` holding the
-    :class:`CableResult` or :class:`ElasticResult`.
+@dataclass
+class SwingPlan:
+    """What a hanging-load scene runs (:func:`swing_plan`).
+
+    Attributes:
+        trajectory: The robot's motion as it runs: the scene's record, or the arm's (and
+            the winch's) commands under ``[control] compensation``.
+        options: The cable's keyword arguments (``[cable]`` options, the winch's
+            ``hoist`` profile, the compensation's starting state).
+        compensation: The :class:`~offshore_crane.simulation.compensation.Compensated`
+            motion (its aim, tip and held joints) when the scene names a compensation
+            mode (``"none"`` included), else None.
+    """
+
+    trajectory: object
+    options: dict
+    compensation: object = None
+
+
+def swing_plan(scene: Scene, robot, traj) -> SwingPlan:
+    """The motion and cable options a scene with a payload on a cable runs: its
+    ``[control] compensation`` applied to the record (any mode the scene names, ``"none"``
+    included, starts the payload as :func:`~offshore_crane.simulation.compensation.
+    still_start` says unless ``[cable] initial`` is given), and the winch's hoist
+    column.
 
     Raises:
-        SceneError: a winch whose capacities the description does not give; an elastic
-            cable asked of the Pinocchio reference.
+        SceneError: a winch whose capacities the description does not give; the errors
+            of :func:`_compensated`.
     """
-    from offshore_crane.dynamics.cable import elastic_inverse_dynamics, hoist_profile, swing
-    from offshore_crane.dynamics import Result
+    from offshore_crane.dynamics.cable import hoist_profile
     from offshore_crane.errors import SceneError
-    from offshore_crane.robot.kinematics.workspace import Thresholds
 
     options = {k: v for k, v in scene.cable.items() if k not in ("ea", "damping", "winch")}
-    checked = dict(gravity=scene.gravity, limits=limits, checks=checks,
-                   thresholds=thresholds or Thresholds())
-    if scene.compensation != "none":
-        traj, options = _compensated(scene, robot, traj, options)
+    comp = None
+    if "compensation" in scene.control:
+        traj, options, comp = _compensated(scene, robot, traj, options)
     waypoints = hoist_waypoints(scene)
     if waypoints is not None:
         if not robot.winch.given():
@@ -89,6 +102,34 @@ def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, check
                              "pull_max, speed_max, acceleration_max, power_max ([actuators."
                              "winch] in the scene)", path=scene.path, name="cable.winch")
         options["hoist"] = hoist_profile(waypoints)
+    return SwingPlan(traj, options, comp)
+
+
+def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, checks: bool = True,
+              thresholds=None, threads: int = 1, plan: SwingPlan | None = None, **ignored):
+    """A scene with a payload on a cable: :func:`offshore_crane.dynamics.cable.swing` (the
+    ``[cable]`` options; ``threads`` split the rigid cable's Kane pass, ``backend`` does
+    not apply), with a winch when
+    ``[cable] winch = true`` (the hoist column of ``[operation]``), or on an elastic cable
+    when ``[cable] ea`` is given (:func:`~offshore_crane.dynamics.cable.elastic_inverse_dynamics`,
+    Kane's path only), as a :class:`~offshore_crane.dynamics.Result` holding the
+    :class:`CableResult` or :class:`ElasticResult` (whose ``t, q, qd, qdd`` are the
+    motion that ran: the compensated one under a compensation). ``plan``: the scene's
+    :func:`swing_plan` when the caller has it.
+
+    Raises:
+        SceneError: a winch whose capacities the description does not give; an elastic
+            cable asked of the Pinocchio reference.
+    """
+    from offshore_crane.dynamics.cable import elastic_inverse_dynamics, swing
+    from offshore_crane.dynamics import Result
+    from offshore_crane.errors import SceneError
+    from offshore_crane.robot.kinematics.workspace import Thresholds
+
+    plan = plan or swing_plan(scene, robot, traj)
+    traj, options = plan.trajectory, dict(plan.options)
+    checked = dict(gravity=scene.gravity, limits=limits, checks=checks,
+                   thresholds=thresholds or Thresholds())
     if scene.lift:
         return _lift_event(scene, robot, traj, method, options.get("hoist"), checked)
     if "ea" in scene.cable:
@@ -143,7 +184,7 @@ def elastic_simulation(scene: Scene, robot, traj) -> tuple:
     if waypoints is not None:
         options["hoist"] = hoist_profile(waypoints)
     if scene.compensation != "none":
-        traj, extra = _compensated(scene, robot, traj, {})
+        traj, extra, _ = _compensated(scene, robot, traj, {})
         options.update(extra)
     return traj, options
 
@@ -184,7 +225,8 @@ def _compensated(scene: Scene, robot, traj, options: dict):
     towards the still-ship point or the ``[control] target`` deck, on the platform's
     motion measured ``[control] delay`` late (:func:`load_trajectory`
     starts the record once the first measurement has arrived), the payload starting still
-    unless ``[cable] initial`` says otherwise. Returns ``(trajectory, cable options)``.
+    unless ``[cable] initial`` says otherwise. Returns ``(trajectory, cable options,
+    Compensated)``.
 
     Raises:
         SceneError: compensation with the winch's hoist column (the winch is the
@@ -212,7 +254,7 @@ def _compensated(scene: Scene, robot, traj, options: dict):
         options["hoist"] = comp.hoist_function()
     if "initial" not in options:
         options.update(still_start(robot, comp, scene.gravity, scene.cable.get("ea")))
-    return comp.trajectory, options
+    return comp.trajectory, options, comp
 
 
 def run(scene: Scene, robot=None, trajectory=None, **options) -> SceneRun:

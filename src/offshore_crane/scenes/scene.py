@@ -81,6 +81,10 @@ class Scene:
         cable: ``[cable]``: the hanging load's options.
         lift: ``[lift]``: ``{"event": "lift-off" | "set-down", "deck_height": [m],
             "deck": {point, seed, vessel}}`` or empty.
+        extremes: ``[extremes]``: how a sea scene's extremes are judged
+            (:mod:`offshore_crane.scenes.exposure`): ``exposure`` [h] full scale,
+            ``record`` (``"exposure"`` or ``"scene"``), ``seeds``, ``spin_up`` [s] model
+            scale; absent keys take :data:`~offshore_crane.scenes.keys.EXTREMES_DEFAULTS`.
     """
 
     name: str = "default"
@@ -105,6 +109,7 @@ class Scene:
     control: dict = field(default_factory=dict)
     cable: dict = field(default_factory=dict)
     lift: dict = field(default_factory=dict)
+    extremes: dict = field(default_factory=dict)
     #: Where the scene comes from, for messages (the file, or the file with the
     #: command-line options applied).
     origin: str | None = field(default=None, compare=False, repr=False)
@@ -265,9 +270,10 @@ def _check_sea(scene: "Scene") -> None:
         fail("operation.waypoints", "[operation] the hoist column L must stay > 0 m")
     if scene.lift:
         _check_lift(scene, fail)
-    if "target" in scene.control and scene.compensation == "none":
+    if "target" in scene.control and "compensation" not in scene.control:
         fail("control.target", "[control] target is tracked by the motion compensation: "
-             "set [control] compensation = \"arm\" or \"arm+winch\"")
+             "set [control] compensation = \"arm\" or \"arm+winch\" (\"none\": the "
+             "uncompensated lift measured against the target)")
     if scene.trajectory != "sea":
         if "target" in scene.control:
             fail("control.target", "[control] target is a point on a second vessel in the "
@@ -363,6 +369,40 @@ def _check_values(scene: Scene) -> None:
         fail("gravity", scene.gravity, "must be 3 finite numbers [m/s²]")
     if scene.deck_pose is not None and not is_finite_vector(scene.deck_pose, 6):
         fail("subsystems.deck_pose", scene.deck_pose, "must be 6 finite numbers [m, rad]")
+    _check_extremes(scene, fail)
+
+
+def _check_extremes(scene: Scene, fail) -> None:
+    """``[extremes]``: its keys' domains, and a sea to judge."""
+    from offshore_crane.scenes.keys import EXTREMES_KEYS, EXTREMES_RECORDS
+
+    x = scene.extremes
+    for key in x:
+        if key not in EXTREMES_KEYS:
+            fail(f"extremes.{key}", x[key], f"unknown key: known keys are "
+                 f"{', '.join(EXTREMES_KEYS)}")
+    if x and scene.trajectory != "sea":
+        fail("extremes", x, "[extremes] judges a random sea's extremes: it needs "
+             "[trajectory] source = \"sea\"")
+    number = (int, float)
+    if "exposure" in x and not (isinstance(x["exposure"], number)
+                                and not isinstance(x["exposure"], bool)
+                                and 0.0 < x["exposure"] < float("inf")):
+        fail("extremes.exposure", x["exposure"], "must be a positive number of hours "
+             "(full scale)")
+    if x.get("record") == "exposure" and scene.lift:
+        fail("extremes.record", x["record"], "a [lift] event happens once: it is judged on "
+             "its own record, not on exposure records (drop [extremes] record)")
+    if "record" in x and x["record"] not in EXTREMES_RECORDS:
+        fail("extremes.record", x["record"], f"must be one of {', '.join(EXTREMES_RECORDS)}")
+    if "seeds" in x and (isinstance(x["seeds"], bool) or not isinstance(x["seeds"], int)
+                         or x["seeds"] < 1):
+        fail("extremes.seeds", x["seeds"], "must be an integer ≥ 1 (records per sea state)")
+    if x.get("spin_up") is not None and not (
+            isinstance(x["spin_up"], number) and not isinstance(x["spin_up"], bool)
+            and 0.0 <= x["spin_up"] < float("inf")):
+        fail("extremes.spin_up", x["spin_up"], "must be a finite number of seconds ≥ 0 "
+             "(model scale)")
 
 
 def check_scene(scene: Scene) -> None:

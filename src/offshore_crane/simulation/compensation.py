@@ -96,6 +96,14 @@ class Compensated:
         return lambda x: quintic_hermite(t, H[:, 0:1], H[:, 1:2], H[:, 2:3], x)
 
 
+def check_compensable(robot) -> None:
+    """Raise :class:`InputError` unless the robot has the crane arm and a payload on a
+    cable: what a compensation moves and what it holds still."""
+    if robot.hybrid.cable is None or robot.hybrid.arm.n != 3:
+        raise InputError("compensation needs the crane arm and a payload on a cable "
+                         "(payload.cable_length > 0)", name="compensation")
+
+
 def still_start(robot, comp: Compensated, gravity, ea: float | None = None) -> dict:
     """The payload at the start of a compensated motion ``comp``: at its aim (still
     below the still-ship tip, or moving with the target deck), on the cable's starting
@@ -180,9 +188,7 @@ def compensated_motion(robot, trajectory, mode: str = "arm+winch",
     if not (isinstance(delay, (int, float)) and np.isfinite(delay) and delay >= 0.0):
         raise InputError(f"delay = {delay!r} s: give a finite number >= 0 (the "
                          "measurement's delay)", name="delay")
-    if robot.hybrid.cable is None or robot.hybrid.arm.n != 3:
-        raise InputError("compensation needs the crane arm and a payload on a cable "
-                         "(payload.cable_length > 0)", name="compensation")
+    check_compensable(robot)
     t, q = trajectory.t, np.array(trajectory.q, dtype=float)
     still = q.copy()
     still[:, :6] = robot.home_pose()[:6]

@@ -8,7 +8,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from offshore_crane.conventions import GRAVITY
 
 
 @dataclass
@@ -21,13 +20,16 @@ class CompensationRun:
             (hanging straight below the still-ship tip, moved with the target deck when
             one is tracked), base frame [m].
         rms, peak: ``(3,)`` RMS and largest |residual| per axis x, y, z [m].
-        sway_max_deg: Largest angle of the cable from the vertical [deg].
+        sway_max_deg: Largest angle of the cable from the tip's vertical [deg]: the
+            envelope's ``sway_max`` (the figure ``size`` and a sweep's row report).
         lift: :class:`~offshore_crane.dynamics.cable.LiftMetrics`.
         worst: ``(utilisation, actuator, capacity)`` of the robot's actuators, the
-            worst over the run (``size``'s measure: 1 = 100 %).
+            worst over the run (the envelope's: 1 = 100 %).
         winch: ``{pull, speed, acceleration, power: utilisation}`` (NaN without a winch).
         held: ``{joint: (samples, first time [s])}`` where the arm met its limits.
         result: The run's :class:`CableResult` or :class:`ElasticResult`.
+        run: The :class:`~offshore_crane.studies.sweep.CaseRun` it comes from (its
+            envelope, motion and record).
     """
 
     mode: str
@@ -40,68 +42,55 @@ class CompensationRun:
     winch: dict
     held: dict
     result: object
+    run: object = None
 
 
-def compare_compensation(robot, trajectory, cable: dict | None = None, gravity=GRAVITY,
-                         modes=("none", "arm", "arm+winch"),
-                         delay: float = 0.0, deck=None) -> list[CompensationRun]:
-    """The same sea and operation lifted under each compensation mode.
+def compare_compensation(scene, robot=None, modes=("none", "arm", "arm+winch"),
+                         delay: float | None = None, **options) -> list[CompensationRun]:
+    """The scene's lift under each compensation mode: the scene with ``[control]
+    compensation`` set to the mode (and ``delay``) run as ``size`` and a sweep run it
+    (:func:`offshore_crane.studies.sweep.record`): the same record, the same start, the
+    same envelope, so the mode the scene names reports here what ``size`` reports.
 
     Args:
-        robot: With the arm and a payload on a cable; its ``actuators.winch``
-            capacities judge the winch.
-        trajectory: The sea record (q1..q6 the ship, q7..q9 the operation); with a
-            delay, its source must reach ``delay`` before its first sample
-            (:func:`~offshore_crane.simulation.compensation.measured_from`).
-        cable: ``[cable]`` options: ``ea``, ``damping`` (an elastic cable), ``initial``,
-            ``initial_rate``, ``substeps``, ``slack`` (a rigid one). Without ``initial``
-            the payload starts hanging still along g
-            (:func:`~offshore_crane.simulation.compensation.still_start`).
-        gravity: ``(3,)`` [m/s²].
+        scene: A sea scene with the arm and a payload on a cable; its robot's
+            ``actuators.winch`` capacities judge the winch.
+        robot: Its robot (default: the scene's).
         modes: Out of :data:`offshore_crane.simulation.compensation.MODES`.
-        delay: The measurement's delay [s] the compensation acts on.
-        deck: A moving target (:class:`~offshore_crane.motion.sea.DeckMotion`, a point on
-            a second vessel's deck), or None: the still-ship point.
+        delay: The measurement's delay [s] the compensation acts on (default: the
+            scene's ``[control] delay``, else 0).
+        **options: ``limits``, ``thresholds`` of :func:`~offshore_crane.studies.sweep.
+            record`.
 
     Raises:
-        The errors of :func:`~offshore_crane.simulation.compensation.compensated_motion`
-        and of the cable's inverse dynamics.
+        The errors of :func:`~offshore_crane.studies.sweep.record` and of
+        :func:`~offshore_crane.simulation.compensation.compensated_motion`.
     """
-    from offshore_crane.dynamics.cable import (elastic_inverse_dynamics, inverse_dynamics,
-                                               lift_metrics)
-    from offshore_crane.dynamics.cable.tip import payload_positions
-    from offshore_crane.simulation.compensation import compensated_motion, still_start
-    from offshore_crane.studies.sizing.envelopes import envelope, worst_utilisation
+    from dataclasses import replace
 
-    cable = dict(cable or {})
-    elastic = {k: cable.pop(k) for k in ("ea", "damping") if k in cable}
-    cable.pop("winch", None)
-    g = np.asarray(gravity, dtype=float)
-    down = g / np.linalg.norm(g)
+    from offshore_crane import scenes
+    from offshore_crane.dynamics.cable import lift_metrics
+    from offshore_crane.dynamics.cable.tip import payload_positions
+    from offshore_crane.simulation.compensation import check_compensable
+    from offshore_crane.studies.sweep.cases import record
+
+    robot = robot or scenes.load_robot(scene)
+    check_compensable(robot)
+    control = dict(scene.control)
+    if delay is not None:
+        control["delay"] = float(delay)
     runs = []
     for mode in modes:
-        comp = compensated_motion(robot, trajectory, mode, delay, deck, g)
-        tr = comp.trajectory
-        args = dict(t=tr.t, gravity=g, hoist=comp.hoist_function(),
-                    reference=tr.reference if tr.source is not None else None)
-        start = still_start(robot, comp, g, elastic.get("ea"))
-        if elastic:
-            res = elastic_inverse_dynamics(robot, tr.q, tr.qd, tr.qdd, **args, **elastic,
-                                           **start, **{k: v for k, v in cable.items()
-                                                       if k == "substeps"})
-        else:
-            res = inverse_dynamics(robot, tr.q, tr.qd, tr.qdd, **args, **{**start, **cable})
-        p = payload_positions(robot, res)
-        residual = p - comp.aim
-        rel = p - comp.tip
-        cosang = np.clip(rel @ down / np.linalg.norm(rel, axis=1), -1.0, 1.0)
-        env = envelope(robot, tr.t, tr.q, tr.qd, res.X)
-        lift = lift_metrics(res, g)
+        run = record(replace(scene, control={**control, "compensation": mode}), robot,
+                     **options)
+        res, comp = run.result.cable, run.compensation
+        residual = payload_positions(robot, res) - comp.aim
+        lift = lift_metrics(res, scene.gravity)
+        env = run.envelope
         runs.append(CompensationRun(
             mode, residual, np.sqrt((residual ** 2).mean(axis=0)),
-            np.abs(residual).max(axis=0), float(np.degrees(np.arccos(cosang)).max()),
-            lift, worst_utilisation(env.utilisation), lift.winch_utilisation(robot.winch),
-            comp.held, res))
+            np.abs(residual).max(axis=0), float(np.degrees(env.sway_max)), lift,
+            env.worst(), lift.winch_utilisation(robot.winch), comp.held, res, run))
     return runs
 
 

@@ -53,6 +53,7 @@ from offshore_crane.dynamics.cable.grid import (cable_robot, motion_samples, sta
 from offshore_crane.dynamics.cable.forces import kane_forces
 from offshore_crane.dynamics.cable.elastic import ElasticResult, elastic_inverse_dynamics
 from offshore_crane.dynamics.cable.lift import LiftMetrics, lift_metrics
+from offshore_crane.dynamics.cable.modes import cable_modes
 from offshore_crane.dynamics.cable.liftoff import LiftOff, SetDown, lift_off, set_down
 
 if TYPE_CHECKING:
@@ -63,7 +64,8 @@ if TYPE_CHECKING:
 __all__ = ["CableResult", "METHODS", "SLACK", "cable_robot", "hoist_grid", "hoist_profile",
            "inverse_dynamics", "kane_forces", "stage_grid", "sway_accelerations", "swing",
            "uniform_times", "warm_up", "ElasticResult", "elastic_inverse_dynamics",
-           "LiftMetrics", "lift_metrics", "LiftOff", "SetDown", "lift_off", "set_down"]
+           "LiftMetrics", "lift_metrics", "LiftOff", "SetDown", "lift_off", "set_down",
+           "cable_modes"]
 
 METHODS = ("kane", "pinocchio")
 SLACK = ("error", "warn")

@@ -42,3 +42,29 @@ def payload_positions(robot, res) -> np.ndarray:
     length = res.length if res.hoist is None else res.hoist[:, 0]
     return tip_positions(robot, res.q)[0] + np.einsum("ijn,jn->ni", Rt, e) * np.reshape(
         length, (-1, 1))
+
+
+def sway_angle(robot, res) -> np.ndarray:
+    """``(N,)`` the cable's angle from the tip's vertical [rad] — between the cable, from
+    the tip to the payload, and the ``arm_tip`` frame's −z axis (down when the platform
+    is level) — of a rigid or elastic cable's result: the one sway figure that envelopes,
+    verdicts, sweeps and ``compensate`` report. A rigid cable's is ``arccos(cos φ1 cos
+    φ2)`` (:attr:`~.result.CableResult.sway_angle`); an elastic one's is taken of the
+    payload's position ``ρ`` from the tip and the tip's attitude ``R_base_tip`` along the
+    motion that ran, in blocks of :data:`BLOCK` samples."""
+    if not hasattr(res, "position"):
+        return res.sway_angle
+    from offshore_crane.dynamics import backends
+    from offshore_crane.dynamics.constants import cable_arrays
+
+    B, C = backends.NUMPY, cable_arrays(robot).kane
+    rho = np.asarray(res.position, dtype=float)
+    out = np.empty(len(rho))
+    for a in range(0, len(rho), BLOCK):
+        b = slice(a, a + BLOCK)
+        Rt = B.tip_motion(C, res.q[b].T, res.qd[b].T, res.qdd[b].T)[0]
+        down = -np.stack([np.asarray(Rt[i][2], dtype=float) for i in range(3)], axis=-1)
+        r = rho[b]
+        cos = np.einsum("ni,ni->n", r, down) / np.linalg.norm(r, axis=1)
+        out[b] = np.arccos(np.clip(cos, -1.0, 1.0))
+    return out

@@ -25,14 +25,15 @@ the largest sway from the tip's vertical [rad] and the smallest and largest cabl
 tension [N] (NaN without a cable).
 
 For a random sea a single record's peak is itself random. :func:`verdict` takes the
-envelopes of the same case under several seeds: with at least :data:`MIN_SEEDS` of them it
-fits a Gumbel distribution to the per-record maxima of every peak quantity by maximum
-likelihood (:func:`gumbel_fit`) and extrapolates to the exposure (3 hours full scale by
-default): ``n = exposure / record``, with the record's full-scale duration ``T_model ·
-√λ`` (Froude), and the most probable maximum of the exposure is the mode
-``μ + β ln n`` of the fitted Gumbel(μ, β) (:func:`most_probable_maximum`). With fewer
-seeds no fit is made: the verdict rests on the largest observed peak and says so (its
-``basis``). ``docs/sizing.md`` has the formulas and the choices."""
+envelopes of the same case under several seeds, each a stationary record as long as the
+exposure (3 hours full scale by default: :mod:`offshore_crane.scenes.exposure`): with at
+least :data:`MIN_SEEDS` of them it fits a Gumbel distribution to the per-record maxima
+of every peak quantity by maximum likelihood (:func:`gumbel_fit`), and the most probable
+maximum of the exposure is the fit's mode μ (:func:`most_probable_maximum` with one
+record per exposure). With fewer records, or records shorter than the exposure
+(:func:`covers_exposure`), no fit is made: the verdict rests on the largest observed
+peak and says why (its ``basis``, :meth:`Verdict.describe`). ``docs/sizing.md`` has the
+formulas and the choices."""
 
 from __future__ import annotations
 
@@ -43,7 +44,8 @@ from offshore_crane.studies.sizing.envelopes import (CAPACITIES, QUANTITIES, KIN
                                                      envelope, conditions)
 from offshore_crane.studies.sizing.loads import (LIFT, LOAD_CRITERIA, WINCH_DEMANDS,
                                                  load_utilisation, slack_utilisation)
-from offshore_crane.studies.sizing.extremes import (MIN_SEEDS, EXPOSURE, gumbel_fit,
-                                                    most_probable_maximum, most_probable_extreme)
+from offshore_crane.studies.sizing.extremes import (MIN_SEEDS, EXPOSURE, covers_exposure,
+                                                    gumbel_fit, most_probable_maximum,
+                                                    most_probable_extreme)
 from offshore_crane.studies.sizing.verdicts import Verdict, verdict
 from offshore_crane.studies.sizing.formatting import format_envelope, format_verdict

@@ -273,9 +273,10 @@ def _hanging(cable, robot, gravity) -> dict:
     """The envelope's hanging-load fields of a cable's result
     (:func:`~offshore_crane.dynamics.cable.lift_metrics`)."""
     from offshore_crane.dynamics.cable import lift_metrics
+    from offshore_crane.dynamics.cable.tip import sway_angle
 
     m = lift_metrics(cable, gravity)
-    out = dict(sway_max=float(np.max(cable.sway_angle)), tension_min=m.tension_min,
+    out = dict(sway_max=float(np.max(sway_angle(robot, cable))), tension_min=m.tension_min,
                tension_max=m.tension_max, time_slack=m.time_slack,
                static_tension=m.static_tension, load_limits=robot.load_limits)
     if getattr(cable, "hoist", None) is not None:

@@ -9,15 +9,17 @@ import math
 import numpy as np
 
 from offshore_crane.errors import InputError, InsufficientSeedsError
+from offshore_crane.scenes.keys import EXTREMES_DEFAULTS, GUMBEL_MIN_RECORDS
 
 
-#: Fewest seeds a Gumbel fit is made on: with 5 per-record maxima the maximum-likelihood
-#: scale is within about ±40 % (one standard deviation) of the true one; fewer give a fit
-#: that says nothing (the verdict then rests on the observed maximum and says so).
-MIN_SEEDS = 5
+#: Fewest seeds (records) a Gumbel fit is made on: with 5 per-record maxima the
+#: maximum-likelihood scale is within about ±40 % (one standard deviation) of the true
+#: one; fewer give a fit that says nothing (the verdict then rests on the observed maximum
+#: and says so).
+MIN_SEEDS = GUMBEL_MIN_RECORDS
 #: Default exposure of the most probable maximum, full scale [s]: 3 hours, the usual
 #: duration of a stationary sea state (DNV-RP-C205).
-EXPOSURE = 3 * 3600.0
+EXPOSURE = 3600.0 * EXTREMES_DEFAULTS["exposure"]
 
 
 # --------------------------------------------------------------------------- Gumbel
@@ -98,6 +100,22 @@ def most_probable_maximum(maxima, record: float, exposure: float = EXPOSURE) -> 
                          "least one record", name="exposure")
     mu, beta = gumbel_fit(maxima)
     return mu + beta * math.log(exposure / record)
+
+
+def covers_exposure(duration: float, samples: int, scale: float, exposure: float) -> bool:
+    """True when a record of ``duration`` [s] (model scale, ``t[-1] − t[0]``) over
+    ``samples`` samples covers ``exposure`` [s] full scale at Froude scale ``scale``: its
+    samples span the exposure to within one sample interval (an exposure record's judged
+    window, :mod:`offshore_crane.scenes.exposure`, ends on the last sample within it).
+
+    The verdict fits a Gumbel distribution only to maxima of records that cover the
+    exposure: it does not extrapolate shorter records to it (docs/sizing.md: on the
+    hanging-load scene, 60 s records extrapolated to 3 h overstate the sway's extreme).
+    """
+    if not (samples > 1 and math.isfinite(duration) and scale > 0):
+        return False
+    interval = duration / (samples - 1)
+    return (duration + interval) * math.sqrt(scale) >= exposure
 
 
 def most_probable_extreme(values, record: float, exposure: float, gumbel: bool, sign: float = 1.0) -> float:

@@ -12,7 +12,8 @@ import numpy as np
 from offshore_crane.errors import InputError
 from offshore_crane.studies.sizing.envelopes import CAPACITIES, utilisation, worst_utilisation
 from offshore_crane.studies.sizing.loads import WINCH_DEMANDS, load_utilisation
-from offshore_crane.studies.sizing.extremes import (EXPOSURE, MIN_SEEDS, most_probable_extreme,
+from offshore_crane.studies.sizing.extremes import (EXPOSURE, MIN_SEEDS, covers_exposure,
+                                                    most_probable_extreme,
                                                     most_probable_maximum)
 
 
@@ -22,10 +23,11 @@ class Verdict:
 
     Attributes:
         seeds: How many records (seeds) it rests on.
-        basis: ``"gumbel"`` (most probable maximum over ``exposure``), ``"observed"``
-            (the largest observed peak: fewer than :data:`MIN_SEEDS` seeds, or a
-            deterministic motion).
-        exposure: Full-scale exposure [s] (``"gumbel"``), else NaN.
+        basis: ``"gumbel"`` (most probable maximum over ``exposure``: the Gumbel fit of
+            the maxima of at least :data:`MIN_SEEDS` records that each cover the
+            exposure), ``"observed"`` (the largest observed peak: fewer records, records
+            shorter than the exposure, or a deterministic motion).
+        exposure: Full-scale exposure [s] asked for (NaN for a deterministic motion).
         record: Full-scale duration of one record [s] (NaN when not a sea).
         peaks: ``{quantity: (9,)}`` the peak push, pull, speed, power and stroke
             excursion the verdict uses (MPM or observed) [N·m, N, rad/s, m/s, W, rad, m].
@@ -34,6 +36,9 @@ class Verdict:
         load: The hanging load's verdict (:class:`LoadVerdict`), or None without a cable.
         limits: ``{capacity: (9,)}`` what each column of ``utilisation`` is judged
             against: the capacities, and half the stroke range for ``stroke`` (inf: none).
+        covered: Whether each record covers the exposure
+            (:func:`~offshore_crane.studies.sizing.extremes.covers_exposure`; None for a
+            deterministic motion).
     """
 
     seeds: int
@@ -45,6 +50,7 @@ class Verdict:
     utilisation: np.ndarray
     load: "LoadVerdict | None" = None
     limits: dict | None = None
+    covered: bool | None = None
 
     def worst(self):
         """``(utilisation, actuator, capacity)`` (see :meth:`Envelope.worst`)."""
@@ -57,16 +63,23 @@ class Verdict:
                     or (self.load is not None and self.load.exceeded))
 
     def describe(self) -> str:
-        """One line: what the verdict rests on."""
+        """One line: what the verdict rests on, observed or extrapolated, and over what
+        exposure."""
+        hours = f"{self.exposure / 3600:g} h"
+        records = (f"{self.seeds} record{'s' * (self.seeds != 1)} of "
+                   f"{_duration(self.record)} full scale each")
         if self.basis == "gumbel":
-            return (f"most probable maximum over {self.exposure / 3600:g} h full scale "
-                    f"(Gumbel, maximum likelihood, {self.seeds} seeds of "
-                    f"{self.record:.4g} s full scale each)")
+            return (f"most probable maximum over {hours} full scale: the mode of the Gumbel "
+                    f"fit (maximum likelihood) of the maxima of {records}, stationary")
         if math.isnan(self.record):
             return "observed peaks of one deterministic run"
-        return (f"largest observed peak of {self.seeds} seed{'s' * (self.seeds != 1)} "
-                f"({self.record:.4g} s full scale each): fewer than {MIN_SEEDS} seeds, no "
-                "Gumbel fit; the extreme over a longer exposure is likely higher")
+        if self.covered is False:
+            return (f"largest observed peak of {records}, shorter than the {hours} exposure: "
+                    "observed, not extrapolated (short records do not extrapolate to the "
+                    "exposure: docs/sizing.md); judge exposure records for a verdict")
+        return (f"largest observed peak of {records}: observed, fewer than {MIN_SEEDS} "
+                f"records for a Gumbel fit (the {hours} maximum varies from record to "
+                f"record: run {MIN_SEEDS} seeds for its most probable value)")
 
 
 @dataclass(frozen=True)
@@ -155,29 +168,32 @@ def verdict(envelopes, scale: float | None = None, exposure: float = EXPOSURE) -
         exposure: Full-scale exposure [s] of the most probable maximum.
 
     Returns:
-        :class:`Verdict`; the Gumbel fit with ≥ :data:`MIN_SEEDS` envelopes and a scale,
-        else the observed maximum.
+        :class:`Verdict`: the Gumbel most probable maximum with ≥ :data:`MIN_SEEDS`
+        records that cover the exposure (:func:`covers_exposure`), else the observed
+        maximum.
     """
     envelopes = list(envelopes)
     if not envelopes:
         raise InputError("verdict: no envelope given", name="envelopes")
     first = envelopes[0]
     record = math.nan if scale is None else first.duration * math.sqrt(scale)
+    covered = None if scale is None else covers_exposure(first.duration, first.samples,
+                                                         scale, exposure)
+    gumbel = bool(covered) and len(envelopes) >= MIN_SEEDS
     observed, peaks = {}, {}
     for cap, attr in _PEAKS:
         values = np.array([getattr(e, attr) for e in envelopes])      # (seeds, 9)
         with np.errstate(invalid="ignore"):
             observed[cap] = values.max(axis=0)
-        if scale is None or len(envelopes) < MIN_SEEDS:
+        if not gumbel:
             peaks[cap] = observed[cap]
             continue
         out = np.full(9, np.nan)
         for k in range(9):
             column = values[:, k]
             if not np.isnan(column).any():
-                out[k] = most_probable_maximum(column, record, exposure)
+                out[k] = most_probable_maximum(column, record, max(exposure, record))
         peaks[cap] = out
-    gumbel = scale is not None and len(envelopes) >= MIN_SEEDS
     caps = first.capacities
     limits = {"push": caps["push_max"], "pull": caps["pull_max"], "speed": caps["speed_max"],
               "power": caps["power_max"],
@@ -185,6 +201,13 @@ def verdict(envelopes, scale: float | None = None, exposure: float = EXPOSURE) -
     util = np.column_stack([utilisation(peaks[c], limits[c]) for c in CAPACITIES])
     util[~first.present] = np.nan
     return Verdict(seeds=len(envelopes), basis="gumbel" if gumbel else "observed",
-                   exposure=exposure if gumbel else math.nan, record=record, peaks=peaks,
-                   observed=observed, utilisation=util,
-                   load=load_verdict(envelopes, record, exposure, gumbel), limits=limits)
+                   exposure=math.nan if scale is None else exposure, record=record,
+                   peaks=peaks, observed=observed, utilisation=util,
+                   load=load_verdict(envelopes, record, max(exposure, record), gumbel),
+                   limits=limits, covered=covered)
+
+
+def _duration(seconds: float) -> str:
+    """``3 h``, ``268.3 s``: a full-scale record's length for a sentence."""
+    hours = seconds / 3600.0
+    return f"{hours:.3g} h" if hours >= 0.999 else f"{seconds:.4g} s"

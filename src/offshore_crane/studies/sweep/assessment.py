@@ -35,9 +35,11 @@ def group_keys(df) -> list:
 
 def verdicts(df, scene, exposure: float | None = None):
     """One verdict per case over its seeds (:func:`offshore_crane.studies.sizing.verdict`'s
-    rule, applied to the rows' utilisation columns: a capacity is constant over a case's
-    seeds and the Gumbel fit is location-scale equivariant, so the most probable maximum
-    of a utilisation is that of the peak divided by the capacity).
+    rule — the Gumbel most probable maximum of at least 5 records that each cover the
+    exposure, else the largest observed — applied to the rows' utilisation columns: a
+    capacity is constant over a case's seeds and the Gumbel fit is location-scale
+    equivariant, so the most probable maximum of a utilisation is that of the peak
+    divided by the capacity).
 
     Args:
         df: Rows of :func:`run`.
@@ -58,7 +60,8 @@ def verdicts(df, scene, exposure: float | None = None):
         criterion).
     """
     from offshore_crane.conventions import ACTUATORS
-    from offshore_crane.studies.sizing import CAPACITIES, EXPOSURE, MIN_SEEDS, most_probable_maximum
+    from offshore_crane.studies.sizing import (CAPACITIES, EXPOSURE, MIN_SEEDS, covers_exposure,
+                                               most_probable_maximum)
 
     pd = install_hint("pandas", "A sweep's results table")
     exposure = EXPOSURE if exposure is None else exposure
@@ -72,9 +75,10 @@ def verdicts(df, scene, exposure: float | None = None):
         ok = g[g["status"] == "ok"]
         scale = float(row.get("scale", scene.sea.get("scale", math.nan))) if sea else None
         n = len(g)
-        gumbel = sea and len(ok) == n and n >= MIN_SEEDS
         record_s = (float(ok["duration_s"].iloc[0]) * math.sqrt(scale)
                     if sea and len(ok) else math.nan)
+        gumbel = (sea and len(ok) == n and n >= MIN_SEEDS and covers_exposure(
+            float(ok["duration_s"].iloc[0]), int(ok["samples"].iloc[0]), scale, exposure))
         row.update(seeds=n, failed=n - len(ok), record_s=record_s,
                    exposure_s=exposure if gumbel else math.nan,
                    basis="failed" if len(ok) < n else ("gumbel" if gumbel else "observed"))
@@ -87,8 +91,8 @@ def verdicts(df, scene, exposure: float | None = None):
                 col = ok[f"{a}_util_{cap}"].to_numpy(dtype=float)
                 if len(ok) < n or not len(col) or np.isnan(col).any():
                     continue
-                util[k, c] = (most_probable_maximum(col, record_s, exposure) if gumbel
-                              else col.max())
+                util[k, c] = (most_probable_maximum(col, record_s, max(exposure, record_s))
+                              if gumbel else col.max())
         for k, a in enumerate(ACTUATORS):
             u = util[k]
             row[f"{a}_util"] = math.nan if np.isnan(u).all() else float(np.nanmax(u))
@@ -100,7 +104,8 @@ def verdicts(df, scene, exposure: float | None = None):
             k, c = np.unravel_index(np.nanargmax(util), util.shape)
             row.update(worst_util=float(util[k, c]), governing=ACTUATORS[k],
                        governing_capacity=CAPACITIES[c])
-        row.update(_load_columns(ok, len(ok) == n, gumbel, record_s, exposure))
+        row.update(_load_columns(ok, len(ok) == n, gumbel, record_s,
+                                 max(exposure, record_s) if gumbel else exposure))
         actuators = (f"{row['governing']} {row['governing_capacity']}"
                      if row["governing"] else "")
         pairs = [(row["worst_util"], actuators), (row["load_util"], row["load_governing"])]

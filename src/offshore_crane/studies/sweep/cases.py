@@ -26,16 +26,25 @@ class CaseRun:
     """One scene run and its envelope.
 
     Attributes:
-        scene, robot, trajectory: What ran.
+        scene, robot: What ran. trajectory: The scene's record as loaded (the reference of
+            a simulation, the sea before a compensation).
         kind: ``"inverse dynamics"`` or ``"simulation"``.
-        t, q, qd, X: ``(N,)`` [s], ``(N, 9)`` the motion [m, rad, /s] and the actuator
-            forces [N·m, N] the envelope is of (the simulation's applied forces).
+        t, q, qd, X: ``(N,)`` [s], ``(N, 9)`` the motion that ran [m, rad, /s] — the
+            simulated motion, the compensated motion under ``[control] compensation`` —
+            and the actuator forces [N·m, N] (the simulation's applied forces): what the
+            envelope is of.
         result: The :class:`~offshore_crane.dynamics.Result` (condition numbers), of
             the inverse dynamics of the simulated motion for a simulation.
         simulation: The :class:`~offshore_crane.simulation.rigid.SimulationResult`, or None.
         envelope: :class:`~offshore_crane.studies.sizing.Envelope`.
         seconds: Run time of the trajectory and the dynamics (the case's own
             computation) [s].
+        compensation: The :class:`~offshore_crane.simulation.compensation.Compensated`
+            motion of a scene naming a compensation mode (its aim, tip, held joints), or
+            None.
+        exposure: The :class:`~offshore_crane.scenes.exposure.ExposurePlan` of a sea
+            scene run as an exposure record (the motion, forces and results above are its
+            judged window), or None (the scene's own record).
     """
 
     scene: object
@@ -50,6 +59,8 @@ class CaseRun:
     simulation: object
     envelope: object
     seconds: float
+    compensation: object = None
+    exposure: object = None
 
 
 def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads: int = 1,
@@ -60,42 +71,67 @@ def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads
     of the applied forces; the condition numbers of the inverse dynamics of the
     simulated motion).
 
+    A sea scene runs as an exposure record (:func:`offshore_crane.scenes.exposure.
+    exposure_plan`: a spin-up, then the exposure with the operation repeated, under one
+    sea) and its envelope is that of the judged window after the spin-up — unless
+    ``[extremes] record = "scene"``, a ``[lift]`` event or a ``trajectory`` given here,
+    which run as they are.
+
     With a payload on a cable (``payload.cable_length > 0``) the inverse dynamics is the
-    swing's (:func:`offshore_crane.dynamics.cable.swing`, the scene's ``[cable]`` options) and the
-    envelope gains the largest sway and the tension range; a slack cable fails the case.
+    swing's (:func:`offshore_crane.scenes.run_swing`, the scene's ``[cable]`` options, its
+    compensation and winch) and the envelope gains the largest sway and the tension range;
+    a slack rigid cable fails the case. The envelope is of the motion that ran: the
+    compensated arm's speeds and strokes under a compensation.
 
     Raises:
         The errors of the loaders, of :func:`offshore_crane.dynamics.solve`, of
         :mod:`offshore_crane.dynamics.cable` (:class:`~offshore_crane.errors.SlackCableError`) and
-        of :func:`offshore_crane.simulation.rigid.simulate`.
+        of :func:`offshore_crane.simulation.rigid.simulate`; the exposure record's
+        :class:`~offshore_crane.errors.SceneError` (an operation that cannot repeat).
     """
     from offshore_crane import scenes
     from offshore_crane.dynamics import solve
     from offshore_crane.robot.kinematics.workspace import Thresholds
+    from offshore_crane.scenes.exposure import check_own_record, exposure_plan, judged_on_exposure
     from offshore_crane.studies.sizing import conditions, envelope
 
     thresholds = thresholds or Thresholds()
     robot = robot or scenes.load_robot(scene)
     t0 = time.perf_counter()
-    traj = trajectory or scenes.load_trajectory(scene, robot)
+    plan = None
+    if trajectory is None and judged_on_exposure(scene):
+        plan = exposure_plan(scene, robot)
+    elif scene.trajectory == "sea" and not scene.lift:
+        check_own_record(scene, robot)
+    ran_scene = scene if plan is None else plan.scene
+    traj = trajectory or scenes.load_trajectory(ran_scene, robot)
     options = dict(limits=limits, thresholds=thresholds, backend=backend, threads=threads)
-    simulation = None
+    simulation = compensation = None
     if scene.simulated:
-        simulation = _simulate(scene, robot, traj, limits)
+        simulation = _simulate(ran_scene, robot, traj, limits)
         t, q, qd, X = simulation.t, simulation.q, simulation.qd, simulation.X
         result = solve(robot, q, qd, simulation.qdd, "kane", scene.gravity,
                        outputs=scene.wanted(), t=t, **options)
         kind = "simulation"
     else:
         if robot.hybrid.cable is not None:            # the swing (offshore_crane.dynamics.cable)
-            result = scenes.run_swing(scene, robot, traj, method or scene.methods[0],
-                                   limits=limits, thresholds=thresholds)
+            plan_ = scenes.swing_plan(ran_scene, robot, traj)
+            result = scenes.run_swing(ran_scene, robot, traj, method or scene.methods[0],
+                                      limits=limits, thresholds=thresholds, plan=plan_,
+                                      threads=threads)
+            compensation, ran = plan_.compensation, result.cable    # the motion that ran
         else:
             result = solve(robot, traj.q, traj.qd, traj.qdd, method or scene.methods[0],
                            scene.gravity, leg_model=scene.leg_model, outputs=scene.wanted(),
                            t=traj.t, **options)
-        t, q, qd, X = traj.t, traj.q, traj.qd, result.X
+            ran = traj
+        t, q, qd, X = ran.t, ran.q, ran.qd, result.X
         kind = "inverse dynamics"
+    if plan is not None:                              # the judged window, after the spin-up
+        keep = judged(t, plan, ran_scene)
+        n = len(t)
+        t, q, qd, X, result, simulation, compensation = (
+            _window(x, keep, n) for x in (t, q, qd, X, result, simulation, compensation))
     seconds = time.perf_counter() - t0
     wanted = scene.wanted()
     arm = any(n in wanted for n in ("T1", "T2", "Fs"))
@@ -104,7 +140,35 @@ def record(scene, robot=None, trajectory=None, *, backend: str = "auto", threads
                                          "Fl5", "Fl6")], X, np.nan)
     env = envelope(robot, t, q, qd, Xw, conditions(result), arm=arm, legs=legs,
                    cable=getattr(result, "cable", None), gravity=scene.gravity)
-    return CaseRun(scene, robot, traj, kind, t, q, qd, Xw, result, simulation, env, seconds)
+    return CaseRun(scene, robot, traj, kind, t, q, qd, Xw, result, simulation, env, seconds,
+                   compensation, plan)
+
+
+def judged(t: np.ndarray, plan, ran_scene) -> slice:
+    """The samples of ``t (N,)`` [s] in an exposure record's judged window ``[start,
+    start + length]`` (:class:`~offshore_crane.scenes.exposure.ExposurePlan`), to half a
+    sample interval (the grid's times are ``m / rate`` to round-off)."""
+    from offshore_crane.scenes.keys import SEA_RATE
+
+    half = 0.5 / (SEA_RATE if ran_scene.rate is None else float(ran_scene.rate))
+    return slice(int(np.searchsorted(t, plan.start - half)),
+                 int(np.searchsorted(t, plan.start + plan.length + half)))
+
+
+def _window(x, keep: slice, n: int):
+    """``x`` restricted to the samples ``keep`` of a record of ``n``: an array whose first
+    axis has the record's ``n`` samples is sliced, a dataclass field by field (a
+    :class:`~offshore_crane.dynamics.Result`, a cable's or a simulation's result, a
+    compensated motion and its trajectory), anything else kept."""
+    import dataclasses
+
+    if isinstance(x, np.ndarray):
+        return x[keep] if x.ndim and x.shape[0] == n else x
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        changed = {f.name: _window(getattr(x, f.name), keep, n)
+                   for f in dataclasses.fields(x) if f.init}
+        return dataclasses.replace(x, **changed)
+    return x
 
 
 def _simulate(scene, robot, traj, limits: bool):
