@@ -73,6 +73,9 @@ def run(args) -> int:
     model = export(robot, pose, sway=sway, gravity=gravity, limits=args.limits,
                    hold=not args.no_hold,
                    timestep=TIMESTEP if args.timestep is None else args.timestep)
+    if "ea" in scene.cable:
+        say(f"note: the scene's elastic cable (EA = {scene.cable['ea']:g} N) is written as the "
+            "rigid cable, its EA -> infinity limit (docs/mjcf.md)")
     status = _check(model, robot, gravity, say) if args.check else 0
     write_text(outputs["--mjcf"], model.xml)
     say(f"offshore-crane export: {robot.spec.name if robot.spec else 'urdf'}, "
