@@ -209,8 +209,8 @@ def _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, sub, y0, thresholds, follow=Non
     def integrate():
         progress.run_polled(
             lambda: ck.integrate(arrays.flat, arrays.layout, arrays.prismatic,
-                                 robot.hybrid.sway_damping, Q, Qd, Qdd, Lh, g, h, sub, y0,
-                                 1.0 / thresholds.error, Y, status),
+                                 robot.hybrid.sway_damping, float(robot.hybrid.drag), Q, Qd,
+                                 Qdd, Lh, g, h, sub, y0, 1.0 / thresholds.error, Y, status),
             lambda: progress.filled_rows(Y), n_out, "sample", "swing")
 
     if follow is None:
@@ -313,7 +313,8 @@ def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY,
 
     The same formulas the integrator runs compiled
     (:func:`~offshore_crane.dynamics.sway.tip_motion` and ``pendulum``, or
-    ``hoisted_pendulum`` with a winch), here on NumPy arrays.
+    ``hoisted_pendulum`` with a winch; the payload's drag, ``drag_force`` at
+    ``hanging_velocity``), here on NumPy arrays.
 
     Args:
         robot: With a payload on a cable.
@@ -341,14 +342,20 @@ def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY,
         if len(hoist) != len(q) or not (hoist[:, 0] > 0).all():
             raise InputError(f"hoist must be ({len(q)}, 3) rows (L > 0 [m], Ld [m/s], Ldd "
                              "[m/s²]), one per sample", name="hoist")
+    f = (0.0, 0.0, 0.0)
+    if robot.hybrid.drag > 0.0:
+        from offshore_crane.dynamics.cable.forces import hanging_drag
+
+        f = tuple(hanging_drag(robot, C, q, qd, qdd, np.hstack([sway, sway_rate]),
+                               hoist)[0].T)
     with np.errstate(divide="ignore", invalid="ignore"):
         Rt, w, al, a = F.tip_motion(C, q.T, qd.T, qdd.T)
         if hoist is None:
             a1, a2, _ = F.pendulum(C, Rt, w, al, a, g, sway[:, 0], sway[:, 1],
-                                   sway_rate[:, 0], sway_rate[:, 1], c1, c2)
+                                   sway_rate[:, 0], sway_rate[:, 1], c1, c2, f)
         else:
             a1, a2 = F.hoisted_pendulum(C, Rt, w, al, a, g, sway[:, 0], sway[:, 1],
-                                        sway_rate[:, 0], sway_rate[:, 1], c1, c2,
+                                        sway_rate[:, 0], sway_rate[:, 1], c1, c2, f,
                                         *hoist.T)[:2]
     out = np.stack([a1, a2], axis=-1)
     return out[0] if single else out
