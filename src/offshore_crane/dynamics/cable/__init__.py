@@ -54,6 +54,7 @@ from offshore_crane.dynamics.cable.forces import kane_forces
 from offshore_crane.dynamics.cable.elastic import ElasticResult, elastic_inverse_dynamics
 from offshore_crane.dynamics.cable.lift import LiftMetrics, lift_metrics
 from offshore_crane.dynamics.cable.liftoff import LiftOff, SetDown, lift_off, set_down
+from offshore_crane.dynamics.cable.modes import Mode, modes
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -63,7 +64,8 @@ if TYPE_CHECKING:
 __all__ = ["CableResult", "METHODS", "SLACK", "cable_robot", "hoist_grid", "hoist_profile",
            "inverse_dynamics", "kane_forces", "stage_grid", "sway_accelerations", "swing",
            "uniform_times", "warm_up", "ElasticResult", "elastic_inverse_dynamics",
-           "LiftMetrics", "lift_metrics", "LiftOff", "SetDown", "lift_off", "set_down"]
+           "LiftMetrics", "lift_metrics", "LiftOff", "SetDown", "lift_off", "set_down",
+           "Mode", "modes"]
 
 METHODS = ("kane", "pinocchio")
 SLACK = ("error", "warn")
