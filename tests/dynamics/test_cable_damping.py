@@ -306,3 +306,63 @@ def test_modes_refuse_bad_arguments(damped, kwargs, match):
 def test_modes_need_a_cable():
     with pytest.raises(ModelError, match="payload is welded to arm_tip"):
         cable.modes(oc.load_robot())
+
+
+# --------------------------------------------------------------------------- description
+def test_drag_fields_flow_through_every_way_in(tmp_path, capsys):
+    """``payload.drag_area`` and ``payload.air_density`` reach the URDF's ``<drag>`` and
+    ``robot.hybrid`` from ``--set``, a scene's ``[payload]`` and a sweep grid's dotted
+    names; a description without drag writes no ``<drag>`` and keeps its digest."""
+    from offshore_crane import scenes
+    from offshore_crane.cli import main
+    from offshore_crane.robot.description import resolve
+    from offshore_crane.studies.sweep.grid import case_scene, check_grid
+
+    hang = ["--set", "payload.mass=2", "--set", "payload.cable_length=1"]
+    assert main(["describe", *hang, "--set", "payload.drag_area=0.3",
+                 "--set", "payload.air_density=1.2"]) == 0
+    text = capsys.readouterr().out
+    assert "drag_area: 0.3" in text and "air_density: 1.2" in text
+    robot = _robot(drag=0.3, **{"payload.air_density": 1.2})
+    assert '<drag air_density="1.2" area="0.3"/>' in robot.urdf
+    assert robot.hybrid.drag == pytest.approx(0.5 * 1.2 * 0.3, rel=1e-15)
+    assert "<drag" not in _robot().urdf and _robot().hybrid.drag == 0.0
+    plain = {"payload.mass": 2.0, "payload.cable_length": 1.0}
+    assert resolve(None, plain).digest() == resolve(
+        None, {**plain, "payload.air_density": 1.0}).digest()      # no drag: unchanged
+    scene = tmp_path / "dragged.toml"
+    scene.write_text("[payload]\nmass = 2.0\ncable_length = 1.0\ndrag_area = 0.2\n"
+                     "air_density = 1.0\n")
+    hybrid = scenes.load_robot(scenes.load_scene(scene)).hybrid
+    assert (hybrid.drag_area, hybrid.air_density) == (0.2, 1.0)
+    base = scenes.load_scene(scene)
+    grid = check_grid(base, {"payload.drag_area": [0.0, 0.4]})
+    drags = [scenes.load_robot(case_scene(base, case)).hybrid.drag_area
+             for case in grid.cases()]
+    assert drags == [0.0, 0.4]
+
+
+@pytest.mark.parametrize("over, match", [
+    ({"payload.drag_area": -0.1}, r"payload\.drag_area: -0\.1 m² must not be negative"),
+    ({"payload.drag_area": 0.1, "payload.cable_length": 0.0, "payload.sway_damping": 0.0},
+     r"payload\.drag_area: 0\.1 m² drags a payload swinging on a cable, but "
+     r"payload\.cable_length = 0"),
+    ({"payload.air_density": 0.0}, r"payload\.air_density: 0 kg/m³ must be > 0"),
+])
+def test_bad_drag_fields_are_refused(over, match):
+    with pytest.raises(oc.errors.DescriptionError, match=match):
+        _robot(**over)
+
+
+def test_a_urdf_drag_without_cable_or_with_bad_numbers_is_refused():
+    from offshore_crane.robot.hybrid import hybrid_from_urdf
+    from offshore_crane.robot.urdf import parse_urdf
+
+    text = oc.load_robot().urdf.replace('<link name="payload">',
+                                        '<link name="payload"><drag area="0.1" '
+                                        'air_density="1.2"/>')
+    with pytest.raises(ModelError, match="gives the link 'payload' a <drag>, but the "
+                                         "payload does not hang on a cable"):
+        hybrid_from_urdf(parse_urdf(text))
+    with pytest.raises(ModelError, match=r"link 'payload' <drag>: area = -1 m² must be"):
+        parse_urdf(text.replace('area="0.1"', 'area="-1"'))

@@ -382,6 +382,19 @@ def test_cli_check_passes_on_every_shipped_cable_scene(scene, tmp_path, capsys):
     assert not others.any()                      # no damping anywhere else
 
 
+def test_cli_says_what_the_model_leaves_out(tmp_path, capsys):
+    """An elastic scene is written as the rigid cable, and the payload's air drag is not
+    written (MuJoCo's fluid models act on every body): the export says both, and the
+    check compares the model as written (the swing without drag) and passes."""
+    out = tmp_path / "lift.xml"
+    assert main(["export", "--scene", "scenes/winch_lift.toml", "--set",
+                 "payload.drag_area=0.3", "--mjcf", str(out), "--check"]) == 0
+    text = capsys.readouterr().out
+    assert "elastic cable (EA = 12500 N) is written as the rigid cable" in text
+    assert "air drag (payload.drag_area = 0.3 m²) is not written" in text
+    assert "(OK, limit" in text
+
+
 def test_cli_check_falls_back_to_states_near_home(tmp_path, capsys):
     """Table 1 leaves the Harib & Srinivasan platform's workspace: --check then compares
     at seeded states near home."""
