@@ -54,7 +54,7 @@ from offshore_crane.dynamics.cable.forces import kane_forces
 from offshore_crane.dynamics.cable.elastic import ElasticResult, elastic_inverse_dynamics
 from offshore_crane.dynamics.cable.lift import LiftMetrics, lift_metrics
 from offshore_crane.dynamics.cable.liftoff import LiftOff, SetDown, lift_off, set_down
-from offshore_crane.dynamics.cable.modes import Mode, modes
+from offshore_crane.dynamics.cable.modal import Mode, modes
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
