@@ -378,6 +378,7 @@ def test_cli_check_passes_on_every_shipped_cable_scene(scene, tmp_path, capsys):
     sway = [m.joint(name).dofadr[0] for name in mjcf.CABLE_JOINTS]
     robot = oc.scenes.load_robot(oc.scenes.load_scene(scene))
     assert m.dof_damping[sway] == pytest.approx(robot.hybrid.sway_damping, rel=1e-15)
+    assert (m.dof_damping[sway] > 0).all()          # every shipped cable scene is damped
     others = np.delete(m.dof_damping, sway)
     assert not others.any()                      # no damping anywhere else
 
