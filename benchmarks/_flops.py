@@ -254,9 +254,10 @@ def swing_step(robot) -> Counter:
         R, w, al, a = F.tip_motion(C, q[:9], qd[:9], qdd[:9])
     g = (Counted(0.0), Counted(0.0), Counted(-9.81))
     L, Ld, Ldd = Counted(1.0), Counted(0.0), Counted(0.0)
-    c = Counted(0.01)
+    c, z = Counted(0.01), Counted(0.0)         # sway damping; no drag (f = 0)
     for _ in range(4):
-        F.hoisted_pendulum(C, R, w, al, a, g, q[9], q[10], qd[9], qd[10], c, c, L, Ld, Ldd)
+        F.hoisted_pendulum(C, R, w, al, a, g, q[9], q[10], qd[9], qd[10], c, c, (z, z, z), L,
+                           Ld, Ldd)
     COUNT["flop"] += 3 * 4 * 2 + 4 * 8
     return Counter(COUNT)
 

@@ -57,6 +57,9 @@ PLATFORM_ANCHORS = tuple(f"platform_anchor{i}" for i in range(1, N_LEGS + 1))
 
 #: Default gravity in the base frame [m/s²] (z up).
 GRAVITY = (0.0, 0.0, -9.81)
+#: Density of air [kg/m³] at sea level and 15 °C (ISO 2533 standard atmosphere): the
+#: default ``payload.air_density`` of the hanging payload's drag.
+AIR_DENSITY = 1.225
 
 #: Two exact methods (Kane and the RNEA reference, which share only the URDF) must agree
 #: to this, relative to max |X|: both are exact, so they differ by round-off (~1e-15);

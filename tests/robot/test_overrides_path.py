@@ -98,7 +98,8 @@ def test_library_scene_overrides_match_load_robot():
                            "payload.com": [0.0, 0.0, 0.0],
                            "payload.inertia": dict.fromkeys(
                                ("ixx", "iyy", "izz", "ixy", "ixz", "iyz"), 0.0),
-                           "payload.cable_length": 0.0, "payload.sway_damping": 0.0}
+                           "payload.cable_length": 0.0, "payload.sway_damping": 0.0,
+                           "payload.drag_area": 0.0, "payload.air_density": 1.225}
     robot = scenes.load_robot(scene)
     assert robot is oc.load_robot(overrides=scene.robot)
     assert robot.hybrid.lower_mass.tolist() == [0.5] * 6

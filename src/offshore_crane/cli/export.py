@@ -73,6 +73,13 @@ def run(args) -> int:
     model = export(robot, pose, sway=sway, gravity=gravity, limits=args.limits,
                    hold=not args.no_hold,
                    timestep=TIMESTEP if args.timestep is None else args.timestep)
+    if "ea" in scene.cable:
+        say(f"note: the scene's elastic cable (EA = {scene.cable['ea']:g} N) is written as the "
+            "rigid cable, its EA -> infinity limit (docs/mjcf.md)")
+    if robot.hybrid.drag > 0.0:
+        say(f"note: the payload's air drag (payload.drag_area = {robot.hybrid.drag_area:g} m²) "
+            "is not written (MuJoCo's fluid models would put air on every body); --check "
+            "compares with our swing without it (docs/mjcf.md)")
     status = _check(model, robot, gravity, say) if args.check else 0
     write_text(outputs["--mjcf"], model.xml)
     say(f"offshore-crane export: {robot.spec.name if robot.spec else 'urdf'}, "
@@ -156,6 +163,11 @@ def _check_hanging(model, robot, gravity, say) -> int:
     from offshore_crane.conventions import COORDINATES
     from offshore_crane.outputs.export.mjcf import AGREEMENT, forward
 
+    if robot.hybrid.drag > 0.0:                 # the model as written: without the drag
+        from offshore_crane.robot import load_robot
+
+        robot = load_robot(robot.description_path, {**robot.overrides,
+                                                     "payload.drag_area": 0.0})
     t = trajectories.time_grid(10.0, 100.0)
     q, qd, qdd = trajectories.table1(t)
     run = cable.inverse_dynamics(robot, q, qd, qdd, reference=trajectories.table1,

@@ -126,7 +126,7 @@ def run(args) -> int:
     if cable is not None:
         from offshore_crane.outputs.report import cable_summary
 
-        say(cable_summary(cable, robot.winch))
+        say(cable_summary(cable, robot))
     status = 0
     first = _METHOD_LABELS[scene.methods[0]]
     for m, diff, scale, rel, i, j in scenes.compare_methods(done):
@@ -150,7 +150,7 @@ def run(args) -> int:
         say(f"wrote {args.out}")
     if "--plot" in outputs:
         plot(outputs["--plot"], t, X, title=f"offshore-crane: {traj.name}, {scene.methods[0]}",
-             cable=cable)
+             cable=cable, robot=robot)
         say(f"wrote {args.plot}")
     return status
 

@@ -228,19 +228,20 @@ def kane_sample(C, q, qd, qdd, g, static, leg_model, want_legs, rows, A, rhs, di
                           diag)
 
 
-def kane_sample_pull(C, q, qd, qdd, g, pull, rows, A, rhs, diag, store):
+def kane_sample_pull(C, q, qd, qdd, g, pull, at, rows, A, rhs, diag, store):
     """:func:`kane_sample` (all legs, full leg model) of the robot whose last arm body is
-    replaced by a force ``pull`` [N] (base axes) acting on the robot at that body's joint
-    origin (the cable's pull on the tip: a massless cable whose payload moves as it will,
-    e.g. hoisted by a winch). The arm rows of the bodies past the tip (the sway joints)
-    come out zero."""
+    replaced by a force ``pull`` [N] (base axes) acting on the robot at the point ``at``
+    [m] from that body's joint origin (base axes), a point moving with the tip: the
+    cable's pull on the tip (a massless cable whose payload moves as it will, e.g.
+    hoisted by a winch, or on an elastic cable), at the payload's place when a moment
+    about the tip (the sway damping's) makes it leave the cable's line. The arm rows of
+    the bodies past the tip (the sway joints) are not X's."""
     R, p, omega, alpha, v, a = base_motion(q, qd, qdd, False)
     arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store, False)
     b = C.n_arm - 1
-    zero = scale(pull, 0.0)
     put(store, b, F_, scale(pull, -1.0))      # the body's m (a − g): minus the force on it
-    put(store, b, T_, zero)
-    put(store, b, RC_, zero)
+    put(store, b, T_, scale(pull, 0.0))
+    put(store, b, RC_, at)
     F, M = arm_backward(C, store, rows)
     legs_and_platform(C, R, p, v, a, omega, alpha, g, False, FULL, F, M, A, rhs, diag)
 

@@ -45,24 +45,27 @@ def sway_direction(p1, p2):
     return (-s2, s1 * k2, -k1 * k2), (0.0 * s1, k1 * k2, s1 * k2), (-k2, -s1 * s2, k1 * s2)
 
 
-def pendulum(C, Rt, omega, alpha, a_t, g, p1, p2, r1, r2, c1, c2):
+def pendulum(C, Rt, omega, alpha, a_t, g, p1, p2, r1, r2, c1, c2, f):
     """Kane's equations of the sway speeds: ``(φ̈1, φ̈2)`` [rad/s²] and ``cos²φ2``.
 
     A point mass m on a cable of length L (``C``'s last body, at ``(0, 0, −L)`` below the
     sway joints) from the origin of a frame of attitude ``Rt`` (R_base_tip), angular
     velocity ``omega``, acceleration ``alpha``, origin acceleration ``a_t``; sway angles
     ``p1, p2`` about x then the rotated y of that frame, rates ``r1, r2``, viscous damping
-    ``c1, c2`` [N·m·s/rad]. With ``e = Rx(φ1) Ry(φ2) (0, 0, −1)`` (tip axes) the partial
-    velocities are ``v_r = L Rt ∂e/∂φ_r`` and ``v_r · m (a_p − g) + c_r φ̇_r = 0``, where
-    ``∂e/∂φ1 · ∂e/∂φ1 = cos²φ2``, ``∂e/∂φ2 · ∂e/∂φ2 = 1``, ``∂e/∂φ1 · ∂e/∂φ2 = 0``.
+    ``c1, c2`` [N·m·s/rad]; ``f`` a force on the payload [N] (base axes: the air's drag,
+    :func:`drag_force`). With ``e = Rx(φ1) Ry(φ2) (0, 0, −1)`` (tip axes) the partial
+    velocities are ``v_r = L Rt ∂e/∂φ_r`` and ``v_r · (m (a_p − g) − f) + c_r φ̇_r = 0``,
+    where ``∂e/∂φ1 · ∂e/∂φ1 = cos²φ2``, ``∂e/∂φ2 · ∂e/∂φ2 = 1``,
+    ``∂e/∂φ1 · ∂e/∂φ2 = 0``.
     """
     b = C.n_arm - 1
     m = C.arm_m[b]
     L = -C.arm_c[b, 2]
     e, e1, e2, acc, cos2 = sway_terms(Rt, omega, alpha, a_t, g, p1, p2, r1, r2, L, 0.0)
     mL = m * L
-    return (-(mL * dot(e1, acc) + c1 * r1) / (mL * L * cos2),
-            -(mL * dot(e2, acc) + c2 * r2) / (mL * L), cos2)
+    ft = mtv(Rt, f)
+    return (-(mL * dot(e1, acc) - L * dot(e1, ft) + c1 * r1) / (mL * L * cos2),
+            -(mL * dot(e2, acc) - L * dot(e2, ft) + c2 * r2) / (mL * L), cos2)
 
 
 def sway_terms(Rt, omega, alpha, a_t, g, p1, p2, r1, r2, L, Ld):
@@ -88,24 +91,88 @@ def sway_terms(Rt, omega, alpha, a_t, g, p1, p2, r1, r2, L, Ld):
     return e, e1, e2, acc, k2 * k2
 
 
-def hoisted_pendulum(C, Rt, omega, alpha, a_t, g, p1, p2, r1, r2, c1, c2, L, Ld, Ldd):
+def hoisted_pendulum(C, Rt, omega, alpha, a_t, g, p1, p2, r1, r2, c1, c2, f, L, Ld, Ldd):
     """Kane's equations of the sway speeds on a cable of length ``L(t)`` (a winch):
     ``(φ̈1, φ̈2, cos²φ2, pull, tension)``.
 
     As :func:`pendulum` with the length ``L`` [m], its rate ``Ld`` [m/s] and acceleration
     ``Ldd`` [m/s²] given (the payload mass m is ``C``'s last body's). The partial
     velocities of the sway speeds are ``v_r = L Rt ∂e/∂φ_r``, orthogonal to e, so ``L̈``
-    does not enter the sway; it enters the pull: ``pull = m (g − a_p)`` [N, base axes],
-    the cable's force on the tip, and ``tension = pull · e`` [N] (> 0 taut), the line pull
-    the winch holds.
+    does not enter the sway; it enters the pull: ``pull = m (g − a_p) + f`` [N, base
+    axes], the cable's force on the robot, acting at the payload's point (the sway
+    damping's moment makes it leave the cable's line), and ``tension = pull · e`` [N]
+    (> 0 taut), the line pull the winch holds.
     """
     m = C.arm_m[C.n_arm - 1]
     e, e1, e2, acc, cos2 = sway_terms(Rt, omega, alpha, a_t, g, p1, p2, r1, r2, L, Ld)
     mL = m * L
-    a1 = -(mL * dot(e1, acc) + c1 * r1) / (mL * L * cos2)
-    a2 = -(mL * dot(e2, acc) + c2 * r2) / (mL * L)
+    ft = mtv(Rt, f)
+    a1 = -(mL * dot(e1, acc) - L * dot(e1, ft) + c1 * r1) / (mL * L * cos2)
+    a2 = -(mL * dot(e2, acc) - L * dot(e2, ft) + c2 * r2) / (mL * L)
     full = add(acc, axpy(Ldd, e, scale(axpy(a2, e2, scale(e1, a1)), L)))
-    return a1, a2, cos2, scale(mv(Rt, full), -m), -m * dot(full, e)
+    return a1, a2, cos2, add(scale(mv(Rt, full), -m), f), -m * dot(full, e) + dot(ft, e)
+
+
+def drag_force(v, k):
+    """The air's drag on the payload, ``−k |v| v`` [N], at its velocity ``v`` [m/s]
+    relative to still air (base axes); ``k = ½ ρ C_d A`` [kg/m] (0: none)."""
+    return scale(v, -k * sqrt(dot(v, v)))
+
+
+def hanging_velocity(Rt, omega, v_tip, p1, p2, r1, r2, L, Ld):
+    """The payload's velocity [m/s] (base axes) on a cable of length ``L`` [m] paid out at
+    ``Ld`` [m/s] at the sway ``p1, p2`` [rad], ``r1, r2`` [rad/s], below a tip of attitude
+    ``Rt``, angular velocity ``omega`` [rad/s] and velocity ``v_tip`` [m/s]:
+    ``v_tip + ω × ρ + Rt (L ė + L̇ e)``, ``ρ = L Rt e``."""
+    e, e1, e2 = sway_direction(p1, p2)
+    rel = axpy(Ld, e, scale(axpy(r2, e2, scale(e1, r1)), L))
+    return add(v_tip, add(cross(omega, mv(Rt, scale(e, L))), mv(Rt, rel)))
+
+
+#: The largest ``1/cos²φ2`` the elastic cable's sway damping follows
+#: (:func:`sway_damping_force`): the cable 5.7° from the tip's x axis. Nearer, the rigid
+#: cable's damping of φ1 grows without bound (``c φ̇1`` with ``φ̇1 ~ 1/cos φ2`` for a given
+#: payload speed): a free payload there would get a damping rate ``c / (m L² cos²φ2)``
+#: that makes RK4 unstable once it exceeds 2.8 / step; capped, RK4 stays stable while
+#: ``c / (m L²)`` < 0.028 / step (20 /s at a 1.4 ms step: ζ ≈ 3 on a 1 m cable).
+SWAY_DAMPING_CONDITION = 100.0
+#: Added to ``cos²φ2`` where it divides, so that the cable exactly along the tip's x axis
+#: (``cos φ2 = 0``, φ1 undefined) gives a finite force (the term it weighs is then 0).
+_TINY = 1e-300
+
+
+def sway_damping_force(Rt, omega, rho, rhod, c1, c2):
+    """The rigid cable's sway damping as a force on a free payload [N] (base axes): the
+    elastic cable's, for which ``φ`` are the angles of the cable's direction in the tip
+    frame (:func:`sway_direction`) and ``c1, c2`` [N·m·s/rad] their dampings.
+
+    The payload at ``rho`` [m] from the tip, moving at ``rhod`` [m/s] (the rate of
+    ``rho``, base axes), under a tip of attitude ``Rt`` and angular velocity ``omega``
+    [rad/s]: with ``r = Rtᵀ ρ``, ``w = Rtᵀ (ρ̇ − ω × ρ)`` (its velocity relative to the tip
+    frame, tip axes), ``u = r/|r|``, ``e1 = x × u`` (``= ∂e/∂φ1``, ``|e1|² = cos²φ2``,
+    ê1 = e1/|e1|) the force ``F = −Σ_r c_r φ̇_r ∇φ_r`` does the work of the rigid cable's
+    ``−c_r φ̇_r`` on the two angles (``v_r · F = −c_r φ̇_r``, ``F ⟂ u``):
+
+    ``F = −(c2 w⊥ + (c1 / cos²φ2 − c2) (w · ê1) ê1) / |r|²``;
+
+    with ``c1 = c2 = c``, ``−c (w⊥ + tan²φ2 (w · ê1) ê1) / |r|²``: isotropic transverse
+    damping ``c / |r|²`` of the payload's motion across the cable, plus the part the
+    angles' parametrisation adds along ê1 (the rigid cable's per-angle damping also acts
+    on the cable link's spin about its own axis, ``φ̇1 sin φ2``). So the elastic cable
+    tends to the damped rigid cable as EA → ∞. ``1/cos²φ2`` is capped at
+    :data:`SWAY_DAMPING_CONDITION`.
+    """
+    r = mtv(Rt, rho)
+    w = mtv(Rt, sub(rhod, cross(omega, rho)))
+    d2 = dot(r, r)
+    u = scale(r, 1.0 / sqrt(d2))
+    e1 = (0.0 * u[0], -u[2], u[1])
+    cos2 = u[1] * u[1] + u[2] * u[2] + _TINY
+    tan2 = u[0] * u[0] / cos2
+    cap = SWAY_DAMPING_CONDITION - 1.0
+    extra = c1 * (1.0 + 0.5 * (tan2 + cap - abs(tan2 - cap))) - c2    # min(tan²φ2, cap)
+    across = axpy(-dot(w, u), u, w)
+    return mv(Rt, scale(axpy(extra * dot(w, e1) / cos2, e1, scale(across, c2)), -1.0 / d2))
 
 
 def cable_force(C, store):

@@ -100,11 +100,12 @@ def lift_lines(cable, winch=None) -> list[str]:
     return lines
 
 
-def cable_summary(cable, winch=None) -> str:
+def cable_summary(cable, robot) -> str:
     """Lines on the hanging load: largest sway, smallest and largest tension, and when;
-    the lift's figures (:func:`lift_lines`)."""
+    the lift's figures (:func:`lift_lines`) against the robot's winch."""
+    winch = robot.winch
     if not hasattr(cable, "sway"):
-        return elastic_summary(cable, winch)
+        return elastic_summary(cable, robot)
     t = cable.t
     angle = cable.sway_angle
     k = int(np.argmax(angle))
@@ -125,20 +126,24 @@ def cable_summary(cable, winch=None) -> str:
     return "\n".join(lines)
 
 
-def elastic_summary(cable, winch=None) -> str:
-    """Lines on a payload on an elastic cable: its stiffness and step, its largest angle
-    from the vertical and stretch, and the lift's figures (:func:`lift_lines`)."""
+def elastic_summary(cable, robot) -> str:
+    """Lines on a payload on an elastic cable: its stiffness and step, its largest sway
+    (from the tip's vertical: :func:`~offshore_crane.dynamics.cable.tip.sway_angle`) and
+    stretch, and the lift's figures (:func:`lift_lines`)."""
+    from offshore_crane.dynamics.cable.tip import sway_angle
+
     t = cable.t
-    down = np.degrees(cable.sway_angle)
+    down = np.degrees(sway_angle(robot, cable))
     k = int(np.argmax(down))
     j = int(np.argmax(cable.stretch))
     lines = [f"hanging load: {cable.mass:g} kg on an elastic cable, EA {cable.ea:.4g} N, "
              f"damping {cable.damping:.4g} N·s/m, {cable.length:g} m unstretched (axial "
              f"period {cable.axial_period * 1e3:.3g} ms, RK4 step {cable.step:.3g} s, "
              f"{cable.refined} slack/taut steps redone)",
-             f"payload: max {down[k]:.4g}° from the vertical below the tip at t = {t[k]:.2f} s;"
+             f"payload: max sway {down[k]:.4g}° from the tip's vertical at t = {t[k]:.2f} s "
+             f"({np.degrees(cable.plumb_angle).max():.4g}° from the plumb line);"
              f" max stretch {1e3 * cable.stretch[j]:.4g} mm at t = {t[j]:.2f} s"]
-    return "\n".join(lines + event_lines(cable.event) + lift_lines(cable, winch))
+    return "\n".join(lines + event_lines(cable.event) + lift_lines(cable, robot.winch))
 
 
 def event_lines(event) -> list[str]:
@@ -186,10 +191,11 @@ def pyplot(purpose: str = "--plot"):
     return plt
 
 
-def plot(path, t: np.ndarray, X: np.ndarray, title: str = "", cable=None) -> None:
+def plot(path, t: np.ndarray, X: np.ndarray, title: str = "", cable=None,
+         robot=None) -> None:
     """Figure like the paper's Fig. 3: leg forces, arm torques and slider force vs time;
     with a :class:`~offshore_crane.dynamics.cable.CableResult`, a panel of the sway angles and one
-    of the tension."""
+    of the tension (an elastic cable's sway from the tip's vertical needs its ``robot``)."""
     plt = pyplot()
 
     n = 3 if cable is None else 5
@@ -207,8 +213,10 @@ def plot(path, t: np.ndarray, X: np.ndarray, title: str = "", cable=None) -> Non
         axes[3].plot(t, np.degrees(cable.sway[:, 1]), label="phi2")
         axes[3].set_ylabel("sway [deg]")
     elif cable is not None:                     # an elastic cable: the payload's angle
-        axes[3].plot(t, np.degrees(cable.sway_angle), label="from the vertical")
-        axes[3].set_ylabel("cable angle [deg]")
+        from offshore_crane.dynamics.cable.tip import sway_angle
+
+        axes[3].plot(t, np.degrees(sway_angle(robot, cable)), label="from the tip's vertical")
+        axes[3].set_ylabel("sway [deg]")
     if cable is not None:
         axes[4].plot(t, cable.tension, label="tension", color="k")
         axes[4].set_ylabel("cable tension [N]")

@@ -24,10 +24,16 @@ robot's; the sway rows see its rate and acceleration through RNEA and CRBA, the 
 line pull is minus the RNEA force on that joint, and X is the projection of the tree's
 torques (the appended joint is the last speed, so the tree's rows keep their places).
 
+The payload's air drag (the URDF's ``<drag area air_density>`` of the link ``payload``):
+``f = −½ ρ C_d A |v| v`` at the payload frame's velocity v from Pinocchio's kinematics of
+the tree state, entering every joint as ``Jᵀ f`` (J the frame's Jacobian, world axes):
+subtracted from RNEA's torques on the sway rows and before the projection on X, added
+to the pull.
+
 Everything it needs of the robot it reads from ``robot.pinocchio_model`` (the payload's
-mass, the sway joints' damping); it checks nothing: the caller
-(``offshore_crane.dynamics.cable``) applies the workspace limits and the singularity
-policy to the diagnostics it returns.
+mass, the sway joints' damping) and ``robot.urdf`` (the drag); it checks nothing: the
+caller (``offshore_crane.dynamics.cable``) applies the workspace limits and the
+singularity policy to the diagnostics it returns.
 """
 
 from __future__ import annotations
@@ -43,6 +49,17 @@ from offshore_crane.reference.rnea.projection import project, read_tree
 
 #: The prismatic joint a winch adds along the cable (the payload its body).
 HOIST_JOINT = "cable_hoist"
+
+
+def _drag(urdf: str) -> float:
+    """``½ ρ C_d A`` [kg/m] of the URDF's ``<drag area air_density/>`` in the link
+    ``payload`` (0 without one)."""
+    import xml.etree.ElementTree as ET
+
+    link = ET.fromstring(urdf).find("link[@name='payload']")
+    el = None if link is None else link.find("drag")
+    return 0.0 if el is None else 0.5 * float(el.get("air_density")) * float(el.get("area"))
+
 
 class _Pendulum:
     """Pinocchio's model of the robot with the sway joints, and its indices."""
@@ -75,6 +92,20 @@ class _Pendulum:
                               if j >= jid(CABLE_JOINTS[0])))
         self.g = np.asarray(g, dtype=float)
         self.damping = np.asarray(model.damping)[self.sway_v]      # URDF <dynamics damping>
+        self.drag = _drag(robot.urdf)                              # URDF <drag>
+
+    def drag_torques(self, x, v):
+        """``(Jᵀ f (nv,), f (3,))``: the payload's drag ``f = −drag |v| v`` [N] (world
+        axes) at the tree's state ``x, v`` and its generalized forces."""
+        pin, model, data = self.pin, self.model, self.data
+        frame = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+        pin.forwardKinematics(model, data, x, v)
+        pin.computeJointJacobians(model, data, x)
+        pin.updateFramePlacements(model, data)
+        vel = np.asarray(pin.getFrameVelocity(model, data, self.payload, frame).linear)
+        f = -self.drag * np.linalg.norm(vel) * vel
+        J = pin.getFrameJacobian(model, data, self.payload, frame)[:3]
+        return J.T @ f, f
 
     def state(self, q9, qd9, qdd9, y, phidd=(0.0, 0.0), L=None):
         """Pinocchio's ``(q, v, a)`` at the robot's state, the sway ``y`` and its
@@ -95,6 +126,8 @@ class _Pendulum:
         pin = self.pin
         x, v, a = self.state(q9, qd9, qdd9, y, L=L)
         tau = pin.rnea(self.model, self.data, x, v, a)
+        if self.drag > 0.0:
+            tau = tau - self.drag_torques(x, v)[0]
         M = pin.crba(self.model, self.data, x)
         i, j = self.sway_v
         m11, m12, m22 = M[i, i], M[min(i, j), max(i, j)], M[j, j]
@@ -188,17 +221,23 @@ def forces(robot: Any, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, Y: np.nda
     Qt, Vt, At, G, diag = tree_state(robot, q, qd, qdd)
     for arr, col in ((Qt, 0), (Vt, 2), (At, 4)):
         arr[P.sway_v] = Y[:, col:col + 2].T
-    if hoist is None:
+    drag = np.zeros((n, 3))
+    if hoist is None and P.drag == 0.0:
         X, cond, tau = rnea_projected(robot, Qt, Vt, At, G, g, conditioning=conditioning)
-    else:                          # the tree with the hoist joint appended: one more row
-        ext = [np.asfortranarray(np.vstack([arr, hoist[:, col][None, :]]))
+    else:                          # with a winch: the tree with the hoist joint appended,
+        ext = [np.asfortranarray(arr if hoist is None else      # one more row
+                                 np.vstack([arr, hoist[:, col][None, :]]))
                for arr, col in ((Qt, 0), (Vt, 1), (At, 2))]
         tau = np.empty_like(ext[0], order="F")
         pin.rneaInParallel(1, pin.ModelPool(P.model, 1), *ext, tau)
+        if P.drag > 0.0:           # the payload's drag enters every joint as Jᵀ f
+            for k in range(n):
+                jf, drag[k] = P.drag_torques(ext[0][:, k], ext[1][:, k])
+                tau[:, k] -= jf
         T = read_tree(robot)
         X, cond = np.empty((n, 9)), np.empty(n)
-        project(np.asfortranarray(tau[:-1]), G, T.plat_v, T.legs.v_index, T.arm_v,
-                1.0 / T.L, conditioning, X, cond)
+        project(np.asfortranarray(tau if hoist is None else tau[:-1]), G, T.plat_v,
+                T.legs.v_index, T.arm_v, 1.0 / T.L, conditioning, X, cond)
     F[:, 4:6] = tau[P.sway_v].T + P.damping * Y[:, 2:4]
     model, data = P.model, P.data
     for k in range(n):
@@ -207,7 +246,7 @@ def forces(robot: Any, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, Y: np.nda
         pin.forwardKinematics(model, data, x, v, a)
         acc = pin.getFrameClassicalAcceleration(model, data, P.payload,
                                                 pin.ReferenceFrame.LOCAL_WORLD_ALIGNED).linear
-        f = P.mass * (P.g - np.asarray(acc))
+        f = P.mass * (P.g - np.asarray(acc)) + drag[k]
         pin.updateFramePlacement(model, data, P.payload)
         tip = data.oMi[model.getJointId(CABLE_JOINTS[0])].translation
         e = data.oMf[P.payload].translation - tip

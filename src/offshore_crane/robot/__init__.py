@@ -145,7 +145,8 @@ class Robot:
         from offshore_crane.robot.overrides import normalise
 
         welded = normalise({**self.overrides, "payload.mass": 0.0,
-                            "payload.cable_length": 0.0, "payload.sway_damping": 0.0})
+                            "payload.cable_length": 0.0, "payload.sway_damping": 0.0,
+                            "payload.drag_area": 0.0})
         return _load(self.description_path, self.description_content, welded)
 
     @cached_property

@@ -12,8 +12,8 @@ from functools import cached_property
 
 import numpy as np
 
-from offshore_crane.conventions import (ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, ARM_JOINTS,
-                           CABLE_JOINTS, N_LEGS, PLATFORM_JOINTS)
+from offshore_crane.conventions import (ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, AIR_DENSITY,
+                                        ARM_JOINTS, CABLE_JOINTS, N_LEGS, PLATFORM_JOINTS)
 from offshore_crane.errors import ModelError
 from offshore_crane.robot.chain import SerialChain, chain_from_urdf, merged_inertial
 from offshore_crane.robot.urdf import URDF
@@ -54,6 +54,8 @@ class HybridModel:
             payload below them (5 joints: q7, q8, q9, phi1, phi2); None otherwise.
         sway_damping: ``(2,)`` viscous damping of the sway joints [N·m·s/rad] (their URDF
             ``<dynamics damping>``); zeros without a cable.
+        drag_area: The hanging payload's drag area C_d·A [m²] (the URDF's ``<drag>`` of
+            the link ``payload``; 0 without drag or cable). air_density: [kg/m³].
     """
 
     platform_mass: float
@@ -73,6 +75,14 @@ class HybridModel:
     arm: SerialChain
     cable: SerialChain | None = None
     sway_damping: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    drag_area: float = 0.0
+    air_density: float = AIR_DENSITY
+
+    @property
+    def drag(self) -> float:
+        """``½ ρ C_d A`` [kg/m]: the payload's drag force is ``−drag |v| v`` [N] at the
+        velocity v [m/s] relative to still air (0 without drag)."""
+        return 0.5 * self.air_density * self.drag_area
 
     @property
     def has_arm(self) -> bool:
@@ -108,6 +118,19 @@ class HybridModel:
 def _check(cond: bool, message: str, element: str):
     if not cond:
         raise ModelError(message, element=element)
+
+
+def _drag(urdf, cable: bool) -> dict:
+    """``drag_area`` [m²] and ``air_density`` [kg/m³] of the hanging payload from the
+    URDF's ``<drag>`` of the link ``payload`` (none: no drag).
+
+    Raises:
+        ModelError: a drag on a payload that does not hang on a cable.
+    """
+    area, rho = urdf.drag.get("payload", (0.0, AIR_DENSITY))
+    _check(cable or area == 0.0, "the URDF gives the link 'payload' a <drag>, but the "
+           "payload does not hang on a cable (joints cable_joint1, cable_joint2)", "payload")
+    return {"drag_area": float(area), "air_density": float(rho)}
 
 
 def _near(a, b) -> bool:
@@ -195,4 +218,5 @@ def hybrid_from_urdf(urdf: URDF) -> HybridModel:
         upper_inertia=np.array([x[2] for x in upper]),
         stroke=np.array(stroke), ujoint_limits=np.array(ulim), arm=arm, cable=cable,
         sway_damping=np.array([urdf.joint(j).damping if cable is not None else 0.0
-                               for j in CABLE_JOINTS]))
+                               for j in CABLE_JOINTS]),
+        **_drag(urdf, cable is not None))

@@ -103,6 +103,9 @@ class URDF:
     Attributes:
         visuals: ``{link: [Visual, ...]}`` for every link (an empty list when it has no
             primitive).
+        drag: ``{link: (C_d·A [m²], air density [kg/m³])}`` of the links with a
+            ``<drag area air_density/>`` element (this project's extension, which other
+            URDF readers ignore: the hanging payload's air drag, docs/cable.md).
     """
 
     name: str
@@ -111,6 +114,7 @@ class URDF:
     child_joints: dict[str, list[str]] = field(default_factory=dict)
     parent_joint: dict[str, str] = field(default_factory=dict)
     visuals: dict[str, list[Visual]] = field(default_factory=dict)
+    drag: dict[str, tuple[float, float]] = field(default_factory=dict)
 
     @property
     def root(self) -> str:
@@ -202,6 +206,7 @@ def parse_urdf(text: str) -> URDF:
     materials = _materials(root)
     inertials: dict[str, Inertial | None] = {}
     visuals: dict[str, list[Visual]] = {}
+    drag: dict[str, tuple[float, float]] = {}
     for link in root.findall("link"):
         name = link.get("name")
         if name is None:
@@ -212,6 +217,14 @@ def parse_urdf(text: str) -> URDF:
         inertials[name] = _parse_inertial(link.find("inertial"), name)
         visuals[name] = [v for k, el in enumerate(link.findall("visual"))
                          if (v := _parse_visual(el, name, k, materials)) is not None]
+        el = link.find("drag")
+        if el is not None:
+            where = f"link '{name}' <drag>"
+            area, rho = (_attr_float(el, key, where) for key in ("area", "air_density"))
+            if not (np.isfinite(area) and area >= 0.0 and np.isfinite(rho) and rho > 0.0):
+                raise ModelError(f"{where}: area = {area:g} m² must be finite and >= 0, "
+                                 f"air_density = {rho:g} kg/m³ finite and > 0", element=name)
+            drag[name] = (area, rho)
     joints: dict[str, Joint] = {}
     child_joints: dict[str, list[str]] = {}
     parent_joint: dict[str, str] = {}
@@ -231,7 +244,8 @@ def parse_urdf(text: str) -> URDF:
         joints[j.name] = j
         child_joints.setdefault(j.parent, []).append(j.name)
         parent_joint[j.child] = j.name
-    return URDF(root.get("name", ""), inertials, joints, child_joints, parent_joint, visuals)
+    return URDF(root.get("name", ""), inertials, joints, child_joints, parent_joint, visuals,
+                drag)
 
 
 def _rgba(el, where: str) -> np.ndarray | None:

@@ -40,6 +40,8 @@ Schema (every key optional; SI units; unknown keys or sections are errors)::
     cable_length = 0.0                 # [m]: > 0 hangs the payload (a point mass: offset
                                        # and inertia zero) on a cable from arm_tip
     sway_damping = 0.0                 # [N·m·s/rad] of each sway angle (with a cable)
+    drag_area = 0.0                    # [m²] C_d·A of the payload in air (with a cable)
+    air_density = 1.225                # [kg/m³] the air the drag acts in
     [cable]                            # the swing, with cable_length > 0 (docs/cable.md)
     initial = [0.05, 0.0]              # sway phi1, phi2 at the start [rad] (default 0)
     initial_rate = [0.0, 0.0]          # [rad/s]

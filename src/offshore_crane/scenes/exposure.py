@@ -58,54 +58,23 @@ class ShortRecordWarning(OffshoreCraneWarning):
     of its slowest mode: the record's extremes depend on its length and start."""
 
 
-@dataclass(frozen=True)
-class Mode:
-    """One dynamic mode of a scene, linearised.
-
-    Attributes:
-        name: What moves (``"sway"``, ``"axial"``, ``"tracking"``).
-        omega: Natural frequency [rad/s].
-        zeta: Damping ratio [-] (0: undamped).
-    """
-
-    name: str
-    omega: float
-    zeta: float
-
-    @property
-    def decay_time(self) -> float:
-        """``1 / (ζ ω)`` [s]: the time a free oscillation takes to fall by ``e`` (inf when
-        undamped)."""
-        rate = self.zeta * self.omega
-        return math.inf if rate <= 0.0 else 1.0 / rate
-
-    def describe(self) -> str:
-        """``sway: ω 3.13 rad/s, ζ 2.0 %, decay time 16 s``."""
-        tau = self.decay_time
-        return (f"{self.name}: ω {self.omega:.3g} rad/s, ζ {100 * self.zeta:.2g} %, decay "
-                f"time {'∞' if math.isinf(tau) else f'{tau:.3g} s'}")
-
-
-def scene_modes(scene: Scene, robot) -> tuple[Mode, ...]:
-    """The scene's dynamic modes (see the module docstring): the hanging load's
-    (:func:`offshore_crane.dynamics.cable.cable_modes` at the cable's longest length,
-    where its sway decays slowest), and a computed-torque law's error dynamics
-    ``ë + Kd ė + Kp e = 0`` per coordinate (ω = √Kp, ζ = Kd / (2 √Kp)) when the scene is
-    simulated under one. A prescribed rigid robot has none."""
-    import numpy as np
-
-    from offshore_crane.dynamics.cable import cable_modes
+def scene_modes(scene: Scene, robot) -> tuple:
+    """The scene's dynamic modes (:class:`~offshore_crane.dynamics.cable.Mode`, see the
+    module docstring): the hanging load's (:func:`offshore_crane.dynamics.cable.modes` at
+    the cable's longest length, where its sway decays slowest), and a computed-torque
+    law's error dynamics ``ë + Kd ė + Kp e = 0`` per coordinate (ω = √Kp,
+    ζ = Kd / (2 √Kp)) when the scene is simulated under one. A prescribed rigid robot has
+    none."""
+    from offshore_crane.dynamics.cable import Mode, modes
     from offshore_crane.scenes.scene import hoist_waypoints
 
-    out: list[Mode] = []
+    out = []
     if robot.hybrid.cable is not None:
         hoist = hoist_waypoints(scene)
-        length = (max(row[-1] for row in hoist) if hoist is not None
-                  else float(robot.hybrid.cable_length))
-        g = float(np.linalg.norm(scene.gravity))
-        out += [Mode(name, omega, zeta) for name, omega, zeta in cable_modes(
-            robot, g, length=length, ea=scene.cable.get("ea"),
-            damping=scene.cable.get("damping", 0.0))]
+        length = None if hoist is None else max(row[-1] for row in hoist)
+        elastic = ({"ea": scene.cable["ea"], "damping": scene.cable.get("damping", 0.0)}
+                   if "ea" in scene.cable else {})
+        out += modes(robot, length=length, gravity=scene.gravity, **elastic)
     if scene.simulated and scene.control.get("law", "computed-torque") == "computed-torque":
         from offshore_crane.simulation.control import Controller
 
@@ -116,23 +85,35 @@ def scene_modes(scene: Scene, robot) -> tuple[Mode, ...]:
     return tuple(out)
 
 
-def slowest(modes) -> Mode | None:
+def kind(mode) -> str:
+    """What moves in a mode: ``"sway"`` of ``"sway phi1"``, ``"axial"``, ``"tracking"``."""
+    return mode.name.split()[0]
+
+
+def slowest(modes):
     """The damped mode with the longest decay time, or None (no damped mode)."""
     damped = [m for m in modes if math.isfinite(m.decay_time)]
     return max(damped, key=lambda m: m.decay_time) if damped else None
 
 
 def warn_light_damping(modes, where: str) -> None:
-    """A :class:`LightlyDampedWarning` naming each mode damped below
-    :data:`LIGHT_DAMPING`."""
+    """A :class:`LightlyDampedWarning` naming the modes damped below
+    :data:`LIGHT_DAMPING` (one warning for modes of the same frequency and damping, such
+    as the two sway angles')."""
+    light: dict = {}
     for m in modes:
         if m.zeta < LIGHT_DAMPING:
-            grow = ("no record of it is stationary: its extremes grow with the record's "
-                    "length" if m.zeta <= 0.0 else "a record's extremes depend on its length")
-            warnings.warn(LightlyDampedWarning(
-                f"{where}: the {m.name} mode is lightly damped ({m.describe()}, below "
-                f"{100 * LIGHT_DAMPING:g} %): {grow}; add damping (payload.sway_damping, "
-                "[cable] damping) where the real system has it"), stacklevel=3)
+            light.setdefault((m.omega, m.zeta), []).append(m)
+    for group in light.values():
+        m = group[0]
+        names = " and ".join(x.name for x in group)
+        grow = ("no record of it is stationary: its extremes grow with the record's "
+                "length" if m.zeta <= 0.0 else "a record's extremes depend on its length")
+        warnings.warn(LightlyDampedWarning(
+            f"{where}: {names} {'is' if len(group) == 1 else 'are'} lightly damped "
+            f"({m.describe().split(': ', 1)[1]}, below {100 * LIGHT_DAMPING:g} % of "
+            f"critical): {grow}; add damping (payload.sway_damping, [cable] damping) where "
+            "the real system has it"), stacklevel=3)
 
 
 def check_own_record(scene: Scene, robot) -> None:
@@ -147,7 +128,7 @@ def check_own_record(scene: Scene, robot) -> None:
     if slow is not None and duration < SPIN_UP_DECAYS * slow.decay_time:
         warnings.warn(ShortRecordWarning(
             f"{scene.where()}: the record ({duration:g} s) is shorter than "
-            f"{SPIN_UP_DECAYS:g} decay times of the {slow.name} mode ({slow.describe()}): "
+            f"{SPIN_UP_DECAYS:g} decay times of the {kind(slow)} mode ({slow.describe()}): "
             "it starts from rest and its extremes depend on its length; judge exposure "
             "records instead ([extremes] record = \"exposure\")"), stacklevel=2)
 
@@ -182,7 +163,7 @@ class ExposurePlan:
         """One line: what the record is and why its spin-up is what it is."""
         slow = slowest(self.modes)
         why = ("no dynamic mode: the forces follow the sea at once" if slow is None else
-               f"{SPIN_UP_DECAYS:g} decay times of the {slow.name} mode, "
+               f"{SPIN_UP_DECAYS:g} decay times of the {kind(slow)} mode, "
                f"{slow.decay_time:.3g} s each, rounded up to whole {self.cycle:g} s cycles")
         given = self.scene.extremes.get("spin_up")
         if given is not None:

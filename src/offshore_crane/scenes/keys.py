@@ -13,7 +13,8 @@ SECTIONS = ("robot", "subsystems", "payload", "cable", "actuators", "trajectory"
             "operation", "control", "lift", "extremes")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
-PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length", "sway_damping", "limits")
+PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length", "sway_damping", "drag_area",
+                "air_density", "limits")
 #: [payload.limits] keys: the hanging load's limits judged by ``size``.
 LOAD_LIMIT_KEYS = ("sway_max_deg", "tension_ratio_min", "tension_max")
 CABLE_KEYS = ("initial", "initial_rate", "substeps", "slack", "ea", "damping", "winch")
@@ -54,7 +55,9 @@ CONTROLLER_KEYS = ("law", "kp", "kd", "rate", "lower", "upper", "saturation", "n
 SCENE_FIELDS = {"arm.enabled": "[subsystems] arm", "payload.mass": "[payload] mass",
                 "payload.com": "[payload] offset", "payload.inertia": "[payload] inertia",
                 "payload.cable_length": "[payload] cable_length",
-                "payload.sway_damping": "[payload] sway_damping"}
+                "payload.sway_damping": "[payload] sway_damping",
+                "payload.drag_area": "[payload] drag_area",
+                "payload.air_density": "[payload] air_density"}
 
 
 def scene_field(name: str) -> str:

@@ -161,7 +161,9 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
                 payload[f"payload.limits.{key}"] = limits.get(key)
     for key, name in (("mass", "payload.mass"), ("offset", "payload.com"),
                       ("inertia", "payload.inertia"), ("cable_length", "payload.cable_length"),
-                      ("sway_damping", "payload.sway_damping")):
+                      ("sway_damping", "payload.sway_damping"),
+                      ("drag_area", "payload.drag_area"),
+                      ("air_density", "payload.air_density")):
         if key in r.table:
             payload[name] = r.get(key)
     sub = data.get("subsystems", {})

@@ -8,7 +8,8 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass, field
 
-from offshore_crane.conventions import ARM_ACTUATORS, ACTUATORS, GRAVITY, LEG_ACTUATORS
+from offshore_crane.conventions import (AIR_DENSITY, ARM_ACTUATORS, ACTUATORS, GRAVITY,
+                                        LEG_ACTUATORS)
 from offshore_crane.dynamics import LEG_MODELS, METHODS
 from offshore_crane.errors import SceneError
 from offshore_crane.io import toml_value
@@ -30,6 +31,8 @@ class Payload:
         cable_length: [m]; 0: welded to ``arm_tip``; > 0: a point mass hanging on a
             cable of this length (:mod:`offshore_crane.dynamics.cable`).
         sway_damping: viscous damping of each sway angle [N·m·s/rad] (with a cable).
+        drag_area: the payload's drag area C_d·A [m²] (with a cable; 0: no drag).
+        air_density: [kg/m³] of the air the drag acts in.
     """
 
     mass: float = 0.0
@@ -37,13 +40,16 @@ class Payload:
     inertia: tuple = (0.0,) * 6
     cable_length: float = 0.0
     sway_damping: float = 0.0
+    drag_area: float = 0.0
+    air_density: float = AIR_DENSITY
 
     def overrides(self) -> dict:
         """The dotted robot fields this payload sets."""
         return {"payload.mass": self.mass, "payload.com": list(self.offset),
                 "payload.inertia": dict(zip(INERTIA_KEYS, self.inertia)),
                 "payload.cable_length": self.cable_length,
-                "payload.sway_damping": self.sway_damping}
+                "payload.sway_damping": self.sway_damping,
+                "payload.drag_area": self.drag_area, "payload.air_density": self.air_density}
 
 
 @dataclass(frozen=True)
@@ -248,7 +254,8 @@ def _payload_of(spec) -> Payload:
     return Payload(float(p.mass), tuple(float(x) for x in p.com),
                    tuple(float(p.inertia[i, j]) for i, j in
                          ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))),
-                   float(spec.cable_length), float(spec.sway_damping))
+                   float(spec.cable_length), float(spec.sway_damping), float(spec.drag_area),
+                   float(spec.air_density))
 
 
 def _check_sea(scene: "Scene") -> None:

@@ -7,10 +7,13 @@ the payload a point mass with three free coordinates:
 
 - the cable's tension ``T = EA s / L + c ṡ`` while taut and pulling, else 0 (the formulas
   of :func:`offshore_crane.dynamics.sway.cable_tension`, ``L(t)`` the winch's length);
-- the payload: ``m p̈ = m g − T ρ̂`` (``ρ`` from the tip to the payload);
-- the robot: its equations of motion with the cable's pull ``T ρ̂`` on the tip, written as
-  actuator forces: ``a = FD(q, q̇, X − ΔX(P))``, with ``ΔX(P)`` the forces the pull ``P``
-  alone asks of the actuators (the Kane pass with the pull on the tip,
+- the payload: ``m p̈ = m g − T ρ̂ + F_s + F_d`` (``ρ`` from the tip to the payload; the
+  sway damping ``F_s`` while the cable pulls and the air's drag ``F_d``, as the elastic
+  cable's inverse dynamics, :mod:`offshore_crane.dynamics.cable.elastic`);
+- the robot: its equations of motion with the cable's pull ``P = T ρ̂ − F_s`` on it at the
+  payload's place (the damping's moment is the tip's), written as actuator forces:
+  ``a = FD(q, q̇, X − ΔX(P))``, with ``ΔX(P)`` the forces the pull ``P`` alone asks of the
+  actuators (the Kane pass with the pull,
   :func:`offshore_crane.dynamics.cable.forces.kane_forces`, at zero acceleration less the
   same without pull: exact, the pull enters the equations linearly).
 
@@ -54,7 +57,9 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
         controller: :class:`~offshore_crane.simulation.control.Controller`
             (``"computed-torque"`` or ``"none"``; no noise, no model mismatch, no
             anti-sway).
-        ea, damping: The cable's EA [N] and axial damping [N·s/m].
+        ea, damping: The cable's EA [N] and axial damping [N·s/m] (the sway damping
+            and the payload's drag are the robot description's: ``payload.sway_damping``,
+            ``payload.drag_area``, ``payload.air_density``).
         hoist: The winch ``hoist(t) -> (L, L̇, L̈)`` [m, m/s, m/s²], or None.
         initial, initial_velocity: ``(3,)`` the payload from the tip [m] and relative to
             it [m/s] at ``t0``, base axes (default: hanging along g at its static
@@ -73,7 +78,8 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     """
     from offshore_crane.dynamics import backends
     from offshore_crane.dynamics.cable.forces import kane_forces
-    from offshore_crane.dynamics.cable.elastic import check_cable
+    from offshore_crane.dynamics.cable.elastic import check_cable, drag_forces
+    from offshore_crane.dynamics.constants import cable_arrays
     from offshore_crane.dynamics.cable.grid import cable_robot
     from offshore_crane.dynamics.cable.tip import tip_positions
     from offshore_crane.dynamics.forward import forward_dynamics
@@ -124,13 +130,19 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     zero6 = np.zeros((1, 6))
     thr = Thresholds()
 
-    def pulled(q, qd, qdd, pull):
-        """X of the robot moving at qdd with ``pull`` [N] on its tip (the Kane pass)."""
+    C, one = cable_arrays(robot).kane, backends.PYTHON     # one sample: Python floats
+    c1, c2 = (float(c) for c in robot.hybrid.sway_damping)
+    drag, still = float(robot.hybrid.drag), [0.0] * 9
+
+    def pulled(q, qd, qdd, pull, at):
+        """X of the robot moving at qdd with ``pull`` [N] on it at ``at`` [m] from the tip
+        (the Kane pass)."""
         return kane_forces(robot, np.zeros(1), q[None], qd[None], qdd[None], zero6, g,
-                           False, False, thr, P=pull[None])[0][0]
+                           False, False, thr, P=pull[None], at=at[None])[0][0]
 
     def cable(i, y):
-        """``(pull on the tip (3,), tension, ρ̂)`` at stage point i, state y."""
+        """``(pull on the robot (3,), where it acts (ρ, 3,), tension, the cable's, the
+        damping's and the air's force on the payload (3,))`` at stage point i, state y."""
         pt, vt = (x[0] for x in tip_positions(robot, y[None, :9], y[None, 12:21]))
         rho, rhod = y[9:12] - pt, y[21:24] - vt
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -138,23 +150,29 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
                                       Lg[i:i + 1, 0], Lg[i:i + 1, 1], float(ea),
                                       float(damping))
         T = float(T[0]) if (s[0] > 0 and T[0] > 0) else 0.0
-        unit = rho / np.linalg.norm(rho)
-        return T * unit, T, unit
+        pull = T * rho / np.linalg.norm(rho)
+        if T > 0.0 and c1 + c2 > 0.0:       # the sway damping, carried by the cable
+            Rt, w = one.tip_motion(C, y[:9].tolist(), y[12:21].tolist(), still)[:2]
+            pull = pull - np.array(one.sway_damping_force(Rt, w, tuple(rho.tolist()),
+                                                          tuple(rhod.tolist()), c1, c2),
+                                   dtype=float)
+        return pull, rho, T, drag_forces(y[None, 21:24], drag)[0] - pull
 
-    def law(i, y, pull):
+    def law(i, y, pull, at):
         if not ct:
             return np.zeros(9)
         cmd = qddr[i] + kd * (qdr[i] - y[12:21]) + kp * (qr[i] - y[:9])
-        return pulled(y[:9], y[12:21], cmd, pull)
+        return pulled(y[:9], y[12:21], cmd, pull, at)
 
     def f(i, y, X_held):
-        pull, T, unit = cable(i, y)
-        X_cmd = law(i, y, pull) if X_held is None else X_held
+        pull, at, T, force = cable(i, y)
+        X_cmd = law(i, y, pull, at) if X_held is None else X_held
         X = np.clip(X_cmd, lo, hi)
         rest = np.zeros(9)
-        shift = pulled(y[:9], y[12:21], rest, pull) - pulled(y[:9], y[12:21], rest, 0 * pull)
+        shift = (pulled(y[:9], y[12:21], rest, pull, at)
+                 - pulled(y[:9], y[12:21], rest, 0 * pull, at))
         a = forward_dynamics(empty, y[:9], y[12:21], X - shift, g)
-        a_p = g - (T / m) * unit
+        a_p = g + force / m
         return np.concatenate([y[12:21], y[21:24], a, a_p]), X_cmd, X, T
 
     y = np.concatenate([q0, p_tip + rho0, qd0, v_tip + v0])
@@ -168,7 +186,7 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     with progress.bar(n_out, "sample", "simulate") as shown:
         for s_ in range(n_steps + 1):
             if hold and s_ % hold == 0:
-                held = law(2 * s_, y, cable(2 * s_, y)[0])
+                held = law(2 * s_, y, *cable(2 * s_, y)[:2])
             k1, X_cmd, X, T = f(2 * s_, y, held)
             if s_ % out_every == 0:
                 k = s_ // out_every

@@ -3,10 +3,11 @@ payload swings (docs/cable.md, "Simulation and anti-sway").
 
 The state has 11 coordinates, q1..q9 and the sway angles φ1, φ2 (``docs/cable.md``),
 and their rates: the loops stay closed by construction and the cable is a rigid,
-inextensible link. The accelerations solve ``M a + h = [A X; −c φ̇]``, where M and h come
-from the explicit Kane pass on the arm chain continued by the sway joints and the payload
-(:func:`offshore_crane.dynamics.cable.kernels.accelerations`, the same formulas as the
-9-coordinate equations of motion). Classical RK4 at a fixed step, driven from Python (one
+inextensible link. The accelerations solve ``M a + h = [A X; −c φ̇] + Jᵀ f``, where M and h
+come from the explicit Kane pass on the arm chain continued by the sway joints and the
+payload (:func:`offshore_crane.dynamics.cable.kernels.accelerations`, the same formulas
+as the 9-coordinate equations of motion) and ``Jᵀ f`` is the payload's air drag
+(``payload.drag_area``; J its velocity's partials). Classical RK4 at a fixed step, driven from Python (one
 compiled call per stage), the reference evaluated at every stage time.
 
 Controllers (:class:`~offshore_crane.simulation.control.Controller`):
@@ -99,6 +100,7 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
     compiled_kernels()
     plant, ctrl = cable_arrays(robot), cable_arrays(model)
     damp_p, damp_c = robot.hybrid.sway_damping, model.hybrid.sway_damping
+    drag_p, drag_c = float(robot.hybrid.drag), float(model.hybrid.drag)
     kp, kd = controller.gains
     lo, hi = controller.bounds(robot)
     w0 = np.sqrt(np.linalg.norm(g) / model.hybrid.cable_length)
@@ -119,8 +121,8 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
         qddref[:2] += delta_dd
         cmd = qddref + kd * (qdref - y[11:20]) + kp * (qref - y[:9])
         X = np.empty(9)
-        ck.computed_torque(ctrl.flat, ctrl.layout, ctrl.prismatic, damp_c, y[:11], y[11:22],
-                           cmd, g, X)
+        ck.computed_torque(ctrl.flat, ctrl.layout, ctrl.prismatic, damp_c, drag_c, y[:11],
+                           y[11:22], cmd, g, X)
         return X
 
     def shift_dd(y):
@@ -134,8 +136,8 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
         dd = shift_dd(y)
         X_cmd = law(i, y, dd) if X_held is None else X_held
         X = np.clip(X_cmd, lo, hi)
-        ok = ck.accelerations(plant.flat, plant.layout, plant.prismatic, damp_p, y[:11],
-                              y[11:22], X, g, a, en)
+        ok = ck.accelerations(plant.flat, plant.layout, plant.prismatic, damp_p, drag_p,
+                              y[:11], y[11:22], X, g, a, en)
         return np.concatenate([y[11:22], a, y[24:26], dd]), X_cmd, X, ok
 
     y = np.concatenate([q0, sway0, qd0, rate0, np.zeros(4)])
@@ -229,6 +231,12 @@ def _finish(robot, res, sway_acc, g, limits) -> None:
     kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11, qd11,
          qdd11, g, False, False, np.inf, np.inf, 0, n, np.empty((n, 9)), np.empty((3, 1)),
          ws.new_health(), F)
+    if robot.hybrid.drag > 0.0:             # the pull along the cable takes the drag too
+        from offshore_crane.dynamics.cable.forces import hanging_drag
+
+        f, _, _, _, e = hanging_drag(robot, arrays.kane, res.q, res.qd, res.qdd,
+                                     np.hstack([res.sway, res.sway_rate]), None)
+        F[:, 3] += np.einsum("ij,ij->i", f, e)
     res.tension = F[:, 3]
     res.power = actuator_power(robot, res.q, res.qd, res.X)
 

@@ -53,8 +53,8 @@ from offshore_crane.dynamics.cable.grid import (cable_robot, motion_samples, sta
 from offshore_crane.dynamics.cable.forces import kane_forces
 from offshore_crane.dynamics.cable.elastic import ElasticResult, elastic_inverse_dynamics
 from offshore_crane.dynamics.cable.lift import LiftMetrics, lift_metrics
-from offshore_crane.dynamics.cable.modes import cable_modes
 from offshore_crane.dynamics.cable.liftoff import LiftOff, SetDown, lift_off, set_down
+from offshore_crane.dynamics.cable.modal import Mode, modes
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -65,7 +65,7 @@ __all__ = ["CableResult", "METHODS", "SLACK", "cable_robot", "hoist_grid", "hois
            "inverse_dynamics", "kane_forces", "stage_grid", "sway_accelerations", "swing",
            "uniform_times", "warm_up", "ElasticResult", "elastic_inverse_dynamics",
            "LiftMetrics", "lift_metrics", "LiftOff", "SetDown", "lift_off", "set_down",
-           "cable_modes"]
+           "Mode", "modes"]
 
 METHODS = ("kane", "pinocchio")
 SLACK = ("error", "warn")
@@ -211,8 +211,8 @@ def _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, sub, y0, thresholds, follow=Non
     def integrate():
         progress.run_polled(
             lambda: ck.integrate(arrays.flat, arrays.layout, arrays.prismatic,
-                                 robot.hybrid.sway_damping, Q, Qd, Qdd, Lh, g, h, sub, y0,
-                                 1.0 / thresholds.error, Y, status),
+                                 robot.hybrid.sway_damping, float(robot.hybrid.drag), Q, Qd,
+                                 Qdd, Lh, g, h, sub, y0, 1.0 / thresholds.error, Y, status),
             lambda: progress.filled_rows(Y), n_out, "sample", "swing")
 
     if follow is None:
@@ -315,7 +315,8 @@ def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY,
 
     The same formulas the integrator runs compiled
     (:func:`~offshore_crane.dynamics.sway.tip_motion` and ``pendulum``, or
-    ``hoisted_pendulum`` with a winch), here on NumPy arrays.
+    ``hoisted_pendulum`` with a winch; the payload's drag, ``drag_force`` at
+    ``hanging_velocity``), here on NumPy arrays.
 
     Args:
         robot: With a payload on a cable.
@@ -343,14 +344,20 @@ def sway_accelerations(robot, q, qd, qdd, sway, sway_rate, gravity=GRAVITY,
         if len(hoist) != len(q) or not (hoist[:, 0] > 0).all():
             raise InputError(f"hoist must be ({len(q)}, 3) rows (L > 0 [m], Ld [m/s], Ldd "
                              "[m/s²]), one per sample", name="hoist")
+    f = (0.0, 0.0, 0.0)
+    if robot.hybrid.drag > 0.0:
+        from offshore_crane.dynamics.cable.forces import hanging_drag
+
+        f = tuple(hanging_drag(robot, C, q, qd, qdd, np.hstack([sway, sway_rate]),
+                               hoist)[0].T)
     with np.errstate(divide="ignore", invalid="ignore"):
         Rt, w, al, a = F.tip_motion(C, q.T, qd.T, qdd.T)
         if hoist is None:
             a1, a2, _ = F.pendulum(C, Rt, w, al, a, g, sway[:, 0], sway[:, 1],
-                                   sway_rate[:, 0], sway_rate[:, 1], c1, c2)
+                                   sway_rate[:, 0], sway_rate[:, 1], c1, c2, f)
         else:
             a1, a2 = F.hoisted_pendulum(C, Rt, w, al, a, g, sway[:, 0], sway[:, 1],
-                                        sway_rate[:, 0], sway_rate[:, 1], c1, c2,
+                                        sway_rate[:, 0], sway_rate[:, 1], c1, c2, f,
                                         *hoist.T)[:2]
     out = np.stack([a1, a2], axis=-1)
     return out[0] if single else out

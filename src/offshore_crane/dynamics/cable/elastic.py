@@ -5,7 +5,11 @@ Model (docs/cable.md): the payload (mass m, the robot description's ``payload.ma
 (``payload.cable_length``, or a winch's ``L(t)``), axial stiffness ``EA`` [N] (a spring
 ``EA / L``) and damping ``c`` [N·s/m]: ``T = EA s / L + c ṡ`` for a stretch
 ``s = |ρ| − L > 0`` when that is positive, else 0 (a cable does not push). Relative to
-the tip, ``ρ̈ = g − a_tip − (T / m) u``, ``u = ρ / |ρ|``: the robot's motion is
+the tip, ``ρ̈ = g − a_tip − (T / m) u + (F_s + F_d) / m``, ``u = ρ / |ρ|``, with the
+rigid cable's sway damping as a force on the payload ``F_s``
+(:func:`~offshore_crane.dynamics.sway.sway_damping_force`, ``payload.sway_damping``,
+while the cable pulls) and the air's drag ``F_d = −½ ρ C_d A |v| v`` at the payload's
+velocity v (``payload.drag_area``, ``payload.air_density``): the robot's motion is
 prescribed, the payload's three coordinates free, slack phases simulated (the payload
 flies) and the snap on re-tension resolved by the integrator:
 
@@ -15,10 +19,12 @@ flies) and the snap on re-tension resolved by the integrator:
   jumps there and RK4 drops to low order) is done again in :data:`REFINE` steps;
 - **checked**: the snap of a load released with slack against its closed form, the free
   fall while slack, the energy balance, the rigid cable as ``EA → ∞``
-  (tests/dynamics/test_elastic_cable.py).
+  (tests/dynamics/test_elastic_cable.py), and with sway damping and drag
+  (tests/dynamics/test_cable_damping.py).
 
-X takes the pull ``T u`` as a force on the tip (``formulas.kane_sample_pull``), the same
-Kane pass the winch uses.
+X takes the pull ``T u − F_s`` as a force on the robot at the payload's place
+(``formulas.kane_sample_pull``: the damping's moment about the tip is the robot's), the
+same Kane pass the winch uses.
 """
 
 from __future__ import annotations
@@ -29,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from offshore_crane import progress
-from offshore_crane.conventions import GRAVITY
+from offshore_crane.conventions import AIR_DENSITY, GRAVITY
 from offshore_crane.errors import InputError, NumericalError
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.validation import as_gravity, as_samples
@@ -53,12 +59,18 @@ class ElasticResult:
             [m/s], base axes.
         payload, payload_velocity: ``(N, 3)`` the payload in the base frame [m, m/s].
         tension: ``(N,)`` [N] (0 while slack); stretch: ``(N,)`` ``|ρ| − L`` [m].
-        force_tip: ``(N, 3)`` the cable's pull on the tip [N], base axes.
+        force_tip: ``(N, 3)`` the cable's pull on the robot [N], base axes: ``T u − F_s``,
+            acting at the payload's place (``F_s`` the sway damping's force on the
+            payload, whose reaction the tip takes with the moment ``−ρ × F_s``).
         hoist: ``(N, 3)`` the winch's L [m], L̇, L̈, or None (fixed length).
         mass [kg], length [m] (unstretched, fixed), ea [N], damping [N·s/m].
         static_tension: ``m |g|`` [N], what the ratios are taken against.
         step: RK4's step [s]; substeps: steps a sample interval; refined: steps redone
         at a slack ↔ taut change; axial_period: the shortest ``2π √(m L / EA)`` [s].
+        sway_force: ``(N, 3)`` the sway damping's force on the payload ``F_s`` [N] (base
+            axes; 0 while slack, or resting on a deck).
+        drag: ``(N, 3)`` the air's drag on the payload [N] (base axes; 0 on a deck).
+        sway_damping: [N·m·s/rad]; drag_area: C_d·A [m²]; air_density: [kg/m³].
         airborne: ``(first, stop)`` the samples with the load off the deck,
             ``first ≤ k < stop`` (a lift-off's record rests on it before, a set-down's
             after; its cable is neither slack nor judged there).
@@ -88,6 +100,11 @@ class ElasticResult:
     substeps: int
     refined: int
     axial_period: float
+    sway_force: np.ndarray | None = None
+    drag: np.ndarray | None = None
+    sway_damping: float = 0.0
+    drag_area: float = 0.0
+    air_density: float = AIR_DENSITY
     airborne: tuple = (0, None)
     event: object = None
 
@@ -95,9 +112,11 @@ class ElasticResult:
         return len(self.t)
 
     @property
-    def sway_angle(self) -> np.ndarray:
-        """``(N,)`` the cable's angle from the base's vertical (−z) [rad] (a rigid
-        cable's is measured from the tip's vertical)."""
+    def plumb_angle(self) -> np.ndarray:
+        """``(N,)`` the cable's angle from the base's vertical (−z), the plumb line [rad].
+        Not the sway, which every report measures from the tip's vertical
+        (:func:`~offshore_crane.dynamics.cable.tip.sway_angle`: the crane's side-lead
+        and off-lead, the ship's roll included)."""
         rho = self.position
         return np.arccos(np.clip(-rho[:, 2] / np.linalg.norm(rho, axis=1), -1.0, 1.0))
 
@@ -156,7 +175,8 @@ def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float 
 
     Args:
         robot: With a payload on a cable (``payload.cable_length > 0``: the unstretched
-            length, ``payload.mass``).
+            length, ``payload.mass``; ``payload.sway_damping``, ``payload.drag_area`` and
+            ``payload.air_density`` damp its flight).
         q, qd, qdd: ``(N, 9)`` the robot's motion [m, rad], rates, accelerations.
         t: ``(N,)`` uniform times [s], N ≥ 2.
         ea: Axial stiffness EA [N], finite and > 0.
@@ -211,29 +231,45 @@ def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float 
                          "position from the tip", name="initial")
     compiled_kernels()
     arrays = cable_arrays(robot)
-    Y = np.full((N, 8), np.nan)
+    Y = np.full((N, 11), np.nan)
     status = np.zeros(3)
     y0 = np.concatenate([rho0, rate0])
+    sway, drag = np.array(robot.hybrid.sway_damping, dtype=float), float(robot.hybrid.drag)
     progress.run_polled(
         lambda: ek.integrate(arrays.flat, arrays.layout, arrays.prismatic, Q, Qd, Qdd, Lh,
-                             g, int(substeps), REFINE, dt, float(ea), float(damping), m, y0,
-                             Y, status),
+                             g, int(substeps), REFINE, dt, float(ea), float(damping), sway,
+                             drag, m, y0, Y, status),
         lambda: progress.filled_rows(Y), N, "sample", "elastic cable")
     if int(status[0]) != ek.OK:
         k = int(status[1])
         raise NumericalError(f"elastic cable: the payload's state is not finite at sample {k} "
                              f"(t = {t[k]:.6g} s; it reached the tip?): check the motion "
                              "and the cable", index=k, name="elastic")
-    rho = Y[:, 0:3]
-    pull = Y[:, 6:7] * rho / np.linalg.norm(rho, axis=1)[:, None]
+    rho = np.ascontiguousarray(Y[:, 0:3])
+    sway_force = Y[:, 8:11].copy()
+    pull = Y[:, 6:7] * rho / np.linalg.norm(rho, axis=1)[:, None] - sway_force
     zeros = np.zeros((N, 6))
     X, F, kappa = kane_forces(robot, t, q, qd, qdd, zeros, g, limits, checks, thresholds,
-                               P=pull)
+                               P=pull, at=rho)
     p_tip, v_tip = tip_positions(robot, q, qd)
     L = None if hoist is None else np.ascontiguousarray(Lh[::2])
+    velocity = v_tip + Y[:, 3:6]
     return ElasticResult(
         t=t, q=q, qd=qd, qdd=qdd, X=X, position=rho.copy(), velocity=Y[:, 3:6].copy(),
-        payload=p_tip + rho, payload_velocity=v_tip + Y[:, 3:6], tension=Y[:, 6].copy(),
+        payload=p_tip + rho, payload_velocity=velocity, tension=Y[:, 6].copy(),
         stretch=Y[:, 7].copy(), force_tip=pull, hoist=L, mass=m, length=L0, ea=float(ea),
         damping=float(damping), static_tension=m * gn, step=dt / substeps,
-        substeps=int(substeps), refined=int(status[2]), axial_period=period)
+        substeps=int(substeps), refined=int(status[2]), axial_period=period,
+        sway_force=sway_force, drag=drag_forces(velocity, drag), sway_damping=float(sway[0]),
+        drag_area=float(robot.hybrid.drag_area), air_density=float(robot.hybrid.air_density))
+
+
+def drag_forces(v: np.ndarray, drag: float) -> np.ndarray:
+    """``(N, 3)`` the air's drag on the payload [N] at its velocities ``v`` ``(N, 3)``
+    [m/s] relative to still air, ``drag`` = ``½ ρ C_d A`` [kg/m]
+    (:func:`offshore_crane.dynamics.sway.drag_force` on NumPy arrays)."""
+    from offshore_crane.dynamics import backends
+
+    if drag == 0.0:
+        return np.zeros_like(v)
+    return np.stack(backends.NUMPY.drag_force(tuple(v.T), drag), axis=-1)

@@ -31,12 +31,13 @@ from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_force
 hoisted_pendulum, kane_sample_pull = c.K.hoisted_pendulum, c.K.kane_sample_pull
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
+tip_state, hanging_velocity, drag_force = c.K.tip_state, c.K.hanging_velocity, c.K.drag_force
 explicit_sample, cholesky_solve, solve6 = c.KE.explicit_sample, c.cholesky_solve, c.solve6
 kinetic_energy = c.kinetic_energy
 actuation_minus_bias = c.actuation_minus_bias
 #: One sample at a time from Python (the simulation's law): not inlined (compiles in
 #: seconds rather than the inlined driver's ~20 s, at no cost that matters here).
-kane_sample_call = c.KE.kane_sample
+kane_sample_call, kane_sample_pull_call = c.KE.kane_sample, c.KE.kane_sample_pull
 finite_inputs = c._finite_inputs
 kane_sample, unpack, post, tangent_bounds = c.K.kane_sample, c.unpack, c._post, c.tangent_bounds
 jit = njit(**c.JIT)
@@ -49,8 +50,9 @@ def _helpers(stamp):
     the drivers reach them as module globals, see :mod:`offshore_crane.simulation.rk4`)."""
 
     @jit
-    def tip(C, Qh, Qdh, Qddh, i, q, qd, qdd, out):
-        """``out`` (18,) = R_base_tip (by rows), ω, α, a of the tip at stage point ``i``."""
+    def tip(C, Qh, Qdh, Qddh, i, q, qd, qdd, out, want_v):
+        """``out`` (21,) = R_base_tip (by rows), ω, α, a of the tip at stage point ``i``,
+        and with ``want_v`` its velocity [m/s] (else ``out[18:21]`` is left as it was)."""
         if len(stamp) == 0:
             return
         for j in range(9):
@@ -64,38 +66,61 @@ def _helpers(stamp):
             out[9 + r] = w[r]
             out[12 + r] = al[r]
             out[15 + r] = a[r]
+        if want_v:
+            v = tip_state(C, q, qd)[1]
+            for r in range(3):
+                out[18 + r] = v[r]
 
     @jit
-    def rhs(C, g, damp, T, y, L, i, out):
-        """``out = (φ̇1, φ̇2, φ̈1, φ̈2)`` for the tip state ``T`` (18,) and sway ``y`` on a
+    def rhs(C, g, damp, drag, T, y, L, i, out):
+        """``out = (φ̇1, φ̇2, φ̈1, φ̈2)`` for the tip state ``T`` (21,) and sway ``y`` on a
         cable of length ``L[i, 0]`` [m] hoisted at ``L[i, 1]`` [m/s] (row 0 when ``L`` has
-        one row: a fixed length); returns ``cos²φ2`` (0 on the singular set)."""
+        one row: a fixed length), the payload's drag ``½ ρ C_d A`` = ``drag`` [kg/m] (the
+        tip's velocity in ``T[18:21]`` when > 0); returns ``cos²φ2`` (0 on the singular
+        set)."""
         if len(stamp) == 0:
             return 0.0
         j = i if L.shape[0] > 1 else 0
         R = ((T[0], T[1], T[2]), (T[3], T[4], T[5]), (T[6], T[7], T[8]))
+        w = (T[9], T[10], T[11])
+        f = (0.0, 0.0, 0.0)
+        if drag > 0.0:
+            f = drag_force(hanging_velocity(R, w, (T[18], T[19], T[20]), y[0], y[1], y[2],
+                                            y[3], L[j, 0], L[j, 1]), drag)
         a1, a2, cos2, _, _ = hoisted_pendulum(
-            C, R, (T[9], T[10], T[11]), (T[12], T[13], T[14]), (T[15], T[16], T[17]), g,
-            y[0], y[1], y[2], y[3], damp[0], damp[1], L[j, 0], L[j, 1], L[j, 2])
+            C, R, w, (T[12], T[13], T[14]), (T[15], T[16], T[17]), g, y[0], y[1], y[2],
+            y[3], damp[0], damp[1], f, L[j, 0], L[j, 1], L[j, 2])
         out[0] = y[2]
         out[1] = y[3]
         out[2] = a1
         out[3] = a2
         return cos2
 
-    return tip, rhs
+    @jit
+    def velocity(C, q, qd, zero):
+        """The payload's velocity [m/s] (base axes) at the state ``q, qd`` (11,) of the
+        chain with the sway joints (``zero``: zeros (11,), a workspace)."""
+        if len(stamp) == 0:
+            return (0.0, 0.0, 0.0)
+        na = C.n_arm
+        Rt, w, _, _ = tip_motion(C, q, qd, zero)
+        return hanging_velocity(Rt, w, tip_state(C, q, qd)[1], q[na + 4], q[na + 5],
+                                qd[na + 4], qd[na + 5], -C.arm_c[na - 1, 2], 0.0)
+
+    return tip, rhs, velocity
 
 
-tip, rhs = _helpers(c.STAMP)
+tip, rhs, velocity = _helpers(c.STAMP)
 
 
 def _make(stamp):
 
     @jit
-    def integrate(flat, lay, prism, damp, Qh, Qdh, Qddh, Lh, g, h, sub, y0, rel_min, Y,
-                  status):
-        """RK4 of the sway from ``y0`` (4,) with step ``h`` [s] and the sway joints'
-        damping ``damp`` (2,) [N·m·s/rad]; ``Qh, Qdh, Qddh`` ``(2 n + 1, 9)`` the robot's
+    def integrate(flat, lay, prism, damp, drag, Qh, Qdh, Qddh, Lh, g, h, sub, y0, rel_min,
+                  Y, status):
+        """RK4 of the sway from ``y0`` (4,) with step ``h`` [s], the sway joints'
+        damping ``damp`` (2,) [N·m·s/rad] and the payload's drag ``½ ρ C_d A`` = ``drag``
+        [kg/m] (against still air); ``Qh, Qdh, Qddh`` ``(2 n + 1, 9)`` the robot's
         motion at every half step (n steps; the tip's motion is formed once per point);
         ``Lh`` ``(2 n + 1, 3)`` the cable's length [m], rate, acceleration there (a
         winch), or ``(1, 3)`` for a fixed length;
@@ -111,9 +136,10 @@ def _make(stamp):
         q = np.empty(9)
         qd = np.empty(9)
         qdd = np.empty(9)
-        T0 = np.empty(18)
-        Tm = np.empty(18)
-        T1 = np.empty(18)
+        T0 = np.zeros(21)
+        Tm = np.zeros(21)
+        T1 = np.zeros(21)
+        want_v = drag > 0.0
         y = y0.copy()
         ys = np.empty(4)
         k1 = np.empty(4)
@@ -124,9 +150,9 @@ def _make(stamp):
         status[0] = OK
         status[1] = -1
         status[2] = 0.0
-        tip(C, Qh, Qdh, Qddh, 0, q, qd, qdd, T0)
+        tip(C, Qh, Qdh, Qddh, 0, q, qd, qdd, T0, want_v)
         for s in range(n_steps + 1):
-            rel = rhs(C, gt, damp, T0, y, Lh, 2 * s, k1)
+            rel = rhs(C, gt, damp, drag, T0, y, Lh, 2 * s, k1)
             if s % sub == 0:
                 k = s // sub
                 finite = True
@@ -149,16 +175,16 @@ def _make(stamp):
                     return
             if s == n_steps:
                 break
-            tip(C, Qh, Qdh, Qddh, 2 * s + 1, q, qd, qdd, Tm)
-            tip(C, Qh, Qdh, Qddh, 2 * s + 2, q, qd, qdd, T1)
+            tip(C, Qh, Qdh, Qddh, 2 * s + 1, q, qd, qdd, Tm, want_v)
+            tip(C, Qh, Qdh, Qddh, 2 * s + 2, q, qd, qdd, T1, want_v)
             rk4_stage(y, k1, 0.5 * h, ys)
-            rhs(C, gt, damp, Tm, ys, Lh, 2 * s + 1, k2)
+            rhs(C, gt, damp, drag, Tm, ys, Lh, 2 * s + 1, k2)
             rk4_stage(y, k2, 0.5 * h, ys)
-            rhs(C, gt, damp, Tm, ys, Lh, 2 * s + 1, k3)
+            rhs(C, gt, damp, drag, Tm, ys, Lh, 2 * s + 1, k3)
             rk4_stage(y, k3, h, ys)
-            rhs(C, gt, damp, T1, ys, Lh, 2 * s + 2, k4)
+            rhs(C, gt, damp, drag, T1, ys, Lh, 2 * s + 2, k4)
             rk4_combine(y, h, k1, k2, k3, k4)
-            for j in range(18):
+            for j in range(21):
                 T0[j] = T1[j]
 
     @jit
@@ -202,11 +228,12 @@ def _make(stamp):
                  lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 
     @jit
-    def kane_pulled(flat, lay, prism, q, qd, qdd, P, g, want_cond, want_limits, warn,
+    def kane_pulled(flat, lay, prism, q, qd, qdd, P, AT, g, want_cond, want_limits, warn,
                     error, start, stop, X, kappa, health):
         """As :func:`kane` with the payload replaced by a given pull ``P`` ``(N, 3)`` [N]
-        (base axes) on the tip (``formulas.kane_sample_pull``: a winch's hoisted
-        pendulum, an elastic cable); fills X only (the sway columns are not read)."""
+        (base axes) on the tip, acting at the point ``AT`` ``(N, 3)`` [m] from it (the
+        payload's place; ``formulas.kane_sample_pull``: a winch's hoisted pendulum, an
+        elastic cable); fills X only (the sway columns are not read)."""
         if len(stamp) == 0:
             return
         C, lim_arm, lim_stroke, lim_ujoint = unpack(flat, lay, prism)
@@ -225,20 +252,21 @@ def _make(stamp):
                 for j in range(9):
                     X[k, j] = np.nan
                 continue
-            kane_sample_pull(C, q[k], qd[k], qdd[k], gt, (P[k, 0], P[k, 1], P[k, 2]), rows,
-                             A, rhs6, diag, store)
+            kane_sample_pull(C, q[k], qd[k], qdd[k], gt, (P[k, 0], P[k, 1], P[k, 2]),
+                             (AT[k, 0], AT[k, 1], AT[k, 2]), rows, A, rhs6, diag, store)
             for b in range(3):
                 X[k, b] = rows[b]
             post(k, q, na, A, rhs6, diag, True, want_cond, want_limits, warn, error,
                  lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 
     @jit
-    def accelerations(flat, lay, prism, damp, q, qd, X, g, a, energy):
+    def accelerations(flat, lay, prism, damp, drag, q, qd, X, g, a, energy):
         """One state ``q, qd`` (11,) [m, rad, /s] under actuator forces ``X`` (9,):
-        ``a`` (11,) the accelerations of ``M a + h = [A X; −c φ̇]`` (Cholesky of the
-        explicit Kane pass's M; NaN when M is singular) and ``energy`` (2,): kinetic
-        ``½ q̇ᵀ M q̇`` and gravitational ``−g · Σ m c`` [J]. Returns False when M is not
-        positive definite (the attitude singularity, or the sway's cos φ2 = 0)."""
+        ``a`` (11,) the accelerations of ``M a + h = [A X; −c φ̇] + Jᵀ f`` (Cholesky of the
+        explicit Kane pass's M; NaN when M is singular; ``f`` the payload's drag with
+        ``½ ρ C_d A`` = ``drag`` [kg/m], J its velocity's partials) and ``energy`` (2,):
+        kinetic ``½ q̇ᵀ M q̇`` and gravitational ``−g · Σ m c`` [J]. Returns False when M
+        is not positive definite (the attitude singularity, or the sway's cos φ2 = 0)."""
         if len(stamp) == 0:
             return False
         C = unpack(flat, lay, prism)[0]
@@ -261,18 +289,28 @@ def _make(stamp):
         actuation_minus_bias(B, J, X, na - 2, rhs)
         rhs[n - 2] = -damp[0] * qd[n - 2] - B[n - 2]
         rhs[n - 1] = -damp[1] * qd[n - 1] - B[n - 1]
+        if drag > 0.0:                  # the drag's generalized forces v_i · f
+            f = drag_force(velocity(C, q, qd, zero), drag)
+            unit = np.zeros(n)
+            for i in range(n):
+                unit[i] = 1.0
+                v = velocity(C, q, unit, zero)
+                rhs[i] += v[0] * f[0] + v[1] * f[1] + v[2] * f[2]
+                unit[i] = 0.0
         ok = cholesky_solve(Mm, rhs, n, a, L)
         energy[0] = kinetic_energy(Mm, qd, n)
         energy[1] = -(g[0] * mc[0, 0] + g[1] * mc[0, 1] + g[2] * mc[0, 2])
         return ok
 
     @jit
-    def computed_torque(flat, lay, prism, damp, q, qd, qdd_cmd, g, X):
+    def computed_torque(flat, lay, prism, damp, drag, q, qd, qdd_cmd, g, X):
         """The actuator forces ``X`` (9,) that give the robot the accelerations
         ``qdd_cmd`` (9,) at the measured state ``q, qd`` (11,) with its payload swinging:
-        the sway's accelerations from the pendulum's equations under that motion, then
-        Kane's inverse dynamics of the chain with the sway joints. Returns the Stewart
-        system's condition number (inf when singular)."""
+        the sway's accelerations from the pendulum's equations under that motion (the
+        payload's drag with ``½ ρ C_d A`` = ``drag`` [kg/m]), then Kane's inverse dynamics
+        of the chain with the sway joints (with drag: of the robot pulled at the payload's
+        place, ``kane_sample_pull``). Returns the Stewart system's condition number (inf
+        when singular)."""
         if len(stamp) == 0:
             return 0.0
         C = unpack(flat, lay, prism)[0]
@@ -282,8 +320,11 @@ def _make(stamp):
         for j in range(9):
             qdd[j] = qdd_cmd[j]
         Rt, w, al, at = tip_motion(C, q, qd, qdd)
-        a1, a2, cos2 = pendulum(C, Rt, w, al, at, gt, q[6 + na - 2], q[6 + na - 1],
-                                qd[6 + na - 2], qd[6 + na - 1], damp[0], damp[1])
+        f = (0.0, 0.0, 0.0)
+        if drag > 0.0:
+            f = drag_force(velocity(C, q, qd, np.zeros(6 + na)), drag)
+        p1, p2, r1, r2 = q[6 + na - 2], q[6 + na - 1], qd[6 + na - 2], qd[6 + na - 1]
+        a1, a2, cos2 = pendulum(C, Rt, w, al, at, gt, p1, p2, r1, r2, damp[0], damp[1], f)
         qdd[6 + na - 2] = a1
         qdd[6 + na - 1] = a2
         rows = np.zeros(na)
@@ -293,7 +334,14 @@ def _make(stamp):
         store = np.empty((na, STORE_WIDTH))
         x = np.empty(6)
         M = np.empty((6, 13))
-        kane_sample_call(C, q, qd, qdd, gt, False, 0, True, rows, A, rhs6, diag, store)
+        if drag > 0.0:
+            L = -C.arm_c[na - 1, 2]
+            pull = hoisted_pendulum(C, Rt, w, al, at, gt, p1, p2, r1, r2, damp[0], damp[1],
+                                    f, L, 0.0, 0.0)[3]
+            at_p = mv(Rt, scale(sway_direction(p1, p2)[0], L))
+            kane_sample_pull_call(C, q, qd, qdd, gt, pull, at_p, rows, A, rhs6, diag, store)
+        else:
+            kane_sample_call(C, q, qd, qdd, gt, False, 0, True, rows, A, rhs6, diag, store)
         for b in range(3):
             X[b] = rows[b] if b < na - 2 else 0.0
         cond = solve6(A, rhs6, x, M, True)

@@ -166,7 +166,8 @@ def _resting(robot, trajectory, k: int, *, rho, rhod, T, s, L, gravity, ea, damp
              hoisted: bool, limits, checks, thresholds):
     """The first ``k`` samples of a lift with the load resting on the deck as an
     :class:`~.elastic.ElasticResult`: the cable's tension from its stretch, its pull
-    ``T ρ/|ρ|`` on the tip in X (the kernel of the elastic cable's X)."""
+    ``T ρ/|ρ|`` on the tip in X (the kernel of the elastic cable's X); the deck holds the
+    load, so no sway damping or drag acts on it there."""
     from offshore_crane.dynamics.cable.elastic import ElasticResult
     from offshore_crane.dynamics.cable.forces import kane_forces
     from offshore_crane.dynamics.cable.tip import tip_positions
@@ -177,7 +178,7 @@ def _resting(robot, trajectory, k: int, *, rho, rhod, T, s, L, gravity, ea, damp
     pull = T[:k, None] * rho[:k] / np.linalg.norm(rho[:k], axis=1)[:, None]
     g = as_gravity(gravity)
     X, _, _ = kane_forces(robot, t, q, qd, qdd, np.zeros((k, 6)), g, limits, checks,
-                          thresholds, P=pull)
+                          thresholds, P=pull, at=np.ascontiguousarray(rho[:k]))
     p_tip, v_tip = tip_positions(robot, q, qd)
     m = float(robot.hybrid.cable.mass[-1])
     return ElasticResult(
@@ -187,7 +188,9 @@ def _resting(robot, trajectory, k: int, *, rho, rhod, T, s, L, gravity, ea, damp
         hoist=np.ascontiguousarray(L[:k]) if hoisted else None, mass=m,
         length=float(robot.hybrid.cable_length), ea=float(ea), damping=float(damping),
         static_tension=m * float(np.linalg.norm(g)), step=float("nan"), substeps=0,
-        refined=0, axial_period=float("nan"))
+        refined=0, axial_period=float("nan"), sway_force=np.zeros((k, 3)),
+        drag=np.zeros((k, 3)), sway_damping=float(robot.hybrid.sway_damping[0]),
+        drag_area=float(robot.hybrid.drag_area), air_density=float(robot.hybrid.air_density))
 
 
 def head(res, n: int):

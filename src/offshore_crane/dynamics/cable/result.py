@@ -18,10 +18,13 @@ class CableResult:
             pull included.
         sway: ``(N, 2)`` φ1, φ2 [rad] (``arm_tip`` frame, see the module docstring).
         sway_rate: ``(N, 2)`` [rad/s]; sway_accel: ``(N, 2)`` [rad/s²].
-        tension: ``(N,)`` the cable's tension [N] (> 0 taut).
-        force_tip: ``(N, 3)`` the cable's pull on the arm tip [N], base frame.
-        residual: ``(N, 2)`` Kane's rows of the sway speeds at the result [N·m]
-            (zero up to round-off: the sway accelerations solve them).
+        tension: ``(N,)`` the cable's tension [N] (> 0 taut): the pull's part along it.
+        force_tip: ``(N, 3)`` the cable's pull on the robot [N], base frame,
+            ``m (g − a_p) + f`` (``f`` the payload's drag), acting at the payload's place
+            (the sway damping's moment about the tip leaves it off the cable's line).
+        residual: ``(N, 2)`` Kane's rows of the sway speeds at the result [N·m], the sway
+            damping's and the drag's generalized forces included (zero up to round-off:
+            the sway accelerations solve them).
         slack: ``(N,)`` True where the tension is ≤ 0 (only with ``slack="warn"``).
         condition: ``(N,)`` the Stewart system's condition number (NaN without checks).
         sway_condition: worst ``1 / cos²φ2`` met (the sway inertia's condition).

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from offshore_crane.conventions import INERTIA_RTOL
+from offshore_crane.conventions import AIR_DENSITY, INERTIA_RTOL
 from offshore_crane.errors import DescriptionError
 from offshore_crane.io import toml_value
 from offshore_crane.robot.description.files import label
@@ -70,7 +70,7 @@ class Resolver:
         a1, R_U, rpy_U = self._ujoints(P, S, h)
         self._check_home(P, S, h, stroke, R_U, ulim)
         arm = self._arm()
-        payload, cable, damping = self._payload(arm is not None)
+        payload, cable, damping, drag = self._payload(arm is not None)
         caps = capacities(self.v.has, self.n.get, self.fail)
         return Description(
             name=self.v.raw.get("name", Path(self.path).stem), source=self.v.raw.get(
@@ -79,6 +79,7 @@ class Resolver:
             upper=tuple(p[1] for p in parts), part_length=lengths, stroke=stroke,
             ujoint_limit=ulim, platform=platform, base_visual=self._base_visual(P),
             arm=arm, payload=payload, cable_length=cable, sway_damping=damping,
+            drag_area=drag[0], air_density=drag[1],
             capacities=caps, values=dict(self.n.cache),
             load_limits=load_limits(self.n.get, self.fail),
             winch=winch_capacities(self.n.get, self.fail))
@@ -437,6 +438,17 @@ class Resolver:
             self.fail("payload.sway_damping", f"{damping:g} N·m·s/rad damps the swing of a "
                       "payload on a cable, but payload.cable_length = 0 (welded)",
                       "payload.cable_length")
+        area = self.n.get("payload.drag_area", 0.0)
+        if not area >= 0.0:
+            self.fail("payload.drag_area", f"{area:g} m² must not be negative (C_d·A; 0: "
+                      "no drag)")
+        if area > 0.0 and not cable > 0.0:
+            self.fail("payload.drag_area", f"{area:g} m² drags a payload swinging on a "
+                      "cable, but payload.cable_length = 0 (welded)", "payload.cable_length")
+        rho = self.n.get("payload.air_density", AIR_DENSITY)
+        if not rho > 0.0:
+            self.fail("payload.air_density", f"{rho:g} kg/m³ must be > 0 (air at sea level: "
+                      f"{AIR_DENSITY:g})")
         if cable > 0.0:
             if not m > 0.0:
                 self.fail("payload.cable_length", f"{cable:g} m: a cable needs a payload to "
@@ -448,7 +460,7 @@ class Resolver:
                           "mass at the cable's end: set payload.com = [0, 0, 0] and "
                           "payload.inertia to zero (the cable length is measured to the "
                           "centre of mass)", "payload.cable_length")
-        return Body(m, com, I, {"type": "none"}), cable, damping
+        return Body(m, com, I, {"type": "none"}), cable, damping, (area, rho)
 
     def _base_visual(self, P):
         shape = self._shape("base.shape")

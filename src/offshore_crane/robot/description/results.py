@@ -9,6 +9,7 @@ from dataclasses import dataclass, field, fields, is_dataclass
 
 import numpy as np
 
+from offshore_crane.conventions import AIR_DENSITY
 from offshore_crane.robot.description.geometry import floats, inertia6, visual
 from offshore_crane.robot.description.schema import ARM_BODIES, FORMAT, N_LEGS
 
@@ -135,6 +136,7 @@ class Description:
         payload: :class:`Body` in the arm_tip frame (mass 0: none).
         cable_length: [m].
         sway_damping: [N·m·s/rad].
+        drag_area: the payload's C_d·A [m²] (0: no drag); air_density: [kg/m³].
         capacities: :class:`Capacities`.
         load_limits: :class:`LoadLimits` of a hanging load.
         winch: :class:`WinchCapacities` (``actuators.winch``).
@@ -167,6 +169,8 @@ class Description:
     values: dict = field(repr=False)
     load_limits: LoadLimits = field(default_factory=LoadLimits)
     winch: WinchCapacities = field(default_factory=WinchCapacities)
+    drag_area: float = 0.0
+    air_density: float = AIR_DENSITY
 
     @property
     def has_arm(self) -> bool:
@@ -181,12 +185,16 @@ class Description:
         """SHA-256 (hex) of the robot this description makes: every resolved number and
         drawing, not how it was written (``name``, ``source``, ``path``, ``overrides``
         and the given ``values`` left out). Two descriptions with equal digests build the
-        same robot: an override equal to the file's value changes nothing."""
+        same robot: an override equal to the file's value changes nothing; without drag
+        (``drag_area`` 0) the drag's fields, which then change nothing, are left out too
+        (a description's digest is the one it had before they existed)."""
         import hashlib
 
         h = hashlib.sha256()
+        skip = ("name", "source", "path", "overrides", "values") + (
+            ("drag_area", "air_density") if self.drag_area == 0 else ())
         for f in fields(self):
-            if f.name not in ("name", "source", "path", "overrides", "values"):
+            if f.name not in skip:
                 h.update(f.name.encode() + b"=")
                 _feed(h, getattr(self, f.name))
         return h.hexdigest()
@@ -246,7 +254,9 @@ def _xacro_data(d: Description) -> dict:
             "payload": {"mass": float(d.payload.mass), "com": floats(d.payload.com),
                         "inertia": inertia6(d.payload.inertia),
                         "cable_length": float(d.cable_length),
-                        "sway_damping": float(d.sway_damping)}}
+                        "sway_damping": float(d.sway_damping),
+                        "drag_area": float(d.drag_area),
+                        "air_density": float(d.air_density)}}
     if d.arm is not None:
         origin, rpy, column = d.arm["column"]
         arm = {"column": {"origin": floats(origin), "rpy": floats(rpy),

@@ -164,6 +164,11 @@ SCHEMA = {
                 "cable_length": _num("m", "cable length (0: welded)"),
                 "sway_damping": _num("N·m·s/rad", "viscous damping of each sway angle "
                                      "(hanging payload; 0: none)"),
+                "drag_area": _num("m²", "drag area C_d·A of the payload in air: drag "
+                                  "½ ρ C_d A |v| v against its velocity v relative to "
+                                  "still air (hanging payload; 0: none)"),
+                "air_density": _num("kg/m³", "density ρ of the air the drag acts in "
+                                    "(default 1.225, sea level at 15 °C)"),
                 "limits": {
                     "sway_max_deg": _num("deg", "largest angle of the cable from the "
                                          "tip's vertical (hanging load; none: no limit)"),

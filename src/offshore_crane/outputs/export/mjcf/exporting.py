@@ -132,7 +132,9 @@ def export(robot, q=None, *, sway=None, gravity=GRAVITY, limits: bool = False,
         timestep: ``<option timestep>`` [s]; the loops' time constant is two steps.
 
     Returns:
-        :class:`MJCF`.
+        :class:`MJCF`. The sway joints carry the URDF's damping
+        (``payload.sway_damping``); the payload's air drag (``payload.drag_area``) is not
+        written: MuJoCo's fluid models act on every body (docs/mjcf.md).
 
     Raises:
         InputError: a bad ``q``, ``sway``, ``gravity`` or ``timestep``.

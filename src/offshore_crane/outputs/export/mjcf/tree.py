@@ -188,6 +188,10 @@ def mjcf_from_urdf(urdf_text: str, positions: dict, *, name: str = "robot",
                    timestep: float = TIMESTEP, description=None) -> MJCF:
     """An MJCF model of any URDF tree, written at the given joint positions.
 
+    Joints carry no armature and no friction; their viscous ``damping`` is the URDF's
+    ``<dynamics damping>`` [N·s/m or N·m·s/rad] (the hanging load's sway joints:
+    ``payload.sway_damping``), 0 where the URDF gives none.
+
     Args:
         urdf_text: The URDF (its ``<visual>`` shapes are drawn, without collisions).
         positions: ``{joint name: position [m or rad]}`` for every movable joint: the
@@ -286,6 +290,8 @@ def mjcf_from_urdf(urdf_text: str, positions: dict, *, name: str = "robot",
                     je.set("pos", _vec(point))
                 if ref != 0:
                     je.set("ref", _num(ref))
+                if jj.damping != 0:            # the URDF's <dynamics damping> (the sway's)
+                    je.set("damping", _num(jj.damping))
                 if joint_limits and jj.name not in virtual and jj.type != "continuous" \
                         and np.isfinite(jj.lower) and np.isfinite(jj.upper):
                     je.set("range", _vec((jj.lower, jj.upper)))
