@@ -36,6 +36,8 @@ seeds no fit is made: the verdict rests on the largest observed peak and says so
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.robot.kinematics import actuator_motion
 from offshore_crane.studies.sizing.envelopes import (CAPACITIES, QUANTITIES, KINDS,
                                                      POSITION_UNITS, SPEED_UNITS, Envelope,
@@ -47,3 +49,7 @@ from offshore_crane.studies.sizing.extremes import (MIN_SEEDS, EXPOSURE, gumbel_
                                                     most_probable_maximum, most_probable_extreme)
 from offshore_crane.studies.sizing.verdicts import Verdict, verdict
 from offshore_crane.studies.sizing.formatting import format_envelope, format_verdict
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)
