@@ -442,7 +442,7 @@ def bench_rows(r: dict) -> dict:
 RENDERERS = {"sweep": sweep_rows, "animate": animate_rows, "cable_swing": cable_swing_rows,
              "sea_synthesis": sea_synthesis_rows, "pinocchio_fd": pinocchio_fd_rows,
              "mjcf_agreement": mjcf_agreement_rows, "lift": lift_rows,
-             "roofline": roofline_rows, "compile": compile_rows,
+             "roofline": roofline_rows, "compile": compile_rows, "ci": ci_rows,
              "bench_serial": bench_serial_rows, "bench": bench_rows}
 
 #: Saved results that are not ``benchmarks/results/NAME.json``, and how to read them.
