@@ -24,6 +24,19 @@ def stamp() -> dict:
     return {"date": time.strftime("%Y-%m-%d"), "cores": os.cpu_count()}
 
 
+def cpu_busy() -> float:
+    """CPU seconds of every process on the machine (``/proc/stat``: all but idle, iowait),
+    NaN where there is no ``/proc``: the other processes' load during a measurement is
+    its change less the benchmark's own CPU time, over the wall time (the load average
+    would count the benchmark itself)."""
+    try:
+        with open("/proc/stat") as fh:
+            fields = [int(x) for x in fh.readline().split()[1:]]
+    except OSError:
+        return float("nan")
+    return (sum(fields) - fields[3] - fields[4]) / os.sysconf("SC_CLK_TCK")
+
+
 def save(name: str, figures: dict) -> Path:
     """Write ``figures`` (JSON-able; NumPy scalars as floats) whole, atomically."""
     RESULTS.mkdir(exist_ok=True)

@@ -4,7 +4,9 @@ MP4 — the issue's target is <= 30 s on the project's 2-core machine.
 Times the whole library call (:func:`offshore_crane.outputs.visual.animate.animate`: forces by
 inverse dynamics for ``--color-by force``, link poses, drawing, H.264 encoding by ffmpeg
 in its own process, atomic write) on the example sea-state scene, with and without the
-legs coloured by force, and splits one run into its stages. The machine's other load is
+legs coloured by force, and splits one run into its stages; then writes the GIFs the
+documents describe (:data:`GIFS`: the README's picture, the whole run at 10 and 30 fps)
+once each, for their time and size. The machine's other load is
 read from ``/proc/stat`` (every process's CPU time minus this process's and its
 children's), since the load average would count the benchmark itself.
 
@@ -29,23 +31,13 @@ sys.path.insert(0, str(ROOT / "src"))
 
 import numpy as np  # noqa: E402
 
-from _saved import add_save_option, save  # noqa: E402  (benchmarks/ is on the path)
+from _saved import add_save_option, cpu_busy, save  # noqa: E402  (benchmarks/ is on the path)
 from offshore_crane import scenes  # noqa: E402
 from offshore_crane.outputs.visual import animate as an  # noqa: E402
 from offshore_crane.outputs.visual import motion as mo  # noqa: E402
 
 TARGET_S = 30.0
 FPS, DURATION, SIZE = 30.0, 60.0, (640, 480)
-
-
-def cpu_busy() -> float:
-    """CPU seconds of every process on the machine (``/proc/stat``: all but idle, iowait)."""
-    try:
-        with open("/proc/stat") as fh:
-            fields = [int(x) for x in fh.readline().split()[1:]]
-    except OSError:
-        return float("nan")
-    return (sum(fields) - fields[3] - fields[4]) / os.sysconf("SC_CLK_TCK")
 
 
 def mine() -> float:
@@ -73,6 +65,27 @@ def stages(robot, motion, gravity) -> dict:
     for k in range(len(P)):
         r.frame(k, text="t").tobytes()
     out["drawing (1,800 frames, no encoding)"] = time.perf_counter() - t0
+    return out
+
+
+#: The GIFs the documents describe: name -> (seconds of motion, fps, (width, height)),
+#: legs coloured by force. "caption": the README caption's command, which made
+#: docs/sea_state_crane.gif; the others: the whole run at the MP4's size.
+GIFS = {"caption": (20.0, 10.0, (480, 360)), "60 s at 10 fps": (60.0, 10.0, SIZE),
+        "60 s at 30 fps": (60.0, 30.0, SIZE)}
+
+
+def gifs(robot, motion, gravity, directory, keep: bool) -> dict:
+    """Each GIF of :data:`GIFS` written once: ``{name: {"s": wall, "mb": size}}``."""
+    out = {}
+    for name, (duration, fps, (w, h)) in GIFS.items():
+        target = os.path.join(directory, f"bench_{name.replace(' ', '_')}.gif")
+        t0 = time.perf_counter()
+        an.animate(robot, motion, target, fps=fps, duration=duration, color_by="force",
+                   gravity=gravity, width=w, height=h)
+        out[name] = {"s": time.perf_counter() - t0, "mb": os.path.getsize(target) / 1e6}
+        if not keep:
+            os.remove(target)
     return out
 
 
@@ -114,6 +127,9 @@ def main() -> int:
               f"{max(walls):.1f}; {args.repeat} runs), {size / 1e6:.1f} MB; "
               f"{'MET' if max(walls) <= TARGET_S else 'NOT MET'} (target {TARGET_S:g} s); "
               f"other processes used {np.mean(others):.2f} core meanwhile")
+    saved["gifs"] = gifs(robot, motion, scene.gravity, directory, keep=bool(args.out))
+    for name, g in saved["gifs"].items():
+        print(f"  GIF {name}: {g['s']:.1f} s, {g['mb']:.1f} MB")
     saved["stages"] = stages(robot, motion, scene.gravity)
     for name, seconds in saved["stages"].items():
         print(f"  {name}: {seconds:.2f} s")

@@ -17,9 +17,11 @@ N ≥ 10⁴ and ≤ 3 × one ``pin.rnea`` call at N = 1.
 
 Usage::
 
-    python scripts/bench_serial.py [CSV] [--sizes 1 100 10000 100000]
+    python benchmarks/bench_serial.py [CSV] [--sizes 1 100 10000 100000] [--save]
 
-writes the table to ``CSV`` (default ``bench_serial.csv`` in the current directory).
+writes the table to ``CSV`` (default ``bench_serial.csv`` in the current directory);
+``--save`` also writes ``benchmarks/results/bench_serial.json``, from which ``python
+scripts/figures.py`` writes the README's serial figures.
 """
 
 from __future__ import annotations
@@ -42,6 +44,8 @@ except ImportError:  # run from a checkout without installing
 from offshore_crane.serial import reference
 
 import pinocchio as pin
+
+from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 
 ROBOTS_DIR = Path(importlib.metadata.distribution("example-robot-data").locate_file(
     "cmeel.prefix/share/example-robot-data/robots"))
@@ -140,6 +144,7 @@ def main(argv=None) -> int:
                         help="output CSV (default bench_serial.csv)")
     parser.add_argument("--sizes", type=int, nargs="+", default=[1, 10_000, 100_000],
                         help="batch sizes N")
+    add_save_option(parser, "bench_serial")
     args = parser.parse_args(argv)
     print(f"µs per sample (best of repeats); numpy {np.__version__}, pinocchio "
           f"{pin.__version__}")
@@ -155,6 +160,8 @@ def main(argv=None) -> int:
             writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
                              for k, v in r.items()})
     print(f"wrote {args.csv}")
+    if args.save:
+        save("bench_serial", {**stamp(), "pinocchio": pin.__version__, "rows": rows})
     return 0
 
 

@@ -43,7 +43,7 @@ def pytest_sessionstart(session):
     say = session.config.pluginmanager.get_plugin("terminalreporter")
     if say is not None:
         say.write_line("Numba kernels: loading them, or compiling them first on a fresh "
-                       "clone (about 65 s on 2 cores) ...", flush=True)
+                       "clone (minutes on a cold cache) ...", flush=True)
     t0 = time.perf_counter()
     worker = hasattr(session.config, "workerinput")
     _COMPILE["parts"] = compile_all(jobs=1 if worker else None)

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import importlib
 
+from offshore_crane.lazy import find_submodule
 from offshore_crane.dynamics import Result, inverse_dynamics
 from offshore_crane.dynamics.forward import (EquationsOfMotion, actuation_matrix,
                                              bias_forces, forward_dynamics, mass_matrix)
@@ -35,7 +36,8 @@ __all__ = ["load_robot", "Robot", "inverse_dynamics", "forward_dynamics", "mass_
            "bias_forces", "actuation_matrix", "simulate", "Controller", "Result",
            "CableResult", "EquationsOfMotion", "SimulationResult"]
 
-#: The columns, loaded on first use as ``oc.<name>``.
+#: The columns, loaded on first use as ``oc.<name>`` (as is every other sub-module, and
+#: theirs in turn: ``oc.dynamics.cable``; :mod:`offshore_crane.lazy`).
 SUBPACKAGES = ("errors", "conventions", "robot", "motion", "dynamics", "reference",
                "simulation", "scenes", "studies", "outputs", "serial", "cli")
 
@@ -48,8 +50,9 @@ _COMPATIBLE = {"ACTUATORS": "conventions", "ACTUATOR_UNITS": "conventions",
 
 
 def __getattr__(name: str):
-    if name in SUBPACKAGES:
-        return importlib.import_module(f"{__name__}.{name}")
+    module = find_submodule(__name__, name)
+    if module is not None:
+        return module
     if name in _COMPATIBLE:
         return getattr(importlib.import_module(f"{__name__}.{_COMPATIBLE[name]}"), name)
     errors = importlib.import_module(f"{__name__}.errors")

@@ -28,10 +28,11 @@ from offshore_crane.progress import first_time, notice
 #: Kernels compiled (not found in the cache) by this process so far.
 COMPILED = [0]
 #: Said once per process before the first kernel compiles (:func:`offshore_crane.
-#: progress.notice`); the figures are the whole set's cold compile on a 2-core machine.
+#: progress.notice`). It gives no time: the cold compile's depends on the machine's cores
+#: and load (``benchmarks/compile.py`` measures it; the README says what it measured).
 COMPILE_NOTICE = ("compiling the Numba kernels this run needs, once (they are cached "
-                  "afterwards; the whole set takes about 2 min in one process on 2 cores, "
-                  "65 s with 'offshore-crane compile', which does it up front in parallel)")
+                  "afterwards; the whole set takes minutes, 'offshore-crane compile' does "
+                  "it up front in parallel processes)")
 
 
 class KernelCacheWarning(UserWarning):

@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from offshore_crane.lazy import submodule_getattr
 from offshore_crane.errors import InputError, OffshoreCraneError
 
 #: Modules adding sub-commands: each has ``add_parser(subparsers)``, which registers its
@@ -139,3 +140,5 @@ def _negative_numbers(argv):
     return [f" {a}" if number.match(a) else a for a in argv]
 
 
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

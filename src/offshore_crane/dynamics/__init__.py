@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from offshore_crane.lazy import submodule_getattr
 from offshore_crane.conventions import LANES
 from offshore_crane.dynamics.inverse import (APPROXIMATIONS, LEG_MODELS, METHODS, PYTHON_MAX, REGISTRY,
                                              STATIC_MIN, Result, inverse_dynamics, solve)
@@ -55,3 +56,7 @@ def warm_up(robot=None, methods: tuple[str, ...] = METHODS,
     forward_dynamics(robot, q, 0 * q, 0 * q, limits=False)
     out.append(("forward dynamics", time.perf_counter() - t0))
     return out
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

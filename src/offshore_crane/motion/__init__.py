@@ -10,12 +10,10 @@ A motion source may check its own output against the robot
 
 from __future__ import annotations
 
-import importlib
+from offshore_crane.lazy import submodule_getattr
 
 __all__ = ["trajectories", "operations", "sea"]
 
 
-def __getattr__(name: str):
-    if name in __all__:
-        return importlib.import_module(f"{__name__}.{name}")
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

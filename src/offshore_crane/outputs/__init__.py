@@ -4,12 +4,10 @@ Matplotlib, Pillow, imageio and viser are imported by the functions that use the
 
 from __future__ import annotations
 
-import importlib
+from offshore_crane.lazy import submodule_getattr
 
 __all__ = ["report", "sizing_plots", "visual", "export"]
 
 
-def __getattr__(name: str):
-    if name in __all__:
-        return importlib.import_module(f"{__name__}.{name}")
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

@@ -21,3 +21,9 @@ heavy dependencies (Numba, Pinocchio) itself.
   loops (Newton on Pinocchio's frame placements and Jacobians); it checks its own
   residuals and the URDF's joint limits.
 """
+
+from offshore_crane.lazy import submodule_getattr
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

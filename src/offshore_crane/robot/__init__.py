@@ -21,6 +21,7 @@ from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from offshore_crane.lazy import submodule_getattr
 from offshore_crane.conventions import (ACTUATED_JOINTS, ACTUATORS, ACTUATOR_UNITS, ARM_JOINTS,
                            PLATFORM_JOINTS)
 from offshore_crane.robot.hybrid import HybridModel
@@ -234,3 +235,7 @@ def _load(path: str, content: bytes, canonical: dict) -> Robot:
             robot = _ROBOTS[key] = Robot(urdf, cached, spec)
             robot.description_content = content
     return robot
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

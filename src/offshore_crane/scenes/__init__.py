@@ -94,6 +94,8 @@ file and the key, e.g. ``scenes/x.toml: [payload] mass = -1: must be ≥ 0 kg``.
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.scenes.reading import scene_from_dict, load_scene
 from offshore_crane.scenes.assembly import (controller, deck_pose, sea_trajectory, load_robot,
                                             still_water_level, target_deck, lift_deck,
@@ -109,3 +111,7 @@ from offshore_crane.scenes.keys import (SECTIONS, TOP_KEYS, SUBSYSTEM_KEYS, PAYL
                                         CONTROL_KEYS, CONTROLLER_KEYS, SCENE_FIELDS,
                                         FIDELITY_REPEAT)
 from offshore_crane.scenes.scene import Payload, Scene, sea_arguments, check_scene, hoist_waypoints
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

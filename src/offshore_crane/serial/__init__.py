@@ -28,7 +28,13 @@ Quick start::
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.robot.chain import SerialChain
 from offshore_crane.serial.core import GRAVITY, inverse_dynamics, load_chain, random_states
 
 __all__ = ["SerialChain", "GRAVITY", "load_chain", "inverse_dynamics", "random_states"]
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

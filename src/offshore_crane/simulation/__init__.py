@@ -4,7 +4,13 @@ swinging on its cable)."""
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.simulation.control import Controller
 from offshore_crane.simulation.rigid import SimulationResult, simulate
 
 __all__ = ["Controller", "SimulationResult", "simulate"]
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from offshore_crane import progress
+from offshore_crane.lazy import submodule_getattr
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import (InputError, NumericalError, SingularConfigurationError,
                                    SlackCableError)
@@ -394,3 +395,7 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
                      hoist=lambda tt: (np.full(len(tt), length), 0 * tt, 0 * tt))
     elastic_inverse_dynamics(robot, q, 0 * q, 0 * q, limits=False, t=t, ea=1e4)
     return [("hanging-load kernels", time.perf_counter() - t0)]
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

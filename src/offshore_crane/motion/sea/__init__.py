@@ -67,6 +67,8 @@ which agrees with the linear rotation to second order)."""
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.conventions import SPECTRA
 from offshore_crane.motion.sea.arguments import DOFS, DEFAULT_DIRECTIONS
 from offshore_crane.motion.sea.spectra import (default_gamma, jonswap_normalisation, spectrum,
@@ -82,3 +84,7 @@ __all__ = ["DOFS", "SPECTRA", "RAO_COLUMNS", "VESSELS", "DEFAULT_DIRECTIONS",
            "response_spectrum",
            "RAOTable", "load_raos", "vessel_raos", "ShipMotion", "sea_state", "ship_motion",
            "SeaMotion", "sea_motion", "platform_trajectory", "DeckMotion", "deck_motion"]
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

@@ -14,6 +14,8 @@ Sources:
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.motion.trajectories.paper import (TABLE1_PERIOD, DEFAULT_RATE, MAX_SAMPLES,
                                                       time_grid, table1)
 from offshore_crane.motion.trajectories.differences import finite_difference
@@ -33,3 +35,7 @@ __all__ = [
     "Trajectory",
     "load",
 ]
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

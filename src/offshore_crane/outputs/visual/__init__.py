@@ -9,12 +9,10 @@ by the functions that need them, with an install hint when they are missing
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 __all__ = ["poses", "render", "animate", "motion", "viewer"]
 
 
-def __getattr__(name):
-    if name in __all__:
-        import importlib
-
-        return importlib.import_module(f".{name}", __name__)
-    raise AttributeError(f"module 'offshore_crane.outputs.visual' has no attribute '{name}'")
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

@@ -44,6 +44,8 @@ serve ``constraintDynamics`` only: pin 4.1's ``lcaba`` leaves a nonzero
 its target (see ``benchmarks/pinocchio_fd.py``).
 """
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.conventions import (ACTUATED_JOINTS, ARM_JOINTS, LEG_JOINTS, N_LEGS,
                                         PLATFORM_JOINTS)
 from offshore_crane.reference.constrained.closure import (NEWTON_MAX_ITER, NEWTON_TOLERANCE,
@@ -62,3 +64,7 @@ __all__ = ["ACCELERATION_RESIDUAL_BOUND", "ACCURACY", "ACTUATED_JOINTS", "ARM_JO
            "NEWTON_TOLERANCE", "PLATFORM_JOINTS", "PROXIMAL_MAX_ITER", "PROXIMAL_MU",
            "VELOCITY_RESIDUAL_BOUND", "ConstrainedDynamics", "LoopTree", "TreeStates",
            "constrained_dynamics", "forward_dynamics", "loop_tree", "tree_states"]
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

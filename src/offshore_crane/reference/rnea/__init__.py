@@ -20,6 +20,8 @@ angles, sphere heights); it applies no workspace limit nor singularity policy: i
 Frames: the base frame is Pinocchio's world (the URDF root ``base``); units SI.
 """
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.reference.rnea.closure import (MAX_NEWTON, MAX_TURN, RESIDUAL_TOL,
                                                    tree_state, tree_states)
 from offshore_crane.reference.rnea.projection import (BLOCK, Forces, actuator_forces, pool,
@@ -29,3 +31,7 @@ from offshore_crane.reference.rnea.tree import Chain, Tree, read_tree
 __all__ = ["BLOCK", "MAX_NEWTON", "MAX_TURN", "RESIDUAL_TOL", "Chain", "Forces", "Tree",
            "actuator_forces", "pool", "project", "read_tree", "rnea_projected", "tree_state",
            "tree_states"]
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

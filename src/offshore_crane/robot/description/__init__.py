@@ -160,6 +160,8 @@ axes parallel to the leg; a singular leg arrangement at home."""
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.robot.description.schema import (FORMAT, DESCRIPTION_DIR, DEFAULT_DESCRIPTION,
                                                      N_LEGS, MAGNITUDE_LIMIT, COM_RTOL,
                                                      ANCHOR_RTOL, ORTHOGONAL_TOL,
@@ -176,3 +178,7 @@ from offshore_crane.robot.description.results import (Capacities, Body, ArmJoint
 from offshore_crane.robot.description.loading import resolve, frozen, resolve_data
 from offshore_crane.robot.description.files import (description_dir, default_description, read_description,
                                                     read_toml, label)
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

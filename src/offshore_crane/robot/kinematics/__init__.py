@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from offshore_crane.lazy import submodule_getattr
 from offshore_crane.robot.kinematics import formulas as F
 from offshore_crane.validation import thread_count
 
@@ -229,3 +230,7 @@ def actuator_motion(robot, q, qd, legs: bool = True):
             p[:, 3 + i] = length
             v[:, 3 + i] = F.dot(u, F.point_velocity(velocity, omega, r))
     return p, v
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

@@ -16,6 +16,8 @@ in the bodies' inertial parameters, ``X = Y(q, q̇, q̈) π``.
 docs/identification.md has the formulas, the groupings and the checks.
 """
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.studies.identification._regressor import FRICTION, Regressor, regressor
 from offshore_crane.studies.identification._base import (RANK_TOLERANCE, BaseParameters,
                                                          base_parameters, random_states)
@@ -34,3 +36,7 @@ __all__ = ["FRICTION", "PRIOR_WEIGHT", "RANK_TOLERANCE", "BaseParameters", "Fit"
            "consistent_parameters", "excitation_condition", "fit_base", "fourier_excitation",
            "identified_description", "log_derivatives", "optimise_excitation",
            "random_states", "regressor", "within_limits"]
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

@@ -37,6 +37,8 @@ formulas and the choices."""
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.robot.kinematics import actuator_motion
 from offshore_crane.studies.sizing.envelopes import (CAPACITIES, QUANTITIES, KINDS,
                                                      POSITION_UNITS, SPEED_UNITS, Envelope,
@@ -49,3 +51,7 @@ from offshore_crane.studies.sizing.extremes import (MIN_SEEDS, EXPOSURE, covers_
                                                     most_probable_extreme)
 from offshore_crane.studies.sizing.verdicts import Verdict, verdict
 from offshore_crane.studies.sizing.formatting import format_envelope, format_verdict
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

@@ -39,6 +39,8 @@ offshore-crane[sweep]``), imported when used."""
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.studies.sweep.grid import (MAX_CASES, SEA_KEYS, CaseIds, Grid, case_id,
                                                case_scene, check_grid, load_grid,
                                                scene_values)
@@ -50,3 +52,7 @@ from offshore_crane.studies.sweep.running import run
 from offshore_crane.studies.sweep.assessment import (VERDICT_COLUMNS, CRITERIA, group_keys, verdicts,
                                                       Scatter, load_scatter, limiting_hs,
                                                       operability)
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)

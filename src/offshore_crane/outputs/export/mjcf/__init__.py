@@ -39,6 +39,8 @@ pose with the static actuator forces as ``ctrl``."""
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
+
 from offshore_crane.outputs.export.mjcf.exporting import joint_values, export
 from offshore_crane.outputs.export.mjcf.tree import mjcf_from_urdf
 from offshore_crane.outputs.export.mjcf.mujoco import mujoco_state, load, MujocoForward, forward
@@ -49,3 +51,7 @@ from offshore_crane.outputs.export.mjcf.settings import (TIMESTEP, INTEGRATOR, S
 
 __all__ = ["MJCF", "export", "mjcf_from_urdf", "joint_values", "mujoco_state", "load",
            "forward", "MujocoForward", "AGREEMENT", "CABLE_JOINTS", "TIMESTEP", "INTEGRATOR", "SOLREF", "SOLIMP"]
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).
+__getattr__ = submodule_getattr(__name__)
