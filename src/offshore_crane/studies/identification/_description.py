@@ -78,7 +78,9 @@ def identified_description(robot, R: Regressor, pi: np.ndarray, header: str = ""
         if not cols:
             continue
         own = pi[cols]
-        lines = [f"identified ({body}); nominal: mass {nominal[body][0]:.6g} kg"]
+        lines = [f"{body}: not identifiable alone (nominal mass {nominal[body][0]:.6g} kg): "
+                 "the consistent split, nearest the nominal values, of the base "
+                 "parameters the header lists"]
         if body in _WELDED:
             welded, get = _WELDED[body]
             part = get(spec)
