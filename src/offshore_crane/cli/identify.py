@@ -65,6 +65,14 @@ def _log(path: str, what: str, cutoff):
 
 
 def run(args) -> int:
+    """The command, its linear algebra on one BLAS thread (dynamics.runtime)."""
+    from offshore_crane.dynamics.runtime import one_blas_thread
+
+    with one_blas_thread():
+        return _run(args)
+
+
+def _run(args) -> int:
     import numpy as np
 
     from offshore_crane import scenes

@@ -126,8 +126,6 @@ class _Solution(NamedTuple):
 def _solve(Yb: np.ndarray, X: np.ndarray, weights: np.ndarray) -> _Solution:
     """Least squares of ``X * weights`` on ``Yb * weights`` (per actuator) along the
     directions the record excites (see the module docstring)."""
-    from scipy.linalg import qr
-
     from offshore_crane.studies.identification._base import RANK_TOLERANCE
 
     r = Yb.shape[-1]
@@ -135,8 +133,7 @@ def _solve(Yb: np.ndarray, X: np.ndarray, weights: np.ndarray) -> _Solution:
     scale = np.linalg.norm(W, axis=0)
     W[:, scale <= NEGLIGIBLE * scale.max()] = 0.0      # round-off: the motion lacks it
     scale = np.where(scale > NEGLIGIBLE * scale.max(), scale, 1.0)
-    Ra = qr(np.column_stack([W / scale, (X * weights).reshape(-1)]), mode="r",
-            overwrite_a=True, check_finite=False)[0]
+    Ra = np.linalg.qr(np.column_stack([W / scale, (X * weights).reshape(-1)]), mode="r")
     U, s, Vt = np.linalg.svd(Ra[:r, :r])
     k = int(np.sum(s > RANK_TOLERANCE * s[0])) if s[0] > 0.0 else 0
     Vk = Vt[:k].T                                              # (r, k), scaled coordinates

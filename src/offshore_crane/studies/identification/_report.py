@@ -16,6 +16,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from offshore_crane.dynamics.runtime import one_blas_thread
+
 #: A determined base parameter is weak when its σ exceeds this share of its terms'
 #: nominal size (the log barely excites it: its value leans on few samples).
 WEAK = 0.1
@@ -86,6 +88,7 @@ def base_rows(base, fit, R) -> list[BaseRow]:
     return rows
 
 
+@one_blas_thread()
 def mass_totals(base, fit, R, pi: np.ndarray) -> tuple[list[MassTotal], list[str]]:
     """The mass totals the forces determine (a basis of them in reduced row echelon form,
     so each is a plain sum where one exists), nominal and identified (from ``pi (P,)``)
