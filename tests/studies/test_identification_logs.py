@@ -54,7 +54,9 @@ def test_the_fit_and_its_covariance_match_a_50_digit_reference():
     loses ~cond · 1e-16 = 1e-9; the bound leaves 100×); the covariance is symmetric
     positive semi-definite (its smallest eigenvalue ≥ −1e-12 of its largest) and
     ``rootᵀ root`` is the reference information matrix ``W_wᵀ W_w`` to 1e-12 of its
-    largest entry (a product of the factor: round-off of the largest)."""
+    largest entry (a product of the factor: round-off of the largest). The reported
+    condition number is the weighted, column-scaled matrix's: within a factor 1.5 of the
+    constructed 1e7 (the weights and the scaling move it)."""
     mp = pytest.importorskip("mpmath")
     mp.mp.dps = 50
     Y, X, _ = _regression(0, 1e7)
@@ -82,7 +84,8 @@ def test_the_fit_and_its_covariance_match_a_50_digit_reference():
 def test_a_record_that_excites_only_some_parameters_is_fitted_along_them():
     """Two base parameters whose columns are zero (not excited) and two whose columns are
     equal (excited only as their sum): the others are fitted as without them (against
-    least squares on the excited columns alone, to 1e-10), the four have σ = inf and
+    least squares on the excited columns alone, to 1e-10: round-off of a condition
+    number 1e3 problem with β ~ 1 is ~1e-13), the four have σ = inf and
     ``determined`` False, the sum of the equal pair is fitted, and nothing raises."""
     Y, X, _ = _regression(1, 1e3, r=6)
     Z = np.concatenate([Y, np.zeros(Y.shape[:2] + (2,)), Y[..., :1], Y[..., :1]], axis=2)

@@ -4,10 +4,13 @@ The log is a run's CSV (``t_s``, q1..q9, optionally their rates and acceleration
 the actuator forces ``T1_Nm..Fl6_N``: what ``simulate --out`` writes, or a test rig's
 record in the same columns). Without rates in the log, or with ``--cutoff``, the
 positions are low-passed (zero-phase Butterworth) and differentiated. Fitted: the base
-parameters by weighted least squares with their σ, lifted to every body's physically
-consistent parameters (docs/identification.md). Printed: the fit's residual and noise per
-actuator, the bodies whose parameters moved most, and with ``--validate`` the prediction
-error on a second log.
+parameters by weighted least squares with their σ, along what the log excites, lifted to
+every body's physically consistent parameters (docs/identification.md). Printed: what the
+log determines (the base parameters with σ and meaning, the identifiable mass totals)
+apart from what the prior decided (each body's own values: not identifiable alone), the
+noise and residual per actuator, one line naming what a poorly exciting log leaves
+undetermined and the coordinates to move, and with ``--validate`` the prediction error on
+a second log. Any log gives this answer or one line saying why not.
 """
 
 from __future__ import annotations
