@@ -438,12 +438,35 @@ def bench_rows(r: dict) -> dict:
     return out
 
 
+def identification_rows(r: dict) -> dict:
+    """benchmarks/identification.py's figures: excite's and identify's time as a user
+    runs them, and the excitation's condition number."""
+    e, i = r["excite"], r["identify"]
+    where = (f"median of {r['repeats']}, {r['cores']} cores at load average "
+             f"{r['load_average']:.1f}, {r['date']}")
+    page = "docs/identification.md"
+    return {
+        (page, "figure identification-excite"):
+            f"measured condition number **{_sci(r['condition'])}** against Table 1's "
+            f"**{_sci(r['table1_condition'])}** ({r['table1_condition'] / r['condition']:.0f}× "
+            f"smaller; the issue's bound 10×), in **{e['cpu_s']:.1f} s of CPU** "
+            f"({e['cpu_min_s']:.1f}–{e['cpu_max_s']:.1f} s, wall {e['wall_s']:.1f} s; "
+            f"`benchmarks/identification.py`, {where})",
+        (page, "figure identification-identify"):
+            f"`identify` on a 20 s log of it at 1 kHz without rates ({r['log_samples']} "
+            f"samples once the filter's ends are dropped) takes **{i['cpu_s']:.1f} s of "
+            f"CPU** ({i['cpu_min_s']:.1f}–{i['cpu_max_s']:.1f} s, wall {i['wall_s']:.1f} s; "
+            f"{where})",
+    }
+
+
 #: Each saved result and the figures it renders.
 RENDERERS = {"sweep": sweep_rows, "animate": animate_rows, "cable_swing": cable_swing_rows,
              "sea_synthesis": sea_synthesis_rows, "pinocchio_fd": pinocchio_fd_rows,
              "mjcf_agreement": mjcf_agreement_rows, "lift": lift_rows,
              "roofline": roofline_rows, "compile": compile_rows, "ci": ci_rows,
-             "bench_serial": bench_serial_rows, "bench": bench_rows}
+             "bench_serial": bench_serial_rows, "bench": bench_rows,
+             "identification": identification_rows}
 
 #: Saved results that are not ``benchmarks/results/NAME.json``, and how to read them.
 SOURCES = {"bench": (ROOT / "docs" / "bench" / "summary.md", read_summary)}

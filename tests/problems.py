@@ -1,4 +1,5 @@
-"""Reference problems shared by the tests: seeded random states inside the workspace."""
+"""Reference problems shared by the tests: seeded random states inside the workspace, a
+robot held at home, and a perturbed "true" robot for identification."""
 
 from __future__ import annotations
 
@@ -40,3 +41,30 @@ def held_at_home(robot, duration: float, rate: float):
     q = np.zeros((len(t), 9))
     q[:, 2] = robot.home_height
     return t, q, np.zeros_like(q), np.zeros_like(q)
+
+
+def true_robot(nominal, fraction: float = 0.2, seed: int = 0):
+    """The lab robot with every body's mass, CoM and principal inertias perturbed by up to
+    ``fraction`` (the CoM by that share of its largest coordinate, at least 1 cm), each
+    inertia kept physically consistent (the triangle inequalities; redrawn otherwise)."""
+    rng = np.random.default_rng(seed)
+    s = nominal.spec
+    bodies = {"platform": s.platform, "legs.lower": s.lower[0], "legs.upper": s.upper[0]}
+    for name in ("column", "link1", "link2", "slider"):
+        v = s.arm[name]
+        bodies[f"arm.{name}"] = v.body if hasattr(v, "body") else next(
+            x for x in v if hasattr(x, "mass"))
+    out = {}
+    for name, b in bodies.items():
+        out[f"{name}.mass"] = b.mass * (1.0 + rng.uniform(-fraction, fraction))
+        reach = max(np.abs(b.com).max(), 0.01)
+        out[f"{name}.com"] = list(b.com + rng.uniform(-fraction, fraction, 3) * reach)
+        while True:
+            J = np.diag(b.inertia) * (1.0 + rng.uniform(-fraction, fraction, 3))
+            if J[0] + J[1] >= J[2] and J[1] + J[2] >= J[0] and J[0] + J[2] >= J[1]:
+                break
+        out[f"{name}.inertia"] = dict(ixx=J[0], iyy=J[1], izz=J[2], ixy=0.0, ixz=0.0,
+                                      iyz=0.0)
+    from offshore_crane import load_robot
+
+    return load_robot(overrides=out)

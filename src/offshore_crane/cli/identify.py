@@ -4,10 +4,13 @@ The log is a run's CSV (``t_s``, q1..q9, optionally their rates and acceleration
 the actuator forces ``T1_Nm..Fl6_N``: what ``simulate --out`` writes, or a test rig's
 record in the same columns). Without rates in the log, or with ``--cutoff``, the
 positions are low-passed (zero-phase Butterworth) and differentiated. Fitted: the base
-parameters by weighted least squares with their σ, lifted to every body's physically
-consistent parameters (docs/identification.md). Printed: the fit's residual and noise per
-actuator, the bodies whose parameters moved most, and with ``--validate`` the prediction
-error on a second log.
+parameters by weighted least squares with their σ, along what the log excites, lifted to
+every body's physically consistent parameters (docs/identification.md). Printed: what the
+log determines (the base parameters with σ and meaning, the identifiable mass totals)
+apart from what the prior decided (each body's own values: not identifiable alone), the
+noise and residual per actuator, one line naming what a poorly exciting log leaves
+undetermined and the coordinates to move, and with ``--validate`` the prediction error on
+a second log. Any log gives this answer or one line saying why not.
 """
 
 from __future__ import annotations
@@ -39,6 +42,9 @@ def add_parser(sub) -> None:
     p.set_defaults(run=run)
 
 
+#: Above this RMS misfit [σ] of the consistent robot a line says the log is not a rigid
+#: robot's (noise alone gives ~1).
+MISFIT = 3.0
 #: The positions' low-pass when the log has no rates [Hz].
 DEFAULT_CUTOFF = 5.0
 
@@ -62,6 +68,14 @@ def _log(path: str, what: str, cutoff):
 
 
 def run(args) -> int:
+    """The command, its linear algebra on one BLAS thread (dynamics.runtime)."""
+    from offshore_crane.dynamics.runtime import one_blas_thread
+
+    with one_blas_thread():
+        return _run(args)
+
+
+def _run(args) -> int:
     import numpy as np
 
     from offshore_crane import scenes
@@ -88,26 +102,34 @@ def run(args) -> int:
     except InputError as exc:
         raise InputError(f"--log {args.log}: {exc}", name="--log") from None
     bounds = ident.com_bounds(robot, R)
-    pi, misfit = ident.consistent_parameters(base.K, fit.beta, fit.covariance, R.pi,
+    pi, misfit = ident.consistent_parameters(base.K, fit.beta, fit.root, R.pi,
                                              com_bounds=bounds)
+    rows = ident.base_rows(base, fit, R)
     print(f"offshore-crane identify: {args.log}, {len(t)} samples, t = {t[0]:.2f}.."
-          f"{t[-1]:.2f} s; {base.rank} base parameters of {len(R.pi)} (condition number "
-          f"{fit.condition:.4g}); every body physically consistent: "
-          f"{'yes' if ident.consistent(pi) else 'NO'} (base misfit {misfit:.3g} σ RMS)")
+          f"{t[-1]:.2f} s; the log determines {int(fit.determined.sum())} of the {base.rank} "
+          f"base parameters (of {len(R.pi)} standard ones; it excites {fit.excited} "
+          f"independent combinations, condition number {fit.condition:.4g}); every "
+          f"body physically consistent: {'yes' if ident.consistent(pi) else 'NO'} (base "
+          f"misfit {misfit:.3g} σ RMS)")
     print(f"{'actuator':<9}{'unit':<6}{'noise σ':>12}{'residual RMS':>14}")
     for k, (a, u) in enumerate(zip(ACTUATORS, ACTUATOR_UNITS)):
         print(f"{a:<9}{u:<6}{fit.noise[k]:>12.4g}"
               f"{np.sqrt(np.mean(fit.residual[:, k] ** 2)):>14.4g}")
+    masses = _masses(*ident.mass_totals(base, fit, R, pi))
+    for line in _determined(rows) + masses:
+        print(line)
+    missing = ident.unexcited(rows, base, R.names, qd)
+    if missing:
+        print(missing)
+    if misfit > MISFIT:
+        print(f"the consistent robot misses the log's base parameters by {misfit:.3g} σ RMS: "
+              "the forces are not all those of a rigid robot of this geometry (the "
+              "filter's error on q̈ for a log without rates, friction, a load not in the "
+              "description?)")
     held = ident.bounded_bodies(pi, bounds, R)
     if held:
         print(f"centres of mass held at their part's end (the log did not place them "
               f"inside): {', '.join(held)}")
-    masses = [(n.split(".")[0], R.pi[j], pi[j]) for j, n in enumerate(R.names)
-              if n.endswith(".m")]
-    print("masses [kg], nominal → identified (a body's mass alone may not be "
-          "identifiable: docs/identification.md):")
-    for body, m0, m1 in masses:
-        print(f"  {body:<14}{m0:>9.4g} → {m1:.4g}")
     if args.validate:
         t2, q2, qd2, qdd2, X2 = _log(args.validate, "--validate", args.cutoff)
         pred = ident.regressor(robot, q2, qd2, qdd2, gravity=scene.gravity).Y @ pi
@@ -116,8 +138,46 @@ def run(args) -> int:
               + ", ".join(f"{a} {e:.4g}" for a, e in zip(ACTUATORS, err))
               + f" [N·m, N]; largest {err.max() / np.abs(X2).max():.3g} of the peak force")
     if args.out:
-        _write(outputs["--out"], args, robot, R, pi, base, fit, len(t))
+        _write(outputs["--out"], args, robot, R, pi, rows, masses + [missing or ""],
+               len(t))
     return 0
+
+
+def _determined(rows) -> list[str]:
+    """The base parameters the log determines (then the weak ones), one line each: name,
+    value ± σ with unit, meaning."""
+    from offshore_crane.studies.identification import WEAK
+
+    out = []
+    for status, title in (("determined", "base parameters the log determines (value ± σ; "
+                           "the forces see only these combinations of the bodies' "
+                           "parameters)"),
+                          ("weak", f"weakly determined (σ above {WEAK:.0%} of its "
+                           "terms' nominal size: the log barely excites them)")):
+        chosen = [r for r in rows if r.status == status]
+        if chosen:
+            out.append(f"{title}:")
+            out += [f"  {r.name:<6}{r.value:>13.6g} ± {r.sigma:<9.2g}{r.unit:<6} {r.meaning}"
+                    for r in chosen]
+    return out
+
+
+def _masses(totals, alone) -> list[str]:
+    """The mass totals the forces determine, and the bodies whose mass is not
+    identifiable alone."""
+    import numpy as np
+
+    out = ["mass totals the forces determine [kg], nominal → identified ± σ (a welded body "
+           "counts in its carrier: the arm's column in the platform, a welded payload in "
+           "the slider):"]
+    out += [f"  {m.label:<58}{m.nominal:>9.4g} → {m.identified:.6g} ± "
+            + (f"{m.sigma:.2g}" if np.isfinite(m.sigma) else "? (this log does not "
+               "determine it)")
+            for m in totals]
+    if alone:
+        out.append("not identifiable alone (the prior's split, nearest the nominal values: "
+                   f"the written description has them): the masses of {', '.join(alone)}")
+    return out
 
 
 def _excitation(path: str, robot, base, t, q) -> None:
@@ -142,9 +202,10 @@ def _excitation(path: str, robot, base, t, q) -> None:
           f"it within {rms[j]:.3g} RMS (worst coordinate {Q_COLUMNS[j]})")
 
 
-def _write(target, args, robot, R, pi, base, fit, n) -> None:
-    """Write the identified description, with the base parameters and their σ in its
-    header, and check that it loads."""
+def _write(target, args, robot, R, pi, rows, notes, n) -> None:
+    """Write the identified description, its header saying what the log determines (the
+    base parameters with σ, meaning and combination, ``notes``: the mass totals and what
+    the log does not excite) and what the prior decided, and check that it loads."""
     from offshore_crane.io import write_text
     from offshore_crane.robot.description import resolve
     from offshore_crane.studies import identification as ident
@@ -153,15 +214,36 @@ def _write(target, args, robot, R, pi, base, fit, n) -> None:
     over = "".join(f", {k} = {v}" for k, v in spec.overrides.items())
     header = [f"The robot identified by offshore-crane identify from {args.log} ({n} "
               "samples).", f"Nominal description: {spec.path}{over}.",
-              "Every body's mass, com and inertia below are identified and physically",
-              "consistent; the forces determine only the base parameters (their values",
-              "and standard deviations below, docs/identification.md), the rest is kept",
-              "nearest the nominal values.", "",
-              f"{base.rank} base parameters (value ± σ [SI units of their terms]):"]
-    header += [f"  {line.split(' = ')[0]} = {fit.beta[k]:.10g} ± {fit.sigma[k]:.3g}: "
-               f"{line.split(' = ', 1)[1]}" for k, line in enumerate(base.describe())]
+              "What the log determines: the base parameters below (value ± σ [SI units",
+              "of their terms], their meaning and combination); the forces see nothing",
+              "else. What the prior decided: each body's own mass, centre of mass and",
+              "inertia in the tables below are not identifiable alone; they are the",
+              "physically consistent split, nearest the nominal values, of these",
+              "combinations (docs/identification.md)."]
+    header += [""] + [w for line in notes if line
+                      for w in (_wrapped(line) if len(line) > 100 else [line])]
+    titles = {"determined": "Determined by the log", "weak": "Weakly determined (σ above "
+              "a tenth of its terms' nominal size)", "not excited": "Not excited by this "
+              "log (the prior decided them; the value is the description's)"}
+    for status, title in titles.items():
+        chosen = [r for r in rows if r.status == status]
+        if chosen:
+            header += ["", f"{title}: {len(chosen)}"]
+            for r in chosen:
+                value = (f"{r.value:.10g} ± {r.sigma:.3g}" if status != "not excited" else
+                         "(none from the log)")
+                header += [*_wrapped(f"{r.name} = {value} {r.unit}: {r.meaning}", "  "),
+                           *_wrapped(f"= {r.combination}", "      ")]
     text = ident.identified_description(robot, R, pi, "\n".join(header))
     resolve(args.out, content=text.encode())           # it loads (or says why)
     write_text(target, text)
     print(f"wrote {args.out}: the identified robot (run any command with --robot "
           f"{args.out})")
+
+
+def _wrapped(text: str, indent: str = "") -> list[str]:
+    """``text`` as comment lines of at most 86 characters."""
+    import textwrap
+
+    return textwrap.wrap(text, 86, initial_indent=indent, subsequent_indent=indent + "  ",
+                         break_on_hyphens=False)

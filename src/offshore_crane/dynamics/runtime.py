@@ -7,6 +7,7 @@ hanging load (:mod:`.cable`) and the simulation loops.
 
 from __future__ import annotations
 
+import contextlib
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -90,3 +91,26 @@ def resolve_backend(backend: str) -> str:
         return "numba" if numba_available() else "numpy"
     return backend
 
+
+
+@contextlib.contextmanager
+def one_blas_thread():
+    """Inside: NumPy's and SciPy's BLAS and LAPACK on one thread (threadpoolctl; without
+    it, nothing changes). For loops of many small factorisations (identification's
+    regressors, QR and SVD of a few thousand rows by 100 columns): on 2 busy cores
+    OpenBLAS's threads made each such call 50-100× slower than one thread (a 2700 × 100
+    SVD: 0.9 s against 8 ms, measured on this project's machine), and on an idle machine
+    they gain nothing at these sizes. SciPy is imported first so that its own BLAS is
+    limited too (threadpoolctl limits the libraries loaded when it is entered)."""
+    import importlib
+    import importlib.util
+
+    if importlib.util.find_spec("scipy") is not None:
+        importlib.import_module("scipy.linalg")        # loads SciPy's BLAS before the limit
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:                 # threadpoolctl missing: threads as they are
+        yield
+        return
+    with threadpool_limits(limits=1, user_api="blas"):
+        yield

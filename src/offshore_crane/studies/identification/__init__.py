@@ -8,9 +8,12 @@ in the bodies' inertial parameters, ``X = Y(q, q̇, q̈) π``.
   the regressor stacked over :func:`random_states` (numerical rank at
   :data:`RANK_TOLERANCE`), each writable as its combination (:meth:`BaseParameters.describe`).
 - :func:`fourier_excitation`: a finite Fourier series motion inside the workspace;
-  :func:`fit_base`: the base parameters from a record by weighted least squares, with
-  their standard deviations; :func:`consistent_parameters`: every body's ten parameters,
-  physically consistent (log-Cholesky least squares), closest to them;
+  :func:`fit_base`: the base parameters from a record by weighted least squares (QR and
+  SVD of the weighted regressor, never normal equations), with their standard
+  deviations, along what the record excites; :func:`consistent_parameters`: every
+  body's ten parameters, physically consistent, closest to them (a convex problem,
+  solved by a barrier method); :func:`base_rows`, :func:`mass_totals`,
+  :func:`unexcited`: what a log determines and what the prior decided;
   :func:`identified_description`: the identified robot as a description file.
 
 docs/identification.md has the formulas, the groupings and the checks.
@@ -30,12 +33,15 @@ from offshore_crane.studies.identification._consistent import (PRIOR_WEIGHT, con
                                                                consistent_parameters)
 from offshore_crane.studies.identification._description import (bounded_bodies, com_bounds,
                                                                 identified_description)
+from offshore_crane.studies.identification._report import (WEAK, BaseRow, MassTotal,
+                                                           base_rows, mass_totals, unexcited)
 
-__all__ = ["FRICTION", "PRIOR_WEIGHT", "RANK_TOLERANCE", "BaseParameters", "Fit", "Fourier",
-           "Regressor", "base_parameters", "bounded_bodies", "com_bounds", "consistent",
-           "consistent_parameters", "excitation_condition", "fit_base", "fourier_excitation",
-           "identified_description", "log_derivatives", "optimise_excitation",
-           "random_states", "regressor", "within_limits"]
+__all__ = ["FRICTION", "PRIOR_WEIGHT", "RANK_TOLERANCE", "WEAK", "BaseParameters", "BaseRow", "Fit",
+           "Fourier", "MassTotal", "Regressor", "base_parameters", "base_rows",
+           "bounded_bodies", "com_bounds", "consistent", "consistent_parameters",
+           "excitation_condition", "fit_base", "fourier_excitation", "identified_description",
+           "log_derivatives", "mass_totals", "optimise_excitation", "random_states",
+           "regressor", "unexcited", "within_limits"]
 
 
 #: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).

@@ -15,6 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from offshore_crane.conventions import GRAVITY
+from offshore_crane.dynamics.runtime import one_blas_thread
 
 #: Relative threshold of the numerical rank on the pivoted R's diagonal (the diagonal
 #: falls by > 1e6 between the identifiable and the rest on the shipped robot).
@@ -90,6 +91,7 @@ def random_states(robot, n: int, seed: int = 0, speed: float = 1.0, accel: float
     return q, rng.uniform(-speed, speed, q.shape), rng.uniform(-accel, accel, q.shape)
 
 
+@one_blas_thread()
 def base_parameters(robot, n: int = 200, seed: int = 0, gravity=GRAVITY,
                     friction: bool = False,
                     tolerance: float = RANK_TOLERANCE) -> BaseParameters:

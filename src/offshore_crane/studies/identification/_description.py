@@ -78,7 +78,9 @@ def identified_description(robot, R: Regressor, pi: np.ndarray, header: str = ""
         if not cols:
             continue
         own = pi[cols]
-        lines = [f"identified ({body}); nominal: mass {nominal[body][0]:.6g} kg"]
+        lines = [f"{body}: not identifiable alone (nominal mass {nominal[body][0]:.6g} kg): "
+                 "the consistent split, nearest the nominal values, of the base "
+                 "parameters the header lists"]
         if body in _WELDED:
             welded, get = _WELDED[body]
             part = get(spec)
@@ -116,9 +118,10 @@ def com_bounds(robot, R: Regressor) -> np.ndarray:
 
 
 def bounded_bodies(pi: np.ndarray, bounds: np.ndarray, R: Regressor,
-                   rtol: float = 1e-9) -> list[str]:
+                   rtol: float = 1e-6) -> list[str]:
     """The bodies of ``pi`` whose centre of mass lies on one of its ``bounds``
-    (:func:`com_bounds`), to ``rtol`` of the bound's span."""
+    (:func:`com_bounds`), to ``rtol`` of the bound's span (the lift keeps it strictly
+    inside, by the barrier's share)."""
     c = np.stack([pi[k + 1:k + 4] / pi[k] for k in range(0, 10 * len(bounds), 10)])
     finite = np.isfinite(bounds).all(axis=2)
     span = np.where(finite, bounds[..., 1] - bounds[..., 0], 0.0)

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from offshore_crane.dynamics.runtime import one_blas_thread
 
 #: Scale factors tried (halving) before an excitation is refused.
 MAX_HALVINGS = 30
@@ -91,6 +92,7 @@ def fourier_excitation(robot, duration: float, rate: float = 100.0, harmonics: i
 OPTIMISE_SAMPLES = 300
 
 
+@one_blas_thread()
 def excitation_condition(robot, traj, base, samples: int = OPTIMISE_SAMPLES) -> float:
     """The condition number of the base regressor (columns scaled to unit norm) on
     ``samples`` evenly spread samples of ``traj``."""
@@ -123,6 +125,7 @@ def within_limits(robot, traj, gravity) -> bool:
     return bool(np.nan_to_num(util[:, cols], nan=0.0).max() <= 1.0)
 
 
+@one_blas_thread()
 def optimise_excitation(robot, base, duration: float, rate: float = 100.0,
                         harmonics: int = 10, period: float = 10.0, seeds=range(4),
                         iterations: int = 60, gravity=None):

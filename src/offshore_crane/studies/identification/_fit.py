@@ -1,11 +1,20 @@
-"""Identification from a record: the base parameters by weighted least squares.
+"""Identification from a record: the base parameters by weighted least squares, computed
+from an orthogonal factorisation of the weighted regressor (never from normal equations).
 
 ``X_k = Y_b,k β + e_k`` per actuator k; ordinary least squares first, each actuator's
-noise variance from its residuals ``σ_k² = |e_k|² / (N − r/9)`` (the degrees of freedom
-shared across the 9 equations), then weighted least squares with weights ``1/σ_k``; the
-covariance of β̂ is ``(W_bᵀ Σ⁻¹ W_b)⁻¹``, its standard deviations the square roots of its
-diagonal (Gautier & Poignet, "Extended Kalman filtering and weighted least squares
-dynamic identification of robot", Control Engineering Practice 9(12), 2001).
+noise variance from its residuals ``σ_k² = |e_k|² / (N − n/9)`` (n the parameters the
+record excites, the degrees of freedom shared across the 9 equations), then weighted
+least squares with weights ``1/σ_k`` (Gautier & Poignet, "Extended Kalman filtering and
+weighted least squares dynamic identification of robot", Control Engineering Practice
+9(12), 2001).
+
+Each solve: the columns scaled to unit norm (``D``), a QR of ``[W D⁻¹ | y]`` (its last
+column gives ``Qᵀ y`` without forming Q), then the SVD of the small triangle
+``R = U S Vᵀ``. The record excites the directions whose singular values exceed
+:data:`~._base.RANK_TOLERANCE` times the largest; along them ``β̂ = D⁻¹ V S⁻¹ Uᵀ Qᵀ y``
+(none along the others), the information matrix's square root is ``S Vᵀ D`` and the
+covariance of β̂ ``D⁻¹ V S⁻² Vᵀ D⁻¹``: positive semi-definite by construction, and
+nothing is ever squared, so a record with condition number 10⁸ loses 8 digits, not 16.
 """
 
 from __future__ import annotations
@@ -14,16 +23,43 @@ from typing import NamedTuple
 
 import numpy as np
 
+from offshore_crane.dynamics.runtime import one_blas_thread
+
+#: The weights' noise is at least this share of the largest actuator's RMS force: below
+#: it a residual is round-off (an exact log's is ~1e-13), and weights that differ by more
+#: would only make the consistent lift's problem needlessly stiff. The σ of an exact log
+#: are therefore upper bounds.
+NOISE_FLOOR = 1e-9
+#: And at least this [N, N·m] (a log of zero forces: no sensor resolves less).
+FLOOR = 1e-12
+#: A regressor column whose norm is below this share of the largest is round-off (e.g.
+#: an inertia's column in a log standing still, its filtered rates ~1e-17): set to 0,
+#: not scaled up to unit norm like the others.
+NEGLIGIBLE = 1e-10
+#: A base parameter is determined by a record when its unit vector lies in the span the
+#: record excites to this (the norm of what is left, in column-scaled coordinates).
+DETERMINED = 1e-6
+
 
 class Fit(NamedTuple):
     """Identified base parameters.
 
     Attributes:
-        beta: ``(r,)`` the estimates. sigma: ``(r,)`` their standard deviations.
+        beta: ``(r,)`` the estimates (0 along the directions the record does not excite).
+        sigma: ``(r,)`` their standard deviations (``inf`` where the record does not
+            determine the parameter: it has a share in an unexcited direction).
         noise: ``(9,)`` each actuator's estimated noise standard deviation [N, N·m].
         residual: ``(N, 9)`` X minus the fitted forces [N, N·m].
-        condition: The weighted base regressor's condition number (columns unscaled).
-        covariance: ``(r, r)`` of β̂.
+        condition: The weighted base regressor's condition number, columns scaled to
+            unit norm (``inf`` when the record does not excite every base parameter).
+        covariance: ``(r, r)`` of β̂ along the excited directions (the pseudo-inverse of
+            the information matrix: 0 along the others, where ``sigma`` is ``inf``).
+        root: ``(n, r)`` the information matrix's square root: ``rootᵀ root = W_wᵀ W_w``
+            (the weighted regressor's), so ``|root (β − β̂)|`` is the misfit of any β in
+            standard deviations, with no covariance to invert.
+        excited: n, the number of independent directions the record excites (≤ r).
+        determined: ``(r,)`` bool: the record determines this base parameter (its
+            ``sigma`` is finite).
     """
 
     beta: np.ndarray
@@ -32,47 +68,82 @@ class Fit(NamedTuple):
     residual: np.ndarray
     condition: float
     covariance: np.ndarray
+    root: np.ndarray
+    excited: int
+    determined: np.ndarray
 
 
+@one_blas_thread()
 def fit_base(Yb: np.ndarray, X: np.ndarray) -> Fit:
-    """Weighted least squares of ``X (N, 9)`` on the base regressor ``Yb (N, 9, r)``.
+    """Weighted least squares of ``X (N, 9)`` [N·m, N] on the base regressor ``Yb (N, 9,
+    r)``. A record that excites only some base parameters is fitted along what it excites
+    (:attr:`Fit.determined` says which; ``sigma`` is ``inf`` for the others).
 
     Raises:
-        InputError: shapes that do not agree; fewer equations than parameters; a record
-            that does not excite every base parameter (the column-scaled regressor's
-            numerical rank below ``r`` at :data:`~._base.RANK_TOLERANCE`, the base
-            parameters' own threshold).
+        InputError: shapes that do not agree; non-finite values; fewer equations than
+            parameters; forces all zero; a record that excites no base parameter at all.
     """
     from offshore_crane.errors import InputError
-    from offshore_crane.studies.identification._base import RANK_TOLERANCE
 
     N, m, r = Yb.shape
     if X.shape != (N, m):
         raise InputError(f"fit: X has shape {X.shape}; the regressor {Yb.shape} wants "
                          f"({N}, {m})", name="X")
+    for name, a in (("X", X), ("regressor", Yb)):
+        bad = np.argwhere(~np.isfinite(a))
+        if len(bad):
+            raise InputError(f"fit: {name} at sample {bad[0][0]} is not finite: give a "
+                             "record of finite numbers", name=name)
     if N * m <= r:
         raise InputError(f"fit: {N * m} equations for {r} base parameters: give a longer "
                          "record", name="X")
-    W, y = Yb.reshape(-1, r), X.reshape(-1)
-    scale = np.linalg.norm(W, axis=0)
-    sv = np.linalg.svd(W / np.where(scale > 0.0, scale, 1.0), compute_uv=False)
-    rank = int(np.sum(sv > RANK_TOLERANCE * sv[0])) if sv[0] > 0.0 else 0
-    if rank < r:
-        raise InputError(f"fit: the record excites {rank} of the {r} base parameters (the "
-                         "motion does not identify the robot): log an excitation "
+    if not np.any(X):
+        raise InputError("fit: every force of the record is 0 (under gravity the actuators "
+                         "always carry the robot): check the log's force columns", name="X")
+    ones = np.ones(m)
+    first = _solve(Yb, X, ones)
+    if first.rank == 0:
+        raise InputError("fit: the record excites none of the base parameters (no force "
+                         "depends on them): log a moving robot, e.g. an excitation "
                          "trajectory (offshore-crane excite)", name="X")
-    beta = np.linalg.lstsq(W, y, rcond=None)[0]
-    e = (y - W @ beta).reshape(N, m)
-    dof = max(N - r / m, 1.0)
-    noise = np.sqrt((e * e).sum(axis=0) / dof)
-    floor = max(float(noise.max()), 1e-300) * 1e-12        # an exact actuator: weight 1
-    wts = 1.0 / np.maximum(noise, floor)
-    Ww = (Yb * wts[None, :, None]).reshape(-1, r)
-    beta = np.linalg.lstsq(Ww, (X * wts).reshape(-1), rcond=None)[0]
-    residual = X - Yb @ beta
-    cov = np.linalg.pinv(Ww.T @ Ww)
-    return Fit(beta, np.sqrt(np.clip(np.diag(cov), 0.0, None)), noise, residual,
-               float(np.linalg.cond(Ww)), cov)
+    e = X - Yb @ first.beta
+    noise = np.sqrt((e * e).sum(axis=0) / max(N - first.rank / m, 1.0))
+    floor = max(NOISE_FLOOR * float(np.sqrt(np.mean(X * X, axis=0)).max()), FLOOR)
+    fit = _solve(Yb, X, 1.0 / np.maximum(noise, floor))
+    return Fit(fit.beta, fit.sigma, noise, X - Yb @ fit.beta, fit.condition,
+               fit.covariance, fit.root, fit.rank, np.isfinite(fit.sigma))
+
+
+class _Solution(NamedTuple):
+    beta: np.ndarray
+    sigma: np.ndarray
+    covariance: np.ndarray
+    root: np.ndarray
+    rank: int
+    condition: float
+
+
+def _solve(Yb: np.ndarray, X: np.ndarray, weights: np.ndarray) -> _Solution:
+    """Least squares of ``X * weights`` on ``Yb * weights`` (per actuator) along the
+    directions the record excites (see the module docstring)."""
+    from offshore_crane.studies.identification._base import RANK_TOLERANCE
+
+    r = Yb.shape[-1]
+    W = (Yb * weights[None, :, None]).reshape(-1, r)
+    scale = np.linalg.norm(W, axis=0)
+    W[:, scale <= NEGLIGIBLE * scale.max()] = 0.0      # round-off: the motion lacks it
+    scale = np.where(scale > NEGLIGIBLE * scale.max(), scale, 1.0)
+    Ra = np.linalg.qr(np.column_stack([W / scale, (X * weights).reshape(-1)]), mode="r")
+    U, s, Vt = np.linalg.svd(Ra[:r, :r])
+    k = int(np.sum(s > RANK_TOLERANCE * s[0])) if s[0] > 0.0 else 0
+    Vk = Vt[:k].T                                              # (r, k), scaled coordinates
+    beta = Vk @ ((U[:, :k].T @ Ra[:r, r]) / s[:k]) / scale
+    left = 1.0 - np.sum(Vk * Vk, axis=1)                       # |e_j| outside the span, ²
+    cov = (Vk / s[:k]) @ (Vk / s[:k]).T / np.outer(scale, scale)
+    sigma = np.where(left <= DETERMINED ** 2, np.sqrt(np.clip(np.diag(cov), 0.0, None)),
+                     np.inf)
+    return _Solution(beta, sigma, cov, s[:k, None] * Vt[:k] * scale[None, :], k,
+                     float(s[0] / s[-1]) if k == r else float("inf"))
 
 
 #: Order of the zero-phase Butterworth filter on a log's positions (applied forward and

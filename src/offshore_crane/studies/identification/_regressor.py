@@ -15,6 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from offshore_crane.conventions import ACTUATORS, ACTUATOR_UNITS, GRAVITY
+from offshore_crane.dynamics.runtime import one_blas_thread
 
 #: Friction parameters per actuator, in column order.
 FRICTION = ("fv", "fc", "f0")
@@ -38,6 +39,7 @@ class Regressor(NamedTuple):
     units: tuple
 
 
+@one_blas_thread()
 def regressor(robot, q, qd, qdd, gravity=GRAVITY, friction: bool = False) -> Regressor:
     """The closed-loop regressor ``Y (N, 9, P)`` and the standard parameters ``π (P,)``.
 
@@ -53,6 +55,7 @@ def regressor(robot, q, qd, qdd, gravity=GRAVITY, friction: bool = False) -> Reg
             payload hangs on a cable (identify it welded).
         WorkspaceError: a pose outside the workspace.
     """
+    from offshore_crane import progress
     from offshore_crane.errors import InputError
     from offshore_crane.reference.rnea.regressor import regressor as tree_regressor
     from offshore_crane.robot.kinematics import actuator_motion, check_workspace
@@ -71,8 +74,12 @@ def regressor(robot, q, qd, qdd, gravity=GRAVITY, friction: bool = False) -> Reg
                              name=name)
     check_workspace(robot, q)
     g = as_gravity(gravity)
-    parts = [tree_regressor(robot, q[a:a + BLOCK], qd[a:a + BLOCK], qdd[a:a + BLOCK], g)
-             for a in range(0, len(q), BLOCK)]
+    parts = []
+    with progress.bar(len(q), "sample", "regressor") as shown:
+        for a in range(0, len(q), BLOCK):
+            parts.append(tree_regressor(robot, q[a:a + BLOCK], qd[a:a + BLOCK],
+                                        qdd[a:a + BLOCK], g))
+            shown.update(len(parts[-1].Y))
     Y = np.concatenate([p.Y for p in parts])
     pi, names, units = parts[0].pi, parts[0].names, parts[0].units
     if friction:
