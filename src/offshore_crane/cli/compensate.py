@@ -71,8 +71,11 @@ def run(args) -> int:
     if target is not None:
         from offshore_crane.outputs.report import compensation_plot
 
-        compensation_plot(target, runs, title=f"{scene.name}: payload motion, delay "
-                          f"{delay:g} s")
+        plan = run.exposure
+        compensation_plot(target, runs, span=None if plan is None else plan.cycle,
+                          title=f"{scene.name}: payload motion, delay {delay:g} s" + (
+                              "" if plan is None else f" (first {plan.cycle:g} s of "
+                              f"{plan.exposure / 3600:g} h full scale; RMS over all)"))
         say(f"wrote {args.plot}")
     over = [r.mode for r in runs if r.worst[0] > 1.0 or any(
         v > 1.0 for v in r.winch.values() if v == v)]

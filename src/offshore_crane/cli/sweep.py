@@ -228,7 +228,7 @@ def _plots(plot_dir, df, v, op, scene, capacities, criteria, bases: str) -> None
                 percent = dict(zip(sel["heading"], sel["operability_pct"]))
             what = "worst utilisation" if criterion == "actuators" else criterion
             operability_diagram(path, g, title=f"{scene.name}: {what}"
-                                + (f" ({_label(label)})" if label else "") + f"\n{bases}",
+                                + (f" ({_label(label)})" if label else "") + f" {bases}",
                                 operability=percent, criterion=criterion)
             print(f"wrote {path}")
     ok = df[df["status"] == "ok"]

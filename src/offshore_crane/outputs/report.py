@@ -223,15 +223,17 @@ def plot(path, t: np.ndarray, X: np.ndarray, title: str = "", cable=None,
     finish_figure(fig, axes, path, title)
 
 
-def compensation_plot(target, runs, title: str = "") -> None:
+def compensation_plot(target, runs, title: str = "", span: float | None = None) -> None:
     """The payload's residual motion x, y, z [mm] against time, one line per mode
-    (:func:`offshore_crane.studies.compensation.compare_compensation`'s runs)."""
+    (:func:`offshore_crane.studies.compensation.compare_compensation`'s runs): the first
+    ``span`` [s] of each record (None: all of it), the RMS in the legend over all of it."""
     plt = pyplot()
     fig, axes = plt.subplots(3, 1, figsize=(8, 7.5), sharex=True, constrained_layout=True)
     for r in runs:
         t = r.result.t
+        keep = slice(None) if span is None else t <= t[0] + span
         for i, axis in enumerate("xyz"):
-            axes[i].plot(t, 1e3 * r.residual[:, i], lw=0.9,
+            axes[i].plot(t[keep], 1e3 * r.residual[keep, i], lw=0.9,
                          label=f"{r.mode} (RMS {1e3 * r.rms[i]:.3g} mm)")
     for i, axis in enumerate("xyz"):
         axes[i].set_ylabel(f"payload {axis} [mm]")

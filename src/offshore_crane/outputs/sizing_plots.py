@@ -123,8 +123,12 @@ def operability_diagram(target, table, title: str = "", operability=None,
     if mesh is not None:
         bar = fig.colorbar(mesh, ax=axes[0].tolist(), shrink=0.9)
         bar.set_label(f"{meaning} (1 = 100 %)")
-    fig.suptitle((f"{title}; " if title else "") + "black line: 100 % contour; labels: "
-                 + ("governing actuator" if criterion == "actuators" else
-                    "smallest tension" if criterion == "no slack" else "what governs"),
-                 fontsize=10)
+    import textwrap
+
+    text = ((f"{title}; " if title else "") + "black line: 100 % contour; labels: "
+            + ("governing actuator" if criterion == "actuators" else
+               "smallest tension" if criterion == "no slack" else "what governs"))
+    width = int(14 * fig.get_size_inches()[0])          # characters a line at fontsize 9
+    fig.suptitle("\n".join(textwrap.fill(part, width) for part in text.split("\n")),
+                 fontsize=9)
     save_figure(fig, target)
