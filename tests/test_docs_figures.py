@@ -40,12 +40,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: Pages left out of the coverage rule, with the reason (the rendered-figure check above
 #: still covers whatever they hold of ``scripts/figures.py``'s figures).
-EXCLUDED = {
-    "docs/identification.md": "its figures (excite's time, the fit's) wait for the "
-                              "identification renderer and page of issue 35's other branch",
-    "docs/cable.md": "its text is being rewritten on issue 35's damping branch; its "
-                     "rendered figures are checked, its prose figures wait for that branch",
-}
+EXCLUDED: dict = {}
 
 _NUMBER = r"(?<![\w.·^/-])~?\d[\d,.]*(?:\s?[–-]\s?\d[\d,.]*)?"
 _BOUND = r"(?:[≤≥<>±]|target|targets:?)\s*$"

@@ -42,8 +42,17 @@ def utilisation_chart(target, utilisation, title: str = "") -> None:
     ax.set_ylim(0.0, 1.25 * max(100.0, top))
     ax.grid(True, axis="y", alpha=0.3)
     ax.legend(ncol=6, fontsize=8, loc="upper center")
-    ax.set_title(title, fontsize=10)
+    ax.set_title(_wrapped(title, fig), fontsize=9)
     save_figure(fig, target)
+
+
+def _wrapped(text: str, fig) -> str:
+    """``text`` broken into lines that fit the figure's width at font size 9 (a title
+    that says what its figures rest on is long)."""
+    import textwrap
+
+    width = int(14 * fig.get_size_inches()[0])
+    return "\n".join(textwrap.fill(part, width) for part in text.split("\n"))
 
 
 #: Per operability criterion (:data:`offshore_crane.studies.sweep.CRITERIA`): the verdict
@@ -123,12 +132,8 @@ def operability_diagram(target, table, title: str = "", operability=None,
     if mesh is not None:
         bar = fig.colorbar(mesh, ax=axes[0].tolist(), shrink=0.9)
         bar.set_label(f"{meaning} (1 = 100 %)")
-    import textwrap
-
     text = ((f"{title}; " if title else "") + "black line: 100 % contour; labels: "
             + ("governing actuator" if criterion == "actuators" else
                "smallest tension" if criterion == "no slack" else "what governs"))
-    width = int(14 * fig.get_size_inches()[0])          # characters a line at fontsize 9
-    fig.suptitle("\n".join(textwrap.fill(part, width) for part in text.split("\n")),
-                 fontsize=9)
+    fig.suptitle(_wrapped(text, fig), fontsize=9)
     save_figure(fig, target)

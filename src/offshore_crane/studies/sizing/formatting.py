@@ -106,14 +106,14 @@ def format_load(load) -> list[str]:
                    else f"≥ {lim.tension_ratio_min:.3g}")
     t_limit = "—" if math.isinf(lim.tension_max) else f"{lim.tension_max:.4g} N"
     return ["hanging load (on the same basis as the utilisation above):",
-            f"  sway max {math.degrees(load.sway):.3g}° (observed "
+            f"  sway max {math.degrees(load.sway):.3g}° (largest observed "
             f"{math.degrees(load.observed['sway']):.3g}°); {judged('sway', sway_limit)}",
             f"  tension min {load.tension_min:.4g} N = {load.ratio_min:.3g} × static "
-            f"{load.static:.4g} N (observed {load.observed['tension_min']:.4g} N); "
+            f"{load.static:.4g} N (smallest observed {load.observed['tension_min']:.4g} N); "
             f"{judged('slack', ratio_limit)}",
-            f"  tension max {load.tension_max:.4g} N (observed "
+            f"  tension max {load.tension_max:.4g} N (largest observed "
             f"{load.observed['tension_max']:.4g} N); {judged('tension', t_limit)}"] + [
-            f"  winch {key} {value:.4g} {unit} (observed "
+            f"  winch {key} {value:.4g} {unit} (largest observed "
             f"{load.observed['winch ' + key]:.4g} {unit}); "
             f"{judged('winch ' + key, f'{cap:.4g} {unit}')}"
             for (key, unit), value, cap in zip(
