@@ -68,3 +68,13 @@ def true_robot(nominal, fraction: float = 0.2, seed: int = 0):
     from offshore_crane import load_robot
 
     return load_robot(overrides=out)
+
+
+def assert_cable_paths_agree(kane, pinocchio, sway: float, rel: float) -> None:
+    """Kane's and Pinocchio's hanging-load results (``dynamics.cable.inverse_dynamics``)
+    agree: the sway angles to ``sway`` [rad]; X, the cable's pull on the tip, and the
+    tension (the winch's line pull) to ``rel`` of their largest magnitudes."""
+    assert np.abs(kane.sway - pinocchio.sway).max() <= sway
+    for name in ("X", "force_tip", "tension"):
+        k, p = getattr(kane, name), getattr(pinocchio, name)
+        assert np.abs(k - p).max() <= rel * np.abs(p).max(), name
