@@ -1,7 +1,7 @@
 """Progress of long jobs and notices of one-off waits: one mechanism for every command.
 
 Every job that can take more than a couple of seconds (a simulation, a hanging-load run,
-``size --seeds``, an animation, ``compile``, a sweep, ``excite``'s optimisation,
+``size``'s seeds, ``compensate``'s modes, an animation, ``compile``, a sweep, ``excite``'s optimisation,
 ``identify``'s regressor and consistent lift) reports through :func:`bar` — a
 ``tqdm`` bar on standard error with rate and ETA, shown only after :data:`DELAY` s so
 that short runs print nothing — or :func:`run_polled` for a compiled loop running in a

@@ -68,7 +68,7 @@ def compare_compensation(scene, robot=None, modes=("none", "arm", "arm+winch"),
     """
     from dataclasses import replace
 
-    from offshore_crane import scenes
+    from offshore_crane import progress, scenes
     from offshore_crane.dynamics.cable import lift_metrics
     from offshore_crane.dynamics.cable.tip import payload_positions
     from offshore_crane.simulation.compensation import check_compensable
@@ -80,17 +80,20 @@ def compare_compensation(scene, robot=None, modes=("none", "arm", "arm+winch"),
     if delay is not None:
         control["delay"] = float(delay)
     runs = []
-    for mode in modes:
-        run = record(replace(scene, control={**control, "compensation": mode}), robot,
-                     **options)
-        res, comp = run.result.cable, run.compensation
-        residual = payload_positions(robot, res) - comp.aim
-        lift = lift_metrics(res, scene.gravity)
-        env = run.envelope
-        runs.append(CompensationRun(
-            mode, residual, np.sqrt((residual ** 2).mean(axis=0)),
-            np.abs(residual).max(axis=0), float(np.degrees(env.sway_max)), lift,
-            env.worst(), lift.winch_utilisation(robot.winch), comp.held, res, run))
+    with progress.bar(len(modes), "mode", "compensate") as shown:
+        for mode in modes:
+            with progress.suspended():          # the bar counts the modes
+                run = record(replace(scene, control={**control, "compensation": mode}),
+                             robot, **options)
+            res, comp = run.result.cable, run.compensation
+            residual = payload_positions(robot, res) - comp.aim
+            lift = lift_metrics(res, scene.gravity)
+            env = run.envelope
+            runs.append(CompensationRun(
+                mode, residual, np.sqrt((residual ** 2).mean(axis=0)),
+                np.abs(residual).max(axis=0), float(np.degrees(env.sway_max)), lift,
+                env.worst(), lift.winch_utilisation(robot.winch), comp.held, res, run))
+            shown.update()
     return runs
 
 
