@@ -1,4 +1,5 @@
-"""Print every bad input of tests/test_bad_inputs.py with the message it produces.
+"""Print every bad input of tests/cli/test_bad_inputs.py (and its families,
+tests/cli/cases_*.py) with the message it produces.
 
 Usage: ``python scripts/bad_input_catalogue.py [--markdown]`` (from the repository, with
 offshore-crane importable). Each case runs through the library and/or the command line
@@ -15,7 +16,7 @@ import traceback
 import warnings
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+sys.path[:0] = [str(Path(__file__).resolve().parents[1] / "tests" / d) for d in ("cli", "")]
 
 from test_bad_inputs import CASES, run_cli  # noqa: E402
 

@@ -838,6 +838,24 @@ def _cable_states():
     return dict(zip(("q", "qd", "qdd"), trajectories.table1(t)), t=t)
 
 
+def _families() -> list:
+    """The families kept in modules of their own (``tests/cli/cases_*.py``, each a
+    ``CASES`` list of :class:`Case` that may use this module's helpers), in file order:
+    a family grows in its own file."""
+    import importlib
+
+    here = str(Path(__file__).resolve().parent)
+    if here not in sys.path:
+        sys.path.insert(0, here)
+    out = []
+    for path in sorted(Path(here).glob("cases_*.py")):
+        out += importlib.import_module(path.stem).CASES
+    return out
+
+
+CASES += _families()
+
+
 def _params(kind):
     out = []
     for case in CASES:
