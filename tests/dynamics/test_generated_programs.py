@@ -209,31 +209,39 @@ def real_name(arrays, cable=False, leg_model=FULL) -> str:
             f"{lanes._structure_key(arrays, leg_model, cable)}.py")
 
 
-def test_a_program_that_cannot_be_written_leaves_the_per_sample_kernel(tmp_path,
-                                                                      monkeypatch):
-    """A full disk (or a folder refusing the rename): one line naming the program and
-    the reason, no file left, and the per-sample kernel's forces (the same numbers)."""
+def _full_disk(replace, src, dst):
+    raise OSError(28, "No space left on device")
+
+
+def _short_write(replace, src, dst):
+    """The rename done, the file then shorter than written (a filesystem losing data)."""
+    replace(src, dst)
+    Path(dst).write_bytes(Path(dst).read_bytes()[:1000])
+
+
+@pytest.mark.parametrize("failure, problem, left", [
+    (_full_disk, r"cannot be written \(No space left on device\)", 0),
+    (_short_write, "does not read back as written", 1)], ids=["full disk", "short write"])
+def test_a_program_that_cannot_be_written_leaves_the_per_sample_kernel(
+        tmp_path, monkeypatch, failure, problem, left):
+    """A full disk, or a program that does not read back as written: one line naming the
+    program and the problem, no temporary file left, and the per-sample kernel's forces
+    (the same numbers)."""
     robot = oc.load_robot()
     q, qd, qdd = random_states(robot, LANES + 1, seed=40)
     expected = solve(robot, q, qd, qdd).X
     monkeypatch.setattr(lanes, "_folder", lambda: tmp_path)
     _fresh(monkeypatch)
-
     replace = os.replace
-
-    def full(src, dst):
-        if Path(dst).parent != tmp_path:
-            return replace(src, dst)
-        raise OSError(28, "No space left on device")
-
-    monkeypatch.setattr(lanes.os, "replace", full)
+    monkeypatch.setattr(lanes.os, "replace", lambda src, dst: failure(replace, src, dst)
+                        if Path(dst).parent == tmp_path else replace(src, dst))
     X, caught = _caught(lambda: solve(robot, q, qd, qdd).X)
     np.testing.assert_array_equal(X, expected)
     assert [w.category for w in caught] == [GeneratedProgramWarning]
-    assert re.fullmatch(r"generated program \S+\.py cannot be written \(No space left on "
-                        r"device\): the per-sample kernel runs instead \(the same numbers, "
-                        r"slower\)", str(caught[0].message))
-    assert list(lanes._KERNELS.values()) == [None] and list(tmp_path.iterdir()) == []
+    assert re.fullmatch(rf"generated program {tmp_path}/kane_lanes_\w+\.py {problem}: the "
+                        r"per-sample kernel runs instead \(the same numbers, slower\)",
+                        str(caught[0].message))
+    assert list(lanes._KERNELS.values()) == [None] and len(list(tmp_path.iterdir())) == left
 
 
 def test_compiled_code_is_keyed_by_the_programs_checksum(tmp_path):
