@@ -13,8 +13,11 @@ notice`), and :data:`COMPILED` counts the kernels compiled.
 
 The recovering cache subclasses ``numba.core.caching.FunctionCache`` (Numba's own cache
 of ``cache=True``) and replaces it on the dispatcher; the file names come from that
-class (``_cache_file``), so they follow Numba's layout. Numba is imported only when a
-kernel is made.
+class (``_cache_file``), so they follow Numba's layout. A generated program's entries
+(:mod:`offshore_crane.dynamics.lanes`) are keyed by the checksum of its text as well
+(:data:`PROGRAM_DIGEST`); a damaged program is reported as a
+:class:`GeneratedProgramWarning`, a :class:`KernelCacheWarning`. Numba is imported only
+when a kernel is made.
 """
 
 from __future__ import annotations
@@ -37,6 +40,19 @@ COMPILE_NOTICE = ("compiling the Numba kernels this run needs, once (they are ca
 
 class KernelCacheWarning(UserWarning):
     """A damaged compiled-kernel cache entry was removed and the kernel compiled again."""
+
+
+class GeneratedProgramWarning(KernelCacheWarning):
+    """A generated program (:mod:`offshore_crane.dynamics.lanes`) did not match its
+    checksum and was generated again, or could not be written (the per-sample kernel
+    runs instead)."""
+
+
+#: The name, in a generated program's namespace, of the program's checksum (hex SHA-256
+#: of its file name and text): :class:`RecoveringCache` adds it to the key of each
+#: compiled entry, so that the compiled code of one text is never loaded for another (a
+#: damaged one).
+PROGRAM_DIGEST = "__program_sha256__"
 
 
 def njit(*args, **options):
@@ -98,7 +114,8 @@ def _cache_class():
             so that processes compiling at once (``offshore-crane compile``'s workers,
             a sweep's) never interleave: Numba picks a new entry's data file name from
             the index it has read, and two writers could otherwise give two signatures
-            the same file."""
+            the same file. A generated program's entries are keyed by its text's
+            checksum too (:data:`PROGRAM_DIGEST`)."""
 
             def load_overload(self, sig, target_context):
                 try:
@@ -115,6 +132,13 @@ def _cache_class():
             def save_overload(self, sig, data):
                 with locked(self._cache_file, shared=False):
                     super().save_overload(sig, data)
+
+            def _index_key(self, sig, codegen):
+                # Numba's key hashes the byte code, which holds no constant's value: a
+                # generated program's checksum tells two of its texts apart
+                key = super()._index_key(sig, codegen)
+                digest = self._py_func.__globals__.get(PROGRAM_DIGEST)
+                return key if digest is None else (*key, digest)
 
         _CLASS.append(RecoveringCache)
     return _CLASS[0]

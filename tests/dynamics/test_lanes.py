@@ -191,8 +191,9 @@ def test_a_robot_without_arm_takes_its_own_block_kernel_bit_for_bit():
 
 
 def test_a_new_version_of_the_text_removes_the_programs_of_the_old(tmp_path, monkeypatch):
-    """Writing a program removes the programs of other versions of the text (and their
-    compiled code) but keeps the other structures of its own version."""
+    """Writing a program removes the programs of other versions of the text (their
+    compiled code, and a killed writer's temporary file) but keeps the other structures
+    of its own version."""
     monkeypatch.setattr(lanes, "_folder", lambda: tmp_path)
     monkeypatch.setattr(lanes, "_KERNELS", {})
     monkeypatch.setattr(lanes, "_BY_ARRAYS", {})
@@ -201,10 +202,12 @@ def test_a_new_version_of_the_text_removes_the_programs_of_the_old(tmp_path, mon
     old = tmp_path / "kane_lanes_00000000_abc.py"
     kept = tmp_path / f"kane_lanes_{version}_other.py"
     compiled = tmp_path / "__pycache__" / "kane_lanes_00000000_abc.kane-13.py311.nbi"
-    for p in (old, kept, compiled):
+    left = tmp_path / ".kane_lanes_00000000_abc.123.0a1b2c3d.tmp"   # a killed writer's
+    for p in (old, kept, compiled, left):
         p.write_text("# a program\\n")
     robot = oc.load_robot()
     assert lanes.kane_kernel(robot_arrays(robot), LEG_MODEL_CODES["massless"]) is not None
     names = sorted(p.name for p in tmp_path.glob("*.py"))
     assert not old.exists() and not compiled.exists() and kept.exists()
+    assert not left.exists()
     assert len(names) == 2 and all(n.startswith(f"kane_lanes_{version}_") for n in names)

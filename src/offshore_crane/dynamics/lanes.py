@@ -17,16 +17,33 @@ the constants' layout): its module is written once into a cache folder (:func:`_
 named by a hash of the structure and of the formulas' and this module's source, with a
 fixed modification time, so that Numba's disk cache of it stays valid across processes
 and on machines given a copy of the cache.
+
+Nothing runs a program that is not the one written: its last line is the SHA-256 of its
+file name and of the text before the line, checked each time a process loads it, before
+anything compiles it. A program cut short, edited, unreadable or another's copied over it
+is generated again and rewritten, with one
+:class:`~offshore_crane.kernel_cache.GeneratedProgramWarning` line naming it and what was
+wrong. The checked text itself is compiled and run (the file is not read again, and no
+byte-code file is written or read: nothing would check it), and the compiled code Numba
+caches for it is keyed by the same checksum
+(:data:`~offshore_crane.kernel_cache.PROGRAM_DIGEST`), so that the code of another text,
+a damaged one, is never loaded for it. A program is written atomically (a temporary file
+renamed over it: processes racing write the same bytes) and read back; one that cannot
+be written or read back is reported in one line and the per-sample kernel runs instead,
+the same numbers slower.
 """
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
-import importlib.util
 import os
 import re
 import sys
 import threading
+import types
+import uuid
+import warnings
 import weakref
 from pathlib import Path
 
@@ -34,6 +51,9 @@ from offshore_crane.conventions import LANES
 
 #: Any fixed time: the generated files' modification time (Numba's cache keys on it).
 _MTIME = 1_600_000_000
+#: The start of a generated program's last line, which ends with the SHA-256 (hex) of
+#: the text before it.
+_CHECK = "# offshore-crane checksum sha256="
 _KERNELS: dict = {}
 _LOCK = threading.Lock()
 #: (id of a robot's arrays, leg model, cable) -> (a weak reference to those arrays, their
@@ -177,8 +197,9 @@ def kane_kernel(arrays, leg_model: int, cable: bool = False):
     """The block kernel of the robot of ``arrays`` and ``leg_model`` (its signature is
     the per-sample ``kane``'s without ``static``, ``leg_model``, ``want_legs``: the
     platform in motion and every leg force wanted; with ``cable``, that of the hanging
-    load's ``cable.kernels.kane``), or None when it cannot be traced. Generated and
-    imported once per process and structure."""
+    load's ``cable.kernels.kane``), or None when it cannot be traced or its program
+    cannot be written (:func:`_load`). Read and checked, or generated, once per process
+    and structure."""
     seen = _BY_ARRAYS.get((id(arrays), leg_model, cable))
     if seen is not None and seen[0]() is arrays:    # the common case: one dict lookup
         return seen[1]
@@ -191,33 +212,109 @@ def kane_kernel(arrays, leg_model: int, cable: bool = False):
 
 
 def _load(key: str, arrays, leg_model: int, cable: bool):
+    """The structure's kernel: its program read from the folder and checked, else traced
+    and written (checked after writing); None when it cannot be traced, or written."""
     folder = _folder()
     version = _sources_hash()[:8]
     path = folder / f"kane_lanes_{version}_{key}.py"
-    if not path.exists():
+    text, problem = _read_program(path)
+    if text is None:
         text = source(arrays, leg_model, key, cable)
         if text is None:
             return None
-        folder.mkdir(parents=True, exist_ok=True)
-        _remove_stale(folder, version)
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(text)
+        if problem is not None:
+            _warn(f"generated program {path} {problem}: generated again from the formulas")
+        problem = _write_program(path, text, version)
+        if problem is not None:
+            _warn(f"generated program {path} {problem}: the per-sample kernel runs instead "
+                  "(the same numbers, slower)")
+            return None
+    return _run_program(path, key, text)
+
+
+def _digest(path: Path, text: bytes) -> str:
+    """The SHA-256 (hex) of the program ``text`` written as ``path``: of the file's name
+    (its version and structure) and of the text, so that another program copied over it
+    fails the check too."""
+    return hashlib.sha256(path.name.encode() + b"\0" + text).hexdigest()
+
+
+def _checksum(path: Path, text: bytes) -> bytes:
+    """The last line of the program ``text`` written as ``path``."""
+    return f"{_CHECK}{_digest(path, text)}\n".encode()
+
+
+def _read_program(path: Path) -> tuple[str | None, str | None]:
+    """``(text, None)`` when ``path`` holds a program whose last line is the checksum of
+    the text before it; ``(None, None)`` when there is no program; ``(None, what is
+    wrong)`` when it is damaged or cannot be read."""
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        return None, None
+    except OSError as exc:
+        return None, f"cannot be read ({exc.strerror or exc})"
+    body, sep, _ = data.rpartition(_CHECK.encode())
+    if not sep:
+        return None, "has no checksum line (truncated, or not written by this version)"
+    if data != body + _checksum(path, body):
+        return None, "does not match its checksum (truncated, edited or another program's)"
+    return body.decode(), None
+
+
+def _write_program(path: Path, text: str, version: str) -> str | None:
+    """Write ``text`` and its checksum line atomically (a temporary file of a name of
+    its own, renamed over ``path``: processes racing write the same bytes) and read it
+    back: None when ``path`` then holds them, else what went wrong."""
+    data = text.encode()
+    data += _checksum(path, data)
+    tmp = path.with_name(f".{path.stem}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        _remove_stale(path.parent, version)
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
         os.utime(tmp, (_MTIME, _MTIME))
-        os.replace(tmp, path)                # atomic: processes racing write one text
+        os.replace(tmp, path)
+        if path.read_bytes() != data:
+            return "does not read back as written"
+    except OSError as exc:
+        return f"cannot be written ({exc.strerror or exc})"
+    finally:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+    return None
+
+
+def _run_program(path: Path, key: str, text: str):
+    """Run the checked ``text`` as the module of ``path`` (compiled from the text read,
+    not from the file again, and never from a byte-code file, which nothing checks):
+    its ``kane``, whose compiled entries are keyed by the text's checksum."""
+    from offshore_crane.kernel_cache import PROGRAM_DIGEST
+
     name = f"offshore_crane_lanes_{key}"
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
+    module = types.ModuleType(name)
+    module.__file__ = str(path)
+    module.__dict__[PROGRAM_DIGEST] = _digest(path, text.encode())
+    code = compile(text, str(path), "exec")
     sys.modules[name] = module
-    spec.loader.exec_module(module)
+    exec(code, module.__dict__)
     return module.kane
+
+
+def _warn(message: str) -> None:
+    from offshore_crane.kernel_cache import GeneratedProgramWarning
+
+    warnings.warn(GeneratedProgramWarning(message), stacklevel=4)
 
 
 def _remove_stale(folder: Path, version: str) -> None:
     """Remove the programs of other versions of the text (an edited formula, another
-    release of the package) and their compiled code, so that the folder keeps one version:
-    the other structures of this version stay."""
-    stale = [p for p in folder.glob("kane_lanes_*.py") if not p.name.startswith(
-        f"kane_lanes_{version}_")]
+    release of the package), their compiled code and their writers' leftovers, so that
+    the folder keeps one version: the other structures of this version stay."""
+    stale = [p for p in [*folder.glob("kane_lanes_*.py"), *folder.glob(".kane_lanes_*.tmp")]
+             if not p.name.lstrip(".").startswith(f"kane_lanes_{version}_")]
     for p in stale:
         for old in [p, *(folder / "__pycache__").glob(f"{p.stem}.*")]:
             try:
