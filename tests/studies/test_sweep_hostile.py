@@ -29,6 +29,7 @@ from offshore_crane.errors import (InputError, OutputError, ResultsDirectoryErro
                                    SchedulerError, SeaWorkspaceError)
 from offshore_crane.studies import sweep
 from offshore_crane.studies.sweep.cases import fatal
+from offshore_crane.studies.sweep.scheduler import MAX_HANDSHAKE, handshake, scheduler_address
 
 from conftest import deadline
 from test_sweep import _bits, _grid, _scene
@@ -129,3 +130,182 @@ def test_the_cli_reports_an_internal_error_in_its_table(tmp_path, monkeypatch, c
     assert status == 0 and ", 1 failed)" in out
     line = next(row for row in out.splitlines() if "IndexError" in row)
     assert "IndexError: internal error, a bug: please report it" in line
+
+
+# --------------------------------------------------------------------------- the scheduler
+@contextlib.contextmanager
+def peer(*chunks: bytes, pause: float = 0.0):
+    """A local TCP server that sends ``chunks`` (``pause`` s apart) to each connection
+    and then keeps it open; yields its address."""
+    server = socket.create_server(("127.0.0.1", 0))
+    server.settimeout(0.1)
+    stop = threading.Event()
+
+    def serve():
+        while not stop.is_set():
+            try:
+                conn, _ = server.accept()
+            except OSError:
+                continue
+            with conn:
+                try:
+                    for chunk in chunks:
+                        conn.sendall(chunk)
+                        stop.wait(pause)
+                except OSError:
+                    pass
+                stop.wait(10.0)
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    try:
+        yield f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    finally:
+        stop.set()
+        thread.join(5.0)
+        server.close()
+
+
+def _dask_like(info: dict) -> bytes:
+    """``info`` framed as Dask writes a message: total length, frame count, frame
+    lengths, then the msgpack frame."""
+    import msgpack
+
+    frame = msgpack.packb(info)
+    body = struct.pack("QQ", 1, len(frame)) + frame
+    return struct.pack("Q", len(body)) + body
+
+
+HANDSHAKE = {"compression": None, "python": (3, 11, 7), "pickle-protocol": 5}
+
+
+@pytest.mark.parametrize("chunks, match", [
+    ((b"\xff" * 8,), r"announces 18446744073709551615 bytes; a Dask handshake has at most"),
+    ((b"SSH-2.0-OpenSSH_9.6\r\n",), r"announces \d{19} bytes"),
+    ((struct.pack("Q", MAX_HANDSHAKE + 1),), rf"announces {MAX_HANDSHAKE + 1} bytes"),
+    ((struct.pack("QQ", 16, 0) + bytes(8),), "announces 0 frames"),
+    ((struct.pack("QQQ", 24, 1, 10 ** 12) + bytes(8),), "frames do not add up"),
+    ((struct.pack("QQQ", 19, 1, 3) + b"abc",), "is not a Dask handshake"),
+    ((_dask_like({"op": "hello"}),), "is not a Dask handshake"),
+    ((b"\x00" * 3,), r"connection closed|an incomplete message"),
+])
+def test_a_peer_that_is_not_dask_is_refused_on_what_it_sends(chunks, match):
+    """Whatever the peer sends at once, every length is checked before anything is read
+    into memory: one SchedulerError, at once."""
+    with peer(*chunks) as address, deadline(10):
+        t0 = time.perf_counter()
+        with pytest.raises(SchedulerError, match=match) as info:
+            handshake(address, timeout=1.0)
+        took = time.perf_counter() - t0
+    assert "\n" not in str(info.value) and "is it a Dask scheduler?" in str(info.value)
+    assert took < 1.5
+
+
+def test_a_trickling_peer_is_bounded_by_one_deadline():
+    """A peer announcing a plausible length and sending a byte every 0.1 s: the whole
+    handshake, not each read, has the timeout."""
+    with peer(struct.pack("Q", 200), *[b"x"] * 100, pause=0.1) as address, deadline(10):
+        t0 = time.perf_counter()
+        with pytest.raises(SchedulerError, match=r"within 0\.5 s \(an incomplete message\)"):
+            handshake(address, timeout=0.5)
+        assert time.perf_counter() - t0 < 1.0
+
+
+def test_a_dask_handshake_passes():
+    with peer(_dask_like(HANDSHAKE)) as address, deadline(10):
+        handshake(address, timeout=1.0)
+
+
+def test_a_real_scheduler_passes_the_handshake():
+    """The check reads a real Dask scheduler's handshake (this distributed's)."""
+    distributed = pytest.importorskip("distributed")
+    import asyncio
+
+    async def run():
+        async with distributed.Scheduler(host="127.0.0.1", port=0,
+                                         dashboard_address=None) as scheduler:
+            await asyncio.get_running_loop().run_in_executor(None, handshake,
+                                                             scheduler.address, 3.0)
+
+    with deadline(30):
+        asyncio.run(run())
+
+
+def test_the_sweep_never_hands_such_a_peer_to_dask(tmp_path, monkeypatch, capsys):
+    """``sweep --scheduler`` at a peer that sends a huge length at once (Dask's client
+    then tried to allocate it): one line, exit 2, nothing written, Dask's client never
+    made."""
+    import distributed
+
+    def client(*args, **kwargs):
+        raise AssertionError("Dask's client was given a peer that is not Dask")
+
+    monkeypatch.setattr(distributed, "Client", client)
+    out = tmp_path / "res"
+    with peer(b"\xfe" * 64) as address, deadline(20):
+        t0 = time.perf_counter()
+        status = main(["sweep", "--scene", str(_scene(tmp_path)), "--grid",
+                       str(_grid(tmp_path, "hs = [1.0]\n")), "--out", str(out),
+                       "--scheduler", address])
+        took = time.perf_counter() - t0
+    err = capsys.readouterr().err
+    assert status == 2 and err.count("\n") == 1, err
+    assert "announces 18374403900871474942 bytes" in err and not out.exists()
+    assert took < 5.0
+
+
+# --------------------------------------------------------------------------- addresses
+@pytest.mark.parametrize("address, match", [
+    ("tcp://[::1", r"'\[' opens an IPv6 address that no '\]' closes"),
+    ("tcp://[2001:db8::7:8786", r"'\[' opens an IPv6 address that no '\]' closes"),
+    ("tcp://2001:db8::7]:8786", r"'\]' without '\['"),
+    ("tcp://2001:db8::7:8786", r"an IPv6 address goes in brackets"),
+    ("tcp://[localhost]:8786", r"\[localhost\] is not an IPv6 address"),
+    ("tcp://[10.0.0.1]:8786", r"\[10\.0\.0\.1\] is not an IPv6 address"),
+    ("tcp://[::1]8786", r"the port must follow '\]' as :PORT"),
+    ("tcp://[::1]", r"the port must be 1\.\.65535 \(none given\)"),
+    ("tcp://node7:", r"the port must be 1\.\.65535 \(none given\)"),
+    ("tcp://node7:0x22", r"the port must be 1\.\.65535"),
+    ("tcp://node7:8786:1", r"one ':' only"),
+    ("tcp://node7:65536", r"the port must be 1\.\.65535"),
+    ("tcp://node7:१२३", r"'१' \(character 13\) has no place in an address \(an "),
+    ("tcp://node 7:8786", r"' ' \(character 11\) has no place in an address"),
+    ("tcp://node7\t:8786", r"'\\t' \(character 12\)"),
+    ("tcp://admin@node7:8786", "no user name"),
+    ("tcp://node7:8786/status", "nothing may follow the port"),
+    ("tcp://node7:8786#x", "nothing may follow the port"),
+    ("tcp://node..lan:8786", r"'node\.\.lan' is not a host name"),
+    ("tcp://-node:8786", r"'-node' is not a host name"),
+    ("tcp://" + "n" * 64 + ":8786", r"is not a host name"),
+    ("tls://node7:8786", "the scheme must be tcp"),
+    ("node7:8786", r"--scheduler 'node7:8786': give 'local'"),
+])
+def test_every_malformed_address_is_one_line(address, match):
+    with pytest.raises(InputError, match=match) as info:
+        scheduler_address(address)
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("address, expected", [
+    ("tcp://[::1]:8786", ("::1", 8786)),
+    ("tcp://[fe80::1%eth0]:1", ("fe80::1%eth0", 1)),
+    ("tcp://node-7.lab.example.:65535", ("node-7.lab.example.", 65535)),
+    ("tcp://10.0.0.1:08786", ("10.0.0.1", 8786)),
+])
+def test_well_formed_addresses(address, expected):
+    assert scheduler_address(address) == expected
+
+
+def test_random_addresses_are_an_address_or_one_line():
+    """3000 seeded random strings of the characters that make addresses odd: each is
+    ``(host, port)`` or an InputError of one line, never another exception."""
+    rng = random.Random(36)
+    alphabet = "[]:@/?#%.-_0123456789abcdefnode \t\n\x00é١"
+    for _ in range(3000):
+        text = "tcp://" + "".join(rng.choice(alphabet) for _ in range(rng.randint(0, 14)))
+        try:
+            host, port = scheduler_address(text)
+        except InputError as exc:
+            assert "\n" not in str(exc), text
+        else:
+            assert host and 0 < port < 65536, text
