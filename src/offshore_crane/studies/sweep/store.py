@@ -12,6 +12,7 @@ from dataclasses import fields
 from pathlib import Path
 
 from offshore_crane.errors import ResultsDirectoryError
+from offshore_crane.special_files import what_is
 from offshore_crane.studies.sweep.grid import Grid, install_hint
 from offshore_crane.studies.sweep.rowfiles import BatchWriter, case_ids, read_rows, recover
 
@@ -73,8 +74,8 @@ class ResultsStore:
             raise ResultsDirectoryError(f"--out {given}: {reason}", path=given, reason=reason)
 
         if os.path.exists(given) and not os.path.isdir(given):
-            refuse("exists and is not a directory: give a results directory (new, empty, "
-                   "or of an earlier run of the same scene)")
+            refuse(f"exists and is not a directory ({what_is(given)}): give a results "
+                   "directory (new, empty, or of an earlier run of the same scene)")
         if not os.path.isdir(given):
             parent = os.path.dirname(os.path.abspath(given))
             if not os.path.isdir(parent):
