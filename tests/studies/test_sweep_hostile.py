@@ -132,6 +132,59 @@ def test_the_cli_reports_an_internal_error_in_its_table(tmp_path, monkeypatch, c
     assert "IndexError: internal error, a bug: please report it" in line
 
 
+# --------------------------------------------------------------------------- the store
+def _refuse_lock_writes(monkeypatch) -> None:
+    """Opening the results directory's lock file for writing fails as in a read-only
+    directory owned by someone else (root, running the tests, is refused nothing)."""
+    real = os.open
+
+    def opener(path, flags, *args, **kwargs):
+        if os.path.basename(os.fspath(path)) == "_lock" and flags & (os.O_WRONLY | os.O_RDWR):
+            raise PermissionError(errno.EACCES, "Permission denied", os.fspath(path))
+        return real(path, flags, *args, **kwargs)
+
+    monkeypatch.setattr(os, "open", opener)
+
+
+def test_a_read_only_results_directory_is_one_line(tmp_path, monkeypatch, capsys):
+    """A results directory its lock cannot be written in (a PermissionError traceback
+    from filelock): one line naming the directory and what to do, exit 2, the directory
+    unchanged."""
+    scene, grid = _scene(tmp_path), _grid(tmp_path, "hs = [1.0, 2.0]\n")
+    out = tmp_path / "res"
+    assert main(["sweep", "--scene", str(scene), "--grid", str(grid), "--out", str(out),
+                 "--no-progress"]) == 0
+    capsys.readouterr()
+    listing = {p.name: p.stat().st_mtime_ns for p in out.iterdir()}
+    _refuse_lock_writes(monkeypatch)
+    assert main(["sweep", "--scene", str(scene), "--grid", str(grid), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1, err
+    assert f"--out {out}: is not writable" in err and "give another --out" in err
+    assert "(Permission denied)" in err
+    assert {p.name: p.stat().st_mtime_ns for p in out.iterdir()} == listing
+    with pytest.raises(ResultsDirectoryError, match="is not writable"):
+        sweep.run(scenes.load_scene(scene), {"hs": [1.0]}, out=tmp_path / "new")
+    assert not (tmp_path / "new").exists()             # the directory it made, removed
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes in a read-only directory")
+def test_a_read_only_results_directory_for_real(tmp_path, capsys):
+    scene, grid = _scene(tmp_path), _grid(tmp_path, "hs = [1.0]\n")
+    out = tmp_path / "res"
+    assert main(["sweep", "--scene", str(scene), "--grid", str(grid), "--out", str(out),
+                 "--no-progress"]) == 0
+    capsys.readouterr()
+    out.chmod(0o555)
+    try:
+        assert main(["sweep", "--scene", str(scene), "--grid", str(grid), "--out",
+                     str(out)]) == 2
+    finally:
+        out.chmod(0o755)
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "is not writable" in err, err
+
+
 # --------------------------------------------------------------------------- the scheduler
 @contextlib.contextmanager
 def peer(*chunks: bytes, pause: float = 0.0):
