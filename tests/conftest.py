@@ -1,3 +1,4 @@
+import contextlib
 import time
 
 import numpy as np
@@ -28,6 +29,26 @@ def package_sources(package) -> list:
 def relative_error(X, Y) -> float:
     """max |X - Y| / max |Y|."""
     return float(np.abs(np.asarray(X) - np.asarray(Y)).max() / np.abs(np.asarray(Y)).max())
+
+
+@contextlib.contextmanager
+def deadline(seconds: float):
+    """Fail instead of hanging: SIGALRM after ``seconds`` raises TimeoutError in the main
+    thread (a blocking ``open`` of a FIFO or a wait on a socket is interrupted too; a
+    forked worker inherits no timer). For tests of what must not hang, as pytest has no
+    timeout of its own here."""
+    import signal
+
+    def expired(signum, frame):
+        raise TimeoutError(f"still running after {seconds} s")
+
+    previous = signal.signal(signal.SIGALRM, expired)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
 
 
 _COMPILE: dict = {}

@@ -31,10 +31,32 @@ def test_the_default_limit_is_a_share_of_the_available_memory(monkeypatch):
     check_memory(1e6, "a small record", "nothing")                 # far below: passes
 
 
-def test_a_bad_limit_is_named(monkeypatch):
-    monkeypatch.setenv("OFFSHORE_CRANE_MEMORY_LIMIT", "lots")
-    with pytest.raises(InputError, match="OFFSHORE_CRANE_MEMORY_LIMIT = 'lots': give a number"):
+@pytest.mark.parametrize("value", ["lots", "nan", "-nan", "0", "0e5", "-1", "-2e9", "inf",
+                                   "-inf", "1e400", " "])
+def test_a_bad_limit_is_named(monkeypatch, value):
+    """Not a finite number of bytes > 0: refused by name (``nan`` turned the guard off,
+    every comparison with it being false; ``0`` and negatives refused every record)."""
+    monkeypatch.setenv("OFFSHORE_CRANE_MEMORY_LIMIT", value)
+    with pytest.raises(InputError, match=rf"OFFSHORE_CRANE_MEMORY_LIMIT = '{value}': give a "
+                       r"number of bytes, finite and > 0 \(e\.g\. 8e9\), or unset it"):
         check_memory(1.0, "x", "y")
+
+
+def test_a_bad_limit_is_one_line_on_the_command_line(monkeypatch, capsys, tmp_path):
+    monkeypatch.setenv("OFFSHORE_CRANE_MEMORY_LIMIT", "nan")
+    out = tmp_path / "x.csv"
+    assert main(["id", "--duration", "5000", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "OFFSHORE_CRANE_MEMORY_LIMIT = 'nan'" in err
+    assert not out.exists()
+
+
+def test_a_small_positive_limit_is_a_limit(monkeypatch):
+    monkeypatch.setenv("OFFSHORE_CRANE_MEMORY_LIMIT", "1e3")
+    assert memory_limit() == (1e3, "OFFSHORE_CRANE_MEMORY_LIMIT")
+    check_memory(1e3, "a record at the limit", "nothing")
+    with pytest.raises(InputError, match=r"needs 1\.02 kB of memory, over the limit 1 kB"):
+        check_memory(1024.0, "a record", "make it smaller")
 
 
 @pytest.mark.parametrize("call, match", [

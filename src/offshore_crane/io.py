@@ -5,14 +5,16 @@ Rules (``docs/outputs.md``):
 - **Checked before computing.** :func:`plan_outputs` validates every output path before
   any work: an empty name, a directory, a missing parent directory, a place that cannot
   be written, a file that is also an input, two outputs on one file, an unknown file type
-  (figures) or a block device are one-line :class:`~offshore_crane.errors.OutputError`\\ s.
+  (figures), a block device, a socket, a FIFO that no process reads within
+  :data:`PIPE_TIMEOUT` are one-line :class:`~offshore_crane.errors.OutputError`\\ s (a
+  FIFO that is read is opened then, held until written: the write never waits).
 - **Nothing is destroyed.** A regular file (new or existing) is written to a temporary
   file beside it (a short name, ``.oc-XXXXXXXX.tmp``, so that a long target name never
   gives a longer temporary one) and renamed over it only once complete; an existing
   file keeps its permission bits, a new one gets ``0o666 & ~umask``. A symbolic link is
   written *through*: the file it points to is replaced atomically, the link stays. A FIFO,
   a character device (``/dev/null``, ``/dev/stdout``) or ``-`` (standard output) is
-  written directly, never replaced or removed.
+  written directly (opened without blocking), never replaced or removed.
 - **No leftovers.** The temporary file is removed on any exception, and on SIGTERM and
   SIGINT, which :func:`signals_as_exceptions` turns into exceptions (the command line then
   exits with status 143 or 130 and one line, no traceback). A failed write (full disk,
@@ -30,12 +32,14 @@ import os
 import signal
 import stat
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from offshore_crane.errors import InputError, OutputError
+from offshore_crane.special_files import (Held, device_writer, is_fifo, pipe_writer,
+                                          read_pipe)
 
 #: Rows per block of :func:`write_csv` (a large output is streamed, so an interrupted
 #: write is realistic and memory stays bounded).
@@ -59,12 +63,14 @@ class Target:
         kind: ``"file"`` (a regular file, new or existing: written atomically),
             ``"special"`` (FIFO or character device: written directly) or ``"stdout"``.
         path: For ``"file"``, the final file (a symlink resolved), else the path given.
+        held: A FIFO's write end held from :func:`plan_outputs` to the first write.
     """
 
     name: str
     given: str
     kind: str
     path: str
+    held: list = field(default_factory=list, compare=False, repr=False)
 
     def __str__(self) -> str:
         return self.given
@@ -126,6 +132,8 @@ def plan_outputs(outputs: dict, inputs=(), formats: dict | None = None) -> dict:
             _fail(name, given, "is a directory: give a file name inside it")
         if st is not None and stat.S_ISBLK(st.st_mode):
             _fail(name, given, "is a block device: write to a regular file")
+        if st is not None and stat.S_ISSOCK(st.st_mode):
+            _fail(name, given, "is a socket, not a file: write to a regular file")
         if st is not None and (stat.S_ISFIFO(st.st_mode) or stat.S_ISCHR(st.st_mode)):
             planned[name] = Target(name, given, "special", given)
             continue
@@ -167,7 +175,27 @@ def plan_outputs(outputs: dict, inputs=(), formats: dict | None = None) -> dict:
                       "output its own file")
     if sum(t.kind == "stdout" for t in planned.values()) > 1:
         _fail(list(planned)[-1], "-", "only one output can go to standard output")
+    for t in planned.values():                    # last: the checks above cost no wait
+        if t.kind == "special" and is_fifo(t.path):
+            t.held.append(Held(_special_fd(t)))
     return planned
+
+
+def _special_fd(target: Target) -> int:
+    """A blocking descriptor for writing a FIFO or a device, opened without blocking
+    (:mod:`.special_files`), or the FIFO's write end held since the planning. Raises
+    OutputError for a FIFO no process reads within :data:`PIPE_TIMEOUT`."""
+    held = target.held.pop().take() if target.held else None
+    if held is not None or not is_fifo(target.path):
+        return device_writer(target.path) if held is None else held
+    try:
+        fd = pipe_writer(target.path, PIPE_TIMEOUT)
+    except OSError as exc:
+        _fail(target.name, target.given, f"cannot be opened ({exc.strerror})")
+    if fd is None:
+        _fail(target.name, target.given, f"is a FIFO (named pipe) that no process read "
+              f"within {PIPE_TIMEOUT:g} s: start its reader first, or write to a regular file")
+    return fd
 
 
 def refuse_inside(outputs: dict, directory, owner: str) -> None:
@@ -246,9 +274,12 @@ def open_output(target, mode: str = "w"):
         return
     if target.kind == "special":
         try:
-            with open(target.path, mode, **({} if binary else {"encoding": "utf-8"})) as fh:
+            fd = _special_fd(target)
+            with os.fdopen(fd, mode, **({} if binary else {"encoding": "utf-8"})) as fh:
                 yield fh
         except OSError as exc:
+            if isinstance(exc, OutputError):
+                raise
             raise OutputError(f"cannot write {target.given}: {exc.strerror}",
                               path=target.given, reason=str(exc.strerror)) from None
         return
@@ -330,26 +361,14 @@ def read_bytes(path, what: str = "file", timeout: float | None = None) -> bytes:
         raise InputError(f"{where}: is a directory, not a {what}", name=where) from None
     except OSError as exc:
         raise InputError(f"{where}: cannot read the {what}: {exc.strerror}", name=where) from None
-    import threading
-
-    out: list = []
-
-    def read() -> None:
-        try:
-            with open(where, "rb") as fh:       # blocks until a writer connects
-                out.append(fh.read())
-        except OSError as exc:
-            out.append(exc)
-
-    reader = threading.Thread(target=read, daemon=True, name=f"read {where}")
-    reader.start()
-    reader.join(timeout)
-    if not out:
+    try:
+        data = read_pipe(where, timeout)
+    except OSError as exc:
+        raise InputError(f"{where}: cannot read the {what}: {exc.strerror}", name=where) from None
+    if data is None:
         raise InputError(f"{where}: a pipe that gave no complete {what} within {timeout:g} s "
                          "(is its writer running?): give a regular file", name=where)
-    if isinstance(out[0], OSError):
-        raise InputError(f"{where}: cannot read the {what}: {out[0].strerror}", name=where)
-    return out[0]
+    return data
 
 
 def read_text(path, what: str = "file", data: bytes | None = None) -> str:

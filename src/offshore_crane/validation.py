@@ -186,18 +186,27 @@ def _human(n: float) -> str:
 
 
 def memory_limit() -> tuple[float, str]:
-    """``(bytes, how it was set)``: ``OFFSHORE_CRANE_MEMORY_LIMIT`` when set, else
-    :data:`MEMORY_SHARE` of the memory available now (``MemAvailable``, Linux; the
-    physical memory elsewhere)."""
+    """``(bytes, how it was set)``: ``OFFSHORE_CRANE_MEMORY_LIMIT`` when set (not empty),
+    else :data:`MEMORY_SHARE` of the memory available now (``MemAvailable``, Linux; the
+    physical memory elsewhere).
+
+    Raises:
+        InputError: ``OFFSHORE_CRANE_MEMORY_LIMIT`` is not a finite number of bytes > 0
+            (``nan`` turned the guard off, ``0`` or a negative limit refused everything).
+    """
     import os
 
     given = os.environ.get("OFFSHORE_CRANE_MEMORY_LIMIT")
     if given:
         try:
-            return float(given), "OFFSHORE_CRANE_MEMORY_LIMIT"
+            limit = float(given)
         except ValueError:
+            limit = math.nan
+        if not (math.isfinite(limit) and limit > 0):
             raise InputError(f"OFFSHORE_CRANE_MEMORY_LIMIT = {given!r}: give a number of "
-                             "bytes", name="OFFSHORE_CRANE_MEMORY_LIMIT") from None
+                             "bytes, finite and > 0 (e.g. 8e9), or unset it (half the "
+                             "memory available)", name="OFFSHORE_CRANE_MEMORY_LIMIT")
+        return limit, "OFFSHORE_CRANE_MEMORY_LIMIT"
     available = None
     try:
         with open("/proc/meminfo", encoding="ascii") as fh:

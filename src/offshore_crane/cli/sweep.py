@@ -57,12 +57,14 @@ def _plot_dir(given: str | None) -> str | None:
     """``--plot DIR``: an existing directory, or a new one whose parent exists (made
     after the checks, before the sweep)."""
     from offshore_crane.errors import OutputError
+    from offshore_crane.special_files import what_is
 
     if given is None:
         return None
     if os.path.exists(given) and not os.path.isdir(given):
-        raise OutputError(f"--plot {given}: exists and is not a directory: give a "
-                          "directory for the figures", path=given, reason="not a directory")
+        raise OutputError(f"--plot {given}: exists and is not a directory "
+                          f"({what_is(given)}): give a directory for the figures",
+                          path=given, reason="not a directory")
     parent = os.path.dirname(os.path.abspath(given))
     if not os.path.isdir(parent):
         raise OutputError(f"--plot {given}: directory {os.path.dirname(given) or '.'} does "

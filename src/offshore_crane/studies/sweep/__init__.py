@@ -47,7 +47,8 @@ from offshore_crane.studies.sweep.grid import (MAX_CASES, SEA_KEYS, CaseIds, Gri
 from offshore_crane.studies.sweep.cases import CASE_COLUMNS, CaseRun, record, run_case, row_schema
 from offshore_crane.studies.sweep.store import (MANIFEST, MANIFEST_FORMAT, scene_hash,
                                                 ResultsStore, read_results)
-from offshore_crane.studies.sweep.backends import CONNECT_TIMEOUT, LOCAL_WORKERS, connect
+from offshore_crane.studies.sweep.backends import LOCAL_WORKERS, connect
+from offshore_crane.studies.sweep.scheduler import CONNECT_TIMEOUT, MAX_HANDSHAKE
 from offshore_crane.studies.sweep.running import run
 from offshore_crane.studies.sweep.assessment import (VERDICT_COLUMNS, CRITERIA, group_keys, verdicts,
                                                       Scatter, load_scatter, limiting_hs,

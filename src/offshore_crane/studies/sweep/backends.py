@@ -1,5 +1,5 @@
-"""Where the cases run: in this process, on joblib workers, or on a Dask cluster (with a
-connection timeout), the kernels warmed up once per process.
+"""Where the cases run: in this process, on joblib workers, or on a Dask cluster (reached
+after the handshake check of :mod:`.scheduler`), the kernels warmed up once per process.
 """
 
 from __future__ import annotations
@@ -7,87 +7,14 @@ from __future__ import annotations
 from offshore_crane.errors import SchedulerError
 from offshore_crane.studies.sweep.cases import run_task
 from offshore_crane.studies.sweep.grid import install_hint
+from offshore_crane.studies.sweep.scheduler import CONNECT_TIMEOUT, handshake
 
 
-#: Seconds to wait for a Dask scheduler before calling it unreachable.
-CONNECT_TIMEOUT = 3.0
 #: Default Dask ``LocalCluster`` size (``--scheduler local``) when ``workers`` is not given.
 LOCAL_WORKERS = 2
 
 
 # =========================================================================== backends
-def check_scheduler(scheduler) -> str | None:
-    """``None``, ``"local"`` or a checked Dask address ``tcp://HOST:PORT`` (the scheme,
-    a host and a port 1..65535), before anything runs.
-
-    Raises:
-        InputError: anything else, naming what to give.
-    """
-    if scheduler is None or scheduler == "local":
-        return scheduler
-    scheduler_address(scheduler)
-    return scheduler
-
-
-def scheduler_address(scheduler) -> tuple[str, int]:
-    """``(host, port)`` of a Dask scheduler address ``tcp://HOST:PORT``.
-
-    Raises:
-        InputError: not such an address (naming the part that is wrong).
-    """
-    from urllib.parse import urlsplit
-
-    from offshore_crane.errors import InputError
-
-    hint = ("give 'local' (a Dask LocalCluster on this machine) or a scheduler address "
-            "tcp://HOST:PORT")
-    if not isinstance(scheduler, str) or "://" not in scheduler:
-        raise InputError(f"--scheduler {scheduler!r}: {hint}", name="scheduler")
-    parts = urlsplit(scheduler)
-    try:
-        port = parts.port
-    except ValueError:
-        port = -1
-    if parts.scheme != "tcp" or not parts.hostname or port is None or not 0 < port < 65536 \
-            or parts.path not in ("", "/") or parts.query or parts.fragment:
-        what = ("the scheme must be tcp" if parts.scheme != "tcp" else
-                "no host" if not parts.hostname else "the port must be 1..65535"
-                if port is None or not 0 < port < 65536 else "nothing may follow the port")
-        raise InputError(f"--scheduler {scheduler}: {what}: {hint}", name="scheduler")
-    return parts.hostname, port
-
-
-def handshake(scheduler: str, timeout: float = CONNECT_TIMEOUT) -> None:
-    """Connect to the address and wait for the scheduler's handshake (a Dask scheduler
-    writes its own at once), all within ``timeout`` [s]: a closed port and a listener
-    that is not Dask (a web server waits for a request forever) both end here."""
-    import socket
-    import time
-
-    host, port = scheduler_address(scheduler)
-    t0 = time.monotonic()
-    try:
-        sock = socket.create_connection((host, port), timeout=timeout)
-    except OSError as exc:
-        reason = exc.strerror or type(exc).__name__
-        raise SchedulerError(f"--scheduler {scheduler}: cannot reach the Dask scheduler "
-                             f"within {timeout:g} s ({reason}): start it (dask scheduler) "
-                             "or check the address; nothing was run or written",
-                             address=scheduler, reason=reason) from None
-    with sock:
-        sock.settimeout(max(timeout - (time.monotonic() - t0), 1e-3))
-        try:
-            first = sock.recv(1)
-        except OSError:
-            first = None
-    if not first:
-        reason = "no Dask handshake" if first is None else "connection closed"
-        raise SchedulerError(f"--scheduler {scheduler}: something listens there but sent no "
-                             f"Dask handshake within {timeout:g} s ({reason}): is it a Dask "
-                             "scheduler? nothing was run or written",
-                             address=scheduler, reason=reason)
-
-
 def connect(scheduler: str, workers: int | None = None, timeout: float = CONNECT_TIMEOUT):
     """A ``dask.distributed.Client``: on a new ``LocalCluster`` (``"local"``: processes,
     ``workers`` of one thread each, no dashboard) or connected to ``tcp://HOST:PORT``

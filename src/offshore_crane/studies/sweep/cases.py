@@ -198,12 +198,48 @@ def _failed_row() -> dict:
     return row
 
 
+def fatal(exc: BaseException) -> bool:
+    """Whether ``exc`` is the process's failure rather than its case's: out of memory, of
+    file descriptors or of processes (every case after it would fail too), or not an
+    :class:`Exception` at all (Ctrl-C, SIGTERM, exit). Such an error ends the sweep."""
+    import errno
+
+    return (not isinstance(exc, Exception) or isinstance(exc, MemoryError)
+            or (isinstance(exc, OSError) and not isinstance(exc, OffshoreCraneError)
+                and exc.errno in (errno.ENOMEM, errno.EMFILE, errno.ENFILE)))
+
+
+def internal_error(exc: BaseException) -> str:
+    """One line for an error a case met that is not an
+    :class:`~offshore_crane.errors.OffshoreCraneError` (an ``IndexError`` deep in a
+    library path: a bug, not the case's input): that it is internal and to report it,
+    its message's first 160 characters, and the innermost line of the package it
+    passed through."""
+    import traceback
+    from pathlib import PurePath
+
+    where = ""
+    for frame in reversed(traceback.extract_tb(exc.__traceback__)):
+        parts = PurePath(frame.filename).parts
+        if "offshore_crane" in parts:
+            inner = parts[len(parts) - parts[::-1].index("offshore_crane") - 1:]
+            where = f" (at {'/'.join(inner)}:{frame.lineno} in {frame.name})"
+            break
+    text = " ".join(str(exc).split())
+    text = (text[:157] + "...") if len(text) > 160 else text or "no message"
+    return (f"internal error, a bug: please report it with the scene and this case's "
+            f"values: {type(exc).__name__}: {text}{where}")
+
+
 def run_case(scene, params: dict, backend: str = "auto", timing: dict | None = None,
              cid: str | None = None) -> dict:
     """One case: the row of :func:`row_schema` (``case_id``, the case's values, its
-    status, error and envelope). A library error (workspace, singularity, simulation
-    stopped, missing capability) is recorded in the row (``status = "failed"``,
-    ``error_type``, ``error``) instead of raised; the row's other numbers are then NaN.
+    status, error and envelope). Whatever the case raises is recorded in the row
+    (``status = "failed"``, ``error_type``, ``error``) instead of raised, and the row's
+    other numbers are then NaN: a library error (workspace, singularity, simulation
+    stopped, missing capability) with its message, any other exception as an internal
+    error (:func:`internal_error`: a bug to report) — but for the process's own failures
+    (:func:`fatal`: out of memory, Ctrl-C, SIGTERM), which propagate and end the sweep.
     ``timing`` (a dict), when given, receives ``compute``: the case's own computation
     (trajectory and dynamics, :attr:`CaseRun.seconds`) [s] — never part of the row, which
     holds only what is reproducible. ``cid``: the case's id when the caller has it
@@ -216,8 +252,11 @@ def run_case(scene, params: dict, backend: str = "auto", timing: dict | None = N
         try:
             with progress.suspended():          # the sweep's bar counts the cases
                 done = record(case_scene(scene, params), backend=backend, threads=1)
-        except OffshoreCraneError as exc:
-            row.update(status="failed", error_type=type(exc).__name__, error=str(exc),
+        except Exception as exc:
+            if fatal(exc):
+                raise
+            message = str(exc) if isinstance(exc, OffshoreCraneError) else internal_error(exc)
+            row.update(status="failed", error_type=type(exc).__name__, error=message,
                        **_failed_row())
             done = None
     if done is not None:

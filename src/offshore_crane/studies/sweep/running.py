@@ -9,14 +9,14 @@ import time
 
 from offshore_crane import progress as shown
 from offshore_crane.errors import SchedulerError
-from offshore_crane.studies.sweep.backends import (can_fork, check_scheduler, connect,
-                                                   handshake, run_in_process, run_on_forks,
-                                                   run_on_dask, run_on_joblib, warm_up_scene,
-                                                   warm_up_workers)
+from offshore_crane.studies.sweep.backends import (can_fork, connect, run_in_process,
+                                                   run_on_forks, run_on_dask, run_on_joblib,
+                                                   warm_up_scene, warm_up_workers)
 from offshore_crane.studies.sweep.cases import row_schema
 from offshore_crane.studies.sweep.grid import (MAX_CASES, CaseIds, Grid, check_grid,
                                                install_hint, load_grid, scene_values)
 from offshore_crane.studies.sweep.rowfiles import batch_seconds
+from offshore_crane.studies.sweep.scheduler import check_scheduler, handshake
 from offshore_crane.studies.sweep.store import (ResultsStore, conform, results_table,
                                                 with_values)
 

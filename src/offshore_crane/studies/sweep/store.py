@@ -12,6 +12,7 @@ from dataclasses import fields
 from pathlib import Path
 
 from offshore_crane.errors import ResultsDirectoryError
+from offshore_crane.special_files import what_is
 from offshore_crane.studies.sweep.grid import Grid, install_hint
 from offshore_crane.studies.sweep.rowfiles import BatchWriter, case_ids, read_rows, recover
 
@@ -73,8 +74,8 @@ class ResultsStore:
             raise ResultsDirectoryError(f"--out {given}: {reason}", path=given, reason=reason)
 
         if os.path.exists(given) and not os.path.isdir(given):
-            refuse("exists and is not a directory: give a results directory (new, empty, "
-                   "or of an earlier run of the same scene)")
+            refuse(f"exists and is not a directory ({what_is(given)}): give a results "
+                   "directory (new, empty, or of an earlier run of the same scene)")
         if not os.path.isdir(given):
             parent = os.path.dirname(os.path.abspath(given))
             if not os.path.isdir(parent):
@@ -112,10 +113,14 @@ class ResultsStore:
         of another scene may have claimed it since :meth:`open`.
 
         Raises:
-            ResultsDirectoryError: the directory is in use, cannot be created, or now
-                holds another scene's results.
+            ResultsDirectoryError: the directory is in use, cannot be created or written
+                (read-only: one line naming it and what to do), its lock file cannot be
+                opened, or it now holds another scene's results.
         """
         import datetime
+
+        from offshore_crane.errors import OutputError
+        from offshore_crane.io import write_text
 
         filelock = install_hint("filelock", "A sweep's results directory lock")
         self._created = not os.path.isdir(self.path)
@@ -124,17 +129,22 @@ class ResultsStore:
         self._lock = filelock.FileLock(os.path.join(self.path, LOCK), timeout=0)
         try:
             self._lock.acquire()
-        except filelock.Timeout:
+        except filelock.Timeout:                # a TimeoutError, so an OSError: first
             who = _holder(self.path)
             reason = f"in use by {who}"
             raise ResultsDirectoryError(f"--out {self.path}: {reason}: wait for that sweep "
                                         "to end or choose another directory",
                                         path=self.path, reason=reason) from None
-        from offshore_crane.io import write_text
-
+        except OSError as exc:
+            self._unmake_directory()
+            raise self._refused(exc) from None
         since = datetime.datetime.now().strftime("%Y-%m-%d %H:%M:%S")
-        write_text(os.path.join(self.path, LOCK_INFO),        # whole, or not at all
-                   json.dumps({"pid": os.getpid(), "since": since}))
+        try:
+            write_text(os.path.join(self.path, LOCK_INFO),        # whole, or not at all
+                       json.dumps({"pid": os.getpid(), "since": since}))
+        except OutputError as exc:             # the lock file could be opened, not made
+            self.release()
+            raise self._refused(exc, writable=False) from None
         try:
             current = ResultsStore.open(self.path, scene)
         except ResultsDirectoryError:
@@ -148,6 +158,24 @@ class ResultsStore:
         except BaseException:
             self.release()
             raise
+
+    def _refused(self, exc: OSError, writable: bool | None = None) -> ResultsDirectoryError:
+        """The one-line error of a directory whose lock (or its holder's note) cannot be
+        written: not ``writable`` (permissions, a read-only mount: by default judged from
+        ``exc``) or a ``_lock`` that cannot be opened (a directory of that name)."""
+        import errno
+
+        reason = getattr(exc, "reason", None) or exc.strerror or type(exc).__name__
+        if writable is None:
+            writable = not (isinstance(exc, PermissionError) or exc.errno == errno.EROFS)
+        if not writable:
+            what = ("is not writable, and a run writes its lock and rows there: make it "
+                    "writable or give another --out (sweep.read_results reads it as it is)")
+        else:
+            what = (f"its lock file {LOCK} cannot be opened: remove {LOCK} if it is not a "
+                    "sweep's lock, or give another --out")
+        return ResultsDirectoryError(f"--out {self.path}: {what} ({reason})",
+                                     path=self.path, reason=reason)
 
     def _migrate(self, scene) -> None:
         """Version-1 rows under the ids of their resolved cases (the grid keys' values of
@@ -185,6 +213,14 @@ class ResultsStore:
             raise ResultsDirectoryError(f"--out {self.path}: cannot create the directory: "
                                         f"{exc.strerror}", path=self.path,
                                         reason=str(exc.strerror)) from None
+
+    def _unmake_directory(self) -> None:
+        """Remove the directory :meth:`lock` made, if it is still empty."""
+        if self._created:
+            try:
+                os.rmdir(self.path)
+            except OSError:
+                pass
 
     def discard_if_new(self) -> None:
         """Remove the directory this run made (call under :meth:`lock`, before any row):
