@@ -85,21 +85,50 @@ def bar(total: int | None, unit: str, desc: str, enabled: bool | None = None):
                      delay=DELAY, dynamic_ncols=True)
 
 
-def run_polled(job, done, total: int, unit: str, desc: str):
+def run_polled(job, done, total: int, unit: str, desc: str, stop=None):
     """Run ``job()`` (a compiled loop that releases the GIL) and return its result; with
     bars on, in a thread while this one shows ``done()`` (its own counter of finished
-    units, read every :data:`POLL` s) against ``total``. Exceptions come back here; a
-    Ctrl-C stops waiting (the loop's thread is a daemon: it ends with the process)."""
-    if not is_enabled():
+    units, read every :data:`POLL` s) against ``total``. Exceptions come back here.
+
+    ``stop``: a ``(1,)`` array the loop reads between its steps, ending early when it is
+    not zero (its own stop code). Given, the loop runs in a thread whenever this is the
+    main thread, bars or not: Python runs the handlers of SIGINT and SIGTERM only in the
+    main thread and between its bytecodes, so a loop run here would hold them until it
+    ends. The exception they raise sets ``stop``, waits for the loop to return (within
+    one of its steps) and is raised: a run stops within :data:`POLL` s and a step. Without
+    ``stop``, a Ctrl-C stops waiting (the loop's thread is a daemon: it ends with the
+    process)."""
+    main = threading.current_thread() is threading.main_thread()
+    if not (is_enabled() or (stop is not None and main)):
         return job()
     worker, box = in_thread(job, desc)
-    with bar(total, unit, desc) as b:
-        while worker.is_alive():
-            worker.join(POLL)
-            b.update(max(0, min(int(done()), total) - b.n))
+    try:
+        with bar(total, unit, desc) as b:
+            while worker.is_alive():
+                worker.join(POLL)
+                b.update(max(0, min(int(done()), total) - b.n))
+    except BaseException:
+        halt(stop, worker)
+        raise
     if "error" in box:
         raise box["error"]
     return box.get("value")
+
+
+def halt(stop, worker) -> None:
+    """Ask a compiled loop to end (``stop[0] = 1``, its flag) and wait for its thread
+    ``worker``; a no-op without a flag."""
+    if stop is None:
+        return
+    stop[0] = 1
+    worker.join()
+
+
+def stop_flag():
+    """A fresh ``(1,)`` int64 array of zeros: the flag :func:`run_polled` sets."""
+    import numpy as np
+
+    return np.zeros(1, dtype=np.int64)
 
 
 def in_thread(job, desc: str):
