@@ -101,27 +101,30 @@ def run_polled(job, done, total: int, unit: str, desc: str, stop=None):
     main = threading.current_thread() is threading.main_thread()
     if not (is_enabled() or (stop is not None and main)):
         return job()
-    worker, box = in_thread(job, desc)
+    box = in_thread(job, desc)[1]
     try:
         with bar(total, unit, desc) as b:
-            while worker.is_alive():
-                worker.join(POLL)
+            finished = False
+            while not finished:
+                finished = box["done"].wait(POLL)
                 b.update(max(0, min(int(done()), total) - b.n))
     except BaseException:
-        halt(stop, worker)
+        halt(stop, box)
         raise
     if "error" in box:
         raise box["error"]
     return box.get("value")
 
 
-def halt(stop, worker) -> None:
-    """Ask a compiled loop to end (``stop[0] = 1``, its flag) and wait for its thread
-    ``worker``; a no-op without a flag."""
+def halt(stop, box) -> None:
+    """Ask a compiled loop to end (``stop[0] = 1``, its flag) and wait until its thread
+    (:func:`in_thread`'s ``box``) has finished; a no-op without a flag. Waits on the
+    box's event, not ``Thread.join``: a join that a signal interrupted marks the thread
+    ended while it runs (CPython's bpo-45274), and joins after it return at once."""
     if stop is None:
         return
     stop[0] = 1
-    worker.join()
+    box["done"].wait()
 
 
 def stop_flag():
@@ -134,14 +137,17 @@ def stop_flag():
 def in_thread(job, desc: str):
     """Start ``job()`` in a daemon thread (a Ctrl-C in the caller ends the process, not
     waiting for it): ``(thread, box)``; once the thread has ended, ``box`` holds
-    ``"value"`` (the result) or ``"error"`` (the exception, for the caller to raise)."""
-    box: dict = {}
+    ``"value"`` (the result) or ``"error"`` (the exception, for the caller to raise),
+    and its event ``box["done"]`` is set (what to wait on)."""
+    box: dict = {"done": threading.Event()}
 
     def target():
         try:
             box["value"] = job()
         except BaseException as exc:     # re-raised in the caller's thread
             box["error"] = exc
+        finally:
+            box["done"].set()
 
     worker = threading.Thread(target=target, daemon=True, name=f"offshore-crane {desc}")
     worker.start()

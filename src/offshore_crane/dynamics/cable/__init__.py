@@ -238,10 +238,10 @@ def _alongside(job, follow, Y, status, stop):
     it to return before it is raised."""
     import time
 
-    worker, box = progress.in_thread(job, "swing")
+    box = progress.in_thread(job, "swing")[1]
 
     def ready(b: int) -> int:
-        while worker.is_alive():
+        while not box["done"].is_set():
             if progress.filled_rows(Y) > b:
                 return b
             time.sleep(WAIT)
@@ -252,10 +252,10 @@ def _alongside(job, follow, Y, status, stop):
     try:
         out = follow(ready)
     except BaseException:
-        progress.halt(stop, worker)
+        progress.halt(stop, box)
         raise
     finally:
-        worker.join()
+        box["done"].wait()
     if "error" in box:
         raise box["error"]
     return out
