@@ -16,6 +16,7 @@ import pytest
 
 import offshore_crane as oc
 from offshore_crane import io
+from problems import held_at_home
 from offshore_crane.cli import main
 from offshore_crane.errors import InputError, OutputError
 
@@ -198,6 +199,189 @@ def test_a_ctrl_c_while_the_program_exits_is_no_traceback(tmp_path):
                           timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert "Traceback" not in proc.stderr and "Exception ignored" not in proc.stderr
+
+
+#: A run of the stiffest elastic cable allowed, with a marker on stderr once its loop
+#: begins (``progress.run_polled``), then the command line as installed.
+_MARKED_RUN = ("import sys\n"
+               "from offshore_crane import progress\n"
+               "inner = progress.run_polled\n"
+               "def marked(*args, **kwargs):\n"
+               "    print('LOOP', file=sys.stderr, flush=True)\n"
+               "    return inner(*args, **kwargs)\n"
+               "progress.run_polled = marked\n"
+               "sys.argv = ['offshore-crane', 'id', '--scene', 'stiff.toml', '--out', 'x.csv']\n"
+               "from offshore_crane.__main__ import entry\n"
+               "entry()\n")
+
+
+def _stiffest_scene(tmp_path):
+    """2 kg on 1 m at the bound EA = m g / STRAIN_MIN (less 1e-9 of it), Table 1 for
+    3000 s at 100 Hz: 788 RK4 steps a sample, a run of minutes."""
+    from offshore_crane.dynamics.cable.elastic import STRAIN_MIN
+
+    ea = 2.0 * 9.81 / STRAIN_MIN * (1.0 - 1e-9)
+    (tmp_path / "stiff.toml").write_text(
+        f'name = "stiffest"\n[payload]\nmass = 2.0\ncable_length = 1.0\n[cable]\n'
+        f'ea = {ea!r}\n[trajectory]\nsource = "table1"\nduration = 3000.0\n')
+
+
+@pytest.mark.parametrize("sig, status, word, terminal", [
+    (signal.SIGTERM, 143, "SIGTERM", False), (signal.SIGINT, 130, "SIGINT", True)],
+    ids=["sigterm-no-terminal", "sigint-terminal"])
+def test_a_signal_stops_the_stiffest_elastic_cable_within_a_second(tmp_path, sig, status,
+                                                                    word, terminal):
+    """Issue 36: the elastic cable's compiled loop ran in the main thread without a
+    terminal, so SIGTERM waited for its end (172 s at ea = 1e13). Now the loop runs in
+    a thread that a flag stops: the process ends within 1 s of the signal (measured
+    0.17-0.25 s, process exit included), one line, no file; with a terminal (a pty:
+    progress bars on) and without (pipes, a new session)."""
+    import pty
+    import select
+
+    _stiffest_scene(tmp_path)
+    master, slave = pty.openpty() if terminal else (None, None)
+    proc = subprocess.Popen([sys.executable, "-c", _MARKED_RUN], cwd=tmp_path,
+                            env={**os.environ, "PYTHONPATH": str(SRC)},
+                            stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                            stderr=slave if terminal else subprocess.PIPE,
+                            start_new_session=not terminal)
+    fd = master if terminal else proc.stderr.fileno()
+    if terminal:
+        os.close(slave)
+    seen, deadline = b"", time.time() + 120
+    try:
+        while b"LOOP" not in seen and time.time() < deadline:
+            if select.select([fd], [], [], 1.0)[0]:
+                seen += os.read(fd, 4096)
+        assert b"LOOP" in seen, seen
+        time.sleep(0.5)                           # well inside the loop
+        assert proc.poll() is None, "the run ended before the signal"
+        start = time.perf_counter()
+        proc.send_signal(sig)
+        proc.wait(timeout=30)
+        latency = time.perf_counter() - start
+        while select.select([fd], [], [], 0.2)[0]:
+            try:
+                chunk = os.read(fd, 4096)
+            except OSError:                       # the pty's other end closed
+                break
+            if not chunk:
+                break
+            seen += chunk
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        if terminal:
+            os.close(master)
+    err = seen.decode(errors="replace").split("LOOP", 1)[1]
+    assert proc.returncode == status, err
+    assert latency < 1.0, f"{latency:.2f} s from {word} to the exit"
+    assert word in err and "Traceback" not in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["stiff.toml"]   # no x.csv, no tmp
+
+
+@pytest.mark.parametrize("kind", ["elastic", "swing", "swing-alongside", "simulate"])
+def test_a_ctrl_c_stops_a_compiled_loop_and_its_thread(kind, monkeypatch):
+    """In the library too (a notebook's Ctrl-C): SIGINT 50 ms after the compiled loop
+    begins (each would run on for 0.3 s or more) reaches the caller as KeyboardInterrupt
+    within 1 s, its flag set and its thread ended, for the elastic cable, the rigid swing
+    (alone, and alongside the Kane pass on 2 threads) and the simulation."""
+    import warnings
+
+    from offshore_crane import progress
+    from offshore_crane.dynamics import cable
+    from offshore_crane.motion import trajectories
+    from offshore_crane.simulation import Controller, simulate
+
+    sent, timers = [], []
+    inner = progress.run_polled
+
+    def marked(*args, **kwargs):                  # the signal once the loop has begun
+        def fire():
+            sent.append(time.perf_counter())
+            os.kill(os.getpid(), signal.SIGINT)
+        timers.append(threading.Timer(0.05, fire))
+        timers[-1].start()
+        return inner(*args, **kwargs)
+
+    monkeypatch.setattr(progress, "run_polled", marked)
+    robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 1.0})
+    # the crane held still, the load swinging from (0.3, 0.2) rad: no divergence, no end
+    t, q, qd, qdd = held_at_home(robot, 100.0 if kind == "elastic" else 400.0, 100.0)
+    swing = dict(t=t, limits=False, substeps=8, initial=(0.3, 0.2))
+    runs = {"elastic": lambda: cable.elastic_inverse_dynamics(robot, q, qd, qdd, t=t,
+                                                              ea=1.9e8, limits=False),
+            "swing": lambda: cable.inverse_dynamics(robot, q, qd, qdd, **swing),
+            "swing-alongside": lambda: cable.inverse_dynamics(robot, q, qd, qdd, **swing,
+                                                              threads=2),
+            "simulate": lambda: simulate(oc.load_robot(), 100.0, trajectories.table1,
+                                         controller=Controller(), limits=False)}
+    try:
+        with warnings.catch_warnings(), pytest.raises(KeyboardInterrupt):
+            warnings.simplefilter("ignore")
+            runs[kind]()
+    finally:                                      # a run ended early: no stray signal
+        for timer in timers:
+            timer.cancel()
+    raised = time.perf_counter()
+    assert len(sent) == 1, "the run ended before the signal"
+    assert raised - sent[0] < 1.0
+    assert [th.name for th in threading.enumerate() if th.name.startswith("offshore-crane")
+            ] == []
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_blocks_of_samples_give_the_same_numbers_bit_for_bit(threads, monkeypatch):
+    """The dynamics run their samples in blocks of runtime.BLOCK (a signal acts between
+    them): 2.5 blocks of Table 1 with the workspace's worst conditions (the health
+    record merged across blocks) give X, the condition numbers and the forward dynamics'
+    q̈ equal, bit for bit, to one call over all samples."""
+    from offshore_crane.dynamics import runtime, solve
+    from offshore_crane.dynamics.forward import forward_dynamics
+    from offshore_crane.motion import trajectories
+
+    robot = oc.load_robot()
+    n = int(2.5 * runtime.BLOCK)
+    q, qd, qdd = trajectories.table1(np.arange(n) * 1e-3)
+
+    def both():
+        r = solve(robot, q, qd, qdd, threads=threads)
+        X = oc.inverse_dynamics(robot, q, qd, qdd)
+        return r.X, r.condition, forward_dynamics(robot, q, qd, X, threads=threads)
+
+    blocked = both()
+    monkeypatch.setattr(runtime, "BLOCK", 10 * n)
+    whole = both()
+    for a, b in zip(blocked, whole):
+        assert np.array_equal(a, b, equal_nan=True)
+
+
+@pytest.mark.parametrize("kind", ["elastic", "swing", "swing-alongside", "simulate"])
+def test_a_loop_run_in_its_stoppable_thread_gives_the_same_numbers(kind, monkeypatch):
+    """The compiled loops read their stop flag and run in a thread: their results equal,
+    bit for bit, a direct call in this thread (run_polled as before, bars off)."""
+    from offshore_crane import progress
+    from offshore_crane.dynamics import cable
+    from offshore_crane.motion import trajectories
+    from offshore_crane.simulation import Controller, simulate
+
+    robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 1.0})
+    t = trajectories.time_grid(2.0, 100.0)
+    q, qd, qdd = trajectories.table1(t)
+    runs = {"elastic": lambda: cable.elastic_inverse_dynamics(robot, q, qd, qdd, t=t,
+                                                              ea=5e3, damping=2.0),
+            "swing": lambda: cable.inverse_dynamics(robot, q, qd, qdd, t=t, substeps=4),
+            "swing-alongside": lambda: cable.inverse_dynamics(robot, q, qd, qdd, t=t,
+                                                              substeps=4, threads=2),
+            "simulate": lambda: simulate(oc.load_robot(), 0.5, trajectories.table1,
+                                         controller=Controller())}
+    threaded = runs[kind]()
+    monkeypatch.setattr(progress, "run_polled", lambda job, *args: job())
+    direct = runs[kind]()
+    for name in ("X", "q", "qd", "tension", "position", "sway"):
+        if getattr(direct, name, None) is not None:
+            assert np.array_equal(getattr(threaded, name), getattr(direct, name)), name
 
 
 @pytest.mark.slow

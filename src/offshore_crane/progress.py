@@ -85,34 +85,69 @@ def bar(total: int | None, unit: str, desc: str, enabled: bool | None = None):
                      delay=DELAY, dynamic_ncols=True)
 
 
-def run_polled(job, done, total: int, unit: str, desc: str):
+def run_polled(job, done, total: int, unit: str, desc: str, stop=None):
     """Run ``job()`` (a compiled loop that releases the GIL) and return its result; with
     bars on, in a thread while this one shows ``done()`` (its own counter of finished
-    units, read every :data:`POLL` s) against ``total``. Exceptions come back here; a
-    Ctrl-C stops waiting (the loop's thread is a daemon: it ends with the process)."""
-    if not is_enabled():
+    units, read every :data:`POLL` s) against ``total``. Exceptions come back here.
+
+    ``stop``: a ``(1,)`` array the loop reads between its steps, ending early when it is
+    not zero (its own stop code). Given, the loop runs in a thread whenever this is the
+    main thread, bars or not: Python runs the handlers of SIGINT and SIGTERM only in the
+    main thread and between its bytecodes, so a loop run here would hold them until it
+    ends. The exception they raise sets ``stop``, waits for the loop to return (within
+    one of its steps) and is raised: a run stops within :data:`POLL` s and a step. Without
+    ``stop``, a Ctrl-C stops waiting (the loop's thread is a daemon: it ends with the
+    process)."""
+    main = threading.current_thread() is threading.main_thread()
+    if not (is_enabled() or (stop is not None and main)):
         return job()
-    worker, box = in_thread(job, desc)
-    with bar(total, unit, desc) as b:
-        while worker.is_alive():
-            worker.join(POLL)
-            b.update(max(0, min(int(done()), total) - b.n))
+    box = in_thread(job, desc)[1]
+    try:
+        with bar(total, unit, desc) as b:
+            finished = False
+            while not finished:
+                finished = box["done"].wait(POLL)
+                b.update(max(0, min(int(done()), total) - b.n))
+    except BaseException:
+        halt(stop, box)
+        raise
     if "error" in box:
         raise box["error"]
     return box.get("value")
 
 
+def halt(stop, box) -> None:
+    """Ask a compiled loop to end (``stop[0] = 1``, its flag) and wait until its thread
+    (:func:`in_thread`'s ``box``) has finished; a no-op without a flag. Waits on the
+    box's event, not ``Thread.join``: a join that a signal interrupted marks the thread
+    ended while it runs (CPython's bpo-45274), and joins after it return at once."""
+    if stop is None:
+        return
+    stop[0] = 1
+    box["done"].wait()
+
+
+def stop_flag():
+    """A fresh ``(1,)`` int64 array of zeros: the flag :func:`run_polled` sets."""
+    import numpy as np
+
+    return np.zeros(1, dtype=np.int64)
+
+
 def in_thread(job, desc: str):
     """Start ``job()`` in a daemon thread (a Ctrl-C in the caller ends the process, not
     waiting for it): ``(thread, box)``; once the thread has ended, ``box`` holds
-    ``"value"`` (the result) or ``"error"`` (the exception, for the caller to raise)."""
-    box: dict = {}
+    ``"value"`` (the result) or ``"error"`` (the exception, for the caller to raise),
+    and its event ``box["done"]`` is set (what to wait on)."""
+    box: dict = {"done": threading.Event()}
 
     def target():
         try:
             box["value"] = job()
         except BaseException as exc:     # re-raised in the caller's thread
             box["error"] = exc
+        finally:
+            box["done"].set()
 
     worker = threading.Thread(target=target, daemon=True, name=f"offshore-crane {desc}")
     worker.start()

@@ -49,9 +49,10 @@ def run(args) -> int:
                          "[trajectory] source = \"sea\"", name="--scene")
     scene = extremes_scene(args, scene)
     delay = args.delay if args.delay is not None else scene.control.get("delay", 0.0)
-    if not (delay >= 0.0 and delay < float("inf")):
-        raise InputError(f"--delay {delay:g} s: give a finite number >= 0 (the "
-                         "measurement's delay)", name="--delay")
+    if args.delay is not None:
+        from offshore_crane.scenes.bounds import check_delay
+
+        check_delay(scene, args.delay, "--delay")
     runs = compare_compensation(scene, delay=delay)
     run = runs[0].run
     say(f"offshore-crane compensate: {scene.name} ({args.scene}), {run.trajectory.name}, "

@@ -198,7 +198,7 @@ def _lift_event(scene: Scene, robot, traj, method: str, hoist, checked: dict):
 
     from offshore_crane.dynamics import Result
     from offshore_crane.dynamics.cable import lift_off, set_down
-    from offshore_crane.errors import SceneError
+    from offshore_crane.errors import InputError, SceneError
     from offshore_crane.scenes.assembly import lift_deck
 
     if method != "kane":
@@ -209,11 +209,17 @@ def _lift_event(scene: Scene, robot, traj, method: str, hoist, checked: dict):
     cable = dict(ea=scene.cable["ea"], damping=scene.cable.get("damping", 0.0), hoist=hoist,
                  gravity=checked["gravity"], substeps=scene.cable.get("substeps"))
     checks = {k: checked[k] for k in ("limits", "checks", "thresholds")}
-    if scene.lift["event"] == "lift-off":
-        event = lift_off(robot, traj, deck, **cable, **checks)
-        res = swap(event.result, event=event)
-    else:
-        res = set_down(robot, traj, deck, **cable, **checks)[2]
+    try:
+        if scene.lift["event"] == "lift-off":
+            event = lift_off(robot, traj, deck, **cable, **checks)
+            res = swap(event.result, event=event)
+        else:
+            res = set_down(robot, traj, deck, **cable, **checks)[2]
+    except InputError as exc:                   # the deck's height: the scene's key
+        if exc.name != "deck":
+            raise
+        raise SceneError(f"{scene.where()}: [lift] {exc}", path=scene.path,
+                         name="lift.deck_height") from None
     return Result(X=res.X, method=method, leg_model="full", outputs=scene.wanted(),
                   condition=np.full(len(res.t), np.nan), gimbal=None, attitude=None,
                   backend="numba", cable=res)

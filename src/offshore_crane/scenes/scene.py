@@ -277,6 +277,9 @@ def _check_sea(scene: "Scene") -> None:
         fail("operation.waypoints", "[operation] the hoist column L must stay > 0 m")
     if scene.lift:
         _check_lift(scene, fail)
+    from offshore_crane.scenes.bounds import check_bounds
+
+    check_bounds(scene, fail)
     if "target" in scene.control and "compensation" not in scene.control:
         fail("control.target", "[control] target is tracked by the motion compensation: "
              "set [control] compensation = \"arm\" or \"arm+winch\" (\"none\": the "

@@ -96,6 +96,37 @@ class Compensated:
         return lambda x: quintic_hermite(t, H[:, 0:1], H[:, 1:2], H[:, 2:3], x)
 
 
+#: The shortest measurement delay but none [s]: no measurement chain (motion sensor, bus,
+#: controller) answers within a microsecond; shorter, ``t − delay`` is ``t`` to the
+#: times' rounding and the delay means nothing.
+DELAY_MIN = 1e-6
+#: The longest delay as a fraction of the sea's peak period: compensating a motion
+#: measured ``τ`` late leaves ``|1 − e^{−iωτ}| = 2 |sin(ωτ/2)|`` of it, which exceeds the
+#: uncompensated motion (1) at the peak frequency from ``τ = Tp/6`` on.
+DELAY_MAX_PERIOD = 1.0 / 6.0
+
+
+def check_delay(delay, peak: float | None = None, name: str = "delay") -> float:
+    """A measurement delay [s]: 0, or at least :data:`DELAY_MIN`, and (given the sea's
+    peak period ``peak`` [s], model scale) at most :data:`DELAY_MAX_PERIOD` of it.
+
+    Raises:
+        InputError: naming ``name``, the value and the bound.
+    """
+    if not (isinstance(delay, (int, float, np.floating)) and not isinstance(delay, bool)
+            and np.isfinite(delay) and delay >= 0.0):
+        raise InputError(f"{name} = {delay!r} s: give a finite number >= 0 (the "
+                         "measurement's delay)", name=name)
+    if 0.0 < delay < DELAY_MIN:
+        raise InputError(f"{name} = {delay:.3g} s: shorter than any measurement chain's "
+                         f"({DELAY_MIN:g} s): give 0 (none) or >= {DELAY_MIN:g} s", name=name)
+    if peak is not None and delay > DELAY_MAX_PERIOD * peak:
+        raise InputError(f"{name} = {delay:.4g} s: over a sixth of the sea's peak period "
+                         f"{peak:.4g} s (model scale), where compensating amplifies the "
+                         f"motion: give <= {DELAY_MAX_PERIOD * peak:.4g} s", name=name)
+    return float(delay)
+
+
 def check_compensable(robot) -> None:
     """Raise :class:`InputError` unless the robot has the crane arm and a payload on a
     cable: what a compensation moves and what it holds still."""
@@ -185,9 +216,7 @@ def compensated_motion(robot, trajectory, mode: str = "arm+winch",
     if mode not in MODES:
         raise InputError(f"compensation = {mode!r}: use one of {', '.join(MODES)}",
                          name="compensation")
-    if not (isinstance(delay, (int, float)) and np.isfinite(delay) and delay >= 0.0):
-        raise InputError(f"delay = {delay!r} s: give a finite number >= 0 (the "
-                         "measurement's delay)", name="delay")
+    check_delay(delay)
     check_compensable(robot)
     t, q = trajectory.t, np.array(trajectory.q, dtype=float)
     still = q.copy()
@@ -230,9 +259,11 @@ def compensated_motion(robot, trajectory, mode: str = "arm+winch",
     if mode == "arm+winch":
         if not (L > 0).all():
             k = int(np.argmax(~(L > 0)))
-            raise InputError(f"compensation: the winch would need a cable length of "
-                             f"{L[k]:.4g} m at t = {t[k]:.4g} s: lengthen the cable",
-                             name="compensation", index=k)
+            where = "the target ([control] target)" if deck is not None else "the aim"
+            raise InputError(f"compensation: {where} is out of reach, "
+                             f"{seen_aim[k, 2] - tip[k, 2]:.3g} m above the crane tip at t = "
+                             f"{t[k]:.4g} s: pick a point that heaves less, a calmer sea, or "
+                             "mode \"arm\"", name="compensation", index=k)
         Ld, Ldd = finite_difference(t, L, FD_ORDER)
         hoist = np.column_stack([L, Ld, Ldd])
     traj = replace(trajectory, name=f"{trajectory.name}, compensated ({mode})", q=q, qd=qd,
@@ -246,6 +277,12 @@ def measured_from(trajectory, delay: float):
     record's source, which reaches back to ``t0``."""
     if delay <= 0.0:
         return trajectory
+    check_delay(delay)
+    t = trajectory.t
+    if not delay < t[-1] - t[0]:
+        raise InputError(f"delay = {delay:.4g} s: not shorter than the record's span "
+                         f"{t[-1] - t[0]:.4g} s: give a shorter delay or a longer duration",
+                         name="delay")
     k0 = int(np.searchsorted(trajectory.t, trajectory.t[0] + delay - 1e-12))
     return replace(trajectory, t=trajectory.t[k0:], q=trajectory.q[k0:],
                    qd=trajectory.qd[k0:], qdd=trajectory.qdd[k0:])

@@ -104,6 +104,7 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     robot = cable_robot(robot)
     empty = robot.without_hanging_payload()
     m = float(robot.hybrid.cable.mass[-1])
+    check_cable(ea, damping, m)
     g = as_gravity(gravity)
     gn = float(np.linalg.norm(g))
     n_steps, out_every, hold = steps(duration, step, rate, controller.rate)

@@ -156,13 +156,14 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
     rec = Recording.empty(n_out)
     health = ws.new_health()
     status = np.zeros(3, dtype=np.int64)
+    stop = progress.stop_flag()
     progress.run_polled(
         lambda: run(Packed(plant.flat, plant.layout, plant.prismatic),
                     Packed(model.flat, model.layout, model.prismatic), g, step, n_steps,
                     out_every, StageGrid(qr, qdr, qddr),
                     LawParameters(kind, kp, kd, hold, nq, nqd, lo, hi),
-                    limits, q0, qd0, rec, health, status),
-        lambda: status[2], n_out, "sample", "simulate")
+                    limits, q0, qd0, rec, health, status, stop),
+        lambda: status[2], n_out, "sample", "simulate", stop)
     n_done = int(status[2])
     t_out = tt[::2][::out_every][:n_out]
     res = SimulationResult(t=t_out, **rec._asdict(), integrator="rk4", step=step)

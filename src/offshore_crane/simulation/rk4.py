@@ -19,7 +19,9 @@ kinetic_energy = c.kinetic_energy
 tangent_bounds = c.tangent_bounds
 STAMP = c.STAMP
 jit = njit(**c.JIT)
-OK, WORKSPACE, SINGULAR, DIVERGED = 0, 1, 2, 3
+#: Stop codes; STOPPED: asked to (the flag set by
+#: :func:`offshore_crane.progress.run_polled` on a signal, which the caller raises).
+OK, WORKSPACE, SINGULAR, DIVERGED, STOPPED = 0, 1, 2, 3, 4
 _VIOLATION = 3
 #: The law code of computed torque on the plant's own model with the law applied at
 #: every stage (:func:`offshore_crane.simulation.rigid.simulate` chooses it): one
@@ -175,11 +177,12 @@ def _runner(stamp):
 
     @jit
     def run(plant, model, g, h, n_steps, out_every, reference, gains, want_limits, q0, qd0,
-            record, health, status):
+            record, health, status, halt):
         """RK4 from (q0, qd0) of the robot ``plant`` under the law ``gains`` computed on
         ``model`` (:class:`~offshore_crane.simulation.record.Packed`, ``LawParameters``),
         tracking ``reference`` (``StageGrid``); writes every ``out_every``-th step to
-        ``record`` (``Recording``); ``status`` receives (code, step) of a stop."""
+        ``record`` (``Recording``); ``status`` receives (code, step) of a stop. Ends
+        before a step when ``halt[0]`` (1,) is not zero (code STOPPED)."""
         if len(stamp) == 0:
             return
         fp, lp, pp = plant
@@ -220,6 +223,10 @@ def _runner(stamp):
         sat = np.zeros(9, dtype=np.bool_)
         ctrl = 0
         for step in range(n_steps + 1):
+            if halt[0] != 0:
+                status[0] = STOPPED
+                status[1] = step
+                return
             i0 = 2 * step
             # control at the step start (sample-and-hold) or at every stage
             if hold == 0 or step % hold == 0:

@@ -74,6 +74,7 @@ def compare_compensation(scene, robot=None, modes=("none", "arm", "arm+winch"),
     from offshore_crane.simulation.compensation import check_compensable
     from offshore_crane.studies.sweep.cases import record
 
+    _check_comparable(scene)
     robot = robot or scenes.load_robot(scene)
     check_compensable(robot)
     control = dict(scene.control)
@@ -95,6 +96,25 @@ def compare_compensation(scene, robot=None, modes=("none", "arm", "arm+winch"),
                 env.worst(), lift.winch_utilisation(robot.winch), comp.held, res, run))
             shown.update()
     return runs
+
+
+def _check_comparable(scene) -> None:
+    """A scene whose lift the modes can share: the compensation drives the arm and the
+    winch itself, and a ``[lift]`` event is not compensated.
+
+    Raises:
+        SceneError: a hoist column (``[cable] winch``) or a ``[lift]``.
+    """
+    from offshore_crane.errors import SceneError
+
+    if scene.cable.get("winch"):
+        raise SceneError(f"{scene.where()}: compensate drives the winch itself, so the "
+                         "hoist column ([cable] winch) would be ignored: drop it",
+                         path=scene.path, name="cable.winch")
+    if scene.lift:
+        raise SceneError(f"{scene.where()}: compensate does not model a [lift] event's "
+                         "deck: drop [lift], or use offshore-crane id for the lift",
+                         path=scene.path, name="lift")
 
 
 def format_comparison(runs: list[CompensationRun]) -> str:

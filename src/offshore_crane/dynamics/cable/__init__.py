@@ -208,36 +208,40 @@ def _integrate_kane(robot, Q, Qd, Qdd, Lh, g, h, sub, y0, thresholds, follow=Non
     n_out = (Q.shape[0] - 1) // (2 * sub) + 1
     Y = np.full((n_out, 6), np.nan)
     status = np.zeros(3)
+    stop = progress.stop_flag()
 
     def integrate():
         progress.run_polled(
             lambda: ck.integrate(arrays.flat, arrays.layout, arrays.prismatic,
                                  robot.hybrid.sway_damping, float(robot.hybrid.drag), Q, Qd,
-                                 Qdd, Lh, g, h, sub, y0, 1.0 / thresholds.error, Y, status),
-            lambda: progress.filled_rows(Y), n_out, "sample", "swing")
+                                 Qdd, Lh, g, h, sub, y0, 1.0 / thresholds.error, Y, status,
+                                 stop),
+            lambda: progress.filled_rows(Y), n_out, "sample", "swing", stop)
 
     if follow is None:
         integrate()
         return Y, status, None
-    return Y, status, _alongside(integrate, lambda ready: follow(Y, ready), Y, status)
+    return Y, status, _alongside(integrate, lambda ready: follow(Y, ready), Y, status, stop)
 
 
 #: How often the Kane pass, waiting for the sway's integration, looks again [s].
 WAIT = 1e-3
 
 
-def _alongside(job, follow, Y, status):
+def _alongside(job, follow, Y, status, stop):
     """``follow(ready)`` in this thread while ``job()`` (the sway's integration: writes
     ``Y``'s rows in order over NaN, and ``status`` when it ends) runs in another;
     ``ready(b)`` waits until rows ``< b`` are written (row ``b`` begun) or the job ends,
     and returns how many of them hold the sway: ``b``, fewer when the integration stopped
-    early (its stop sample), none when it raised (raised here after ``follow``)."""
+    early (its stop sample), none when it raised (raised here after ``follow``). An
+    exception here (a signal's) sets the integration's flag ``stop`` (1,) and waits for
+    it to return before it is raised."""
     import time
 
-    worker, box = progress.in_thread(job, "swing")
+    box = progress.in_thread(job, "swing")[1]
 
     def ready(b: int) -> int:
-        while worker.is_alive():
+        while not box["done"].is_set():
             if progress.filled_rows(Y) > b:
                 return b
             time.sleep(WAIT)
@@ -247,8 +251,11 @@ def _alongside(job, follow, Y, status):
 
     try:
         out = follow(ready)
+    except BaseException:
+        progress.halt(stop, box)
+        raise
     finally:
-        worker.join()
+        box["done"].wait()
     if "error" in box:
         raise box["error"]
     return out

@@ -43,6 +43,19 @@ from offshore_crane.validation import as_gravity, as_samples
 #: RK4 steps in the shortest axial period by default: the axial oscillation's amplitude
 #: then drifts by ~1e-8 of itself a period (RK4's (ωh)⁶/144 per step at ωh = 2π/50).
 STEPS_PER_PERIOD = 50
+#: The smallest static strain ``m g₀ / EA`` of a cable under its payload (g₀ standard
+#: gravity), which bounds EA by ``m g₀ / STRAIN_MIN``: a steel wire rope (E ≈ 100 GPa on its
+#: metal, breaking near 1.8 GPa) rated at a fifth to a tenth of its breaking load works at
+#: 2-4e-3, so 1e-7 is some 10⁴ times stiffer than any rope rigged for its load (and below
+#: the 2e-7 that the tests of the rigid limit EA → ∞ reach). A stiffer cable stretches
+#: less than 0.1 µm a metre: the rigid cable (no ``ea``) is its model, and the step rule's
+#: period ``∝ 1/√EA`` would make RK4's steps vanish.
+STRAIN_MIN = 1e-7
+#: RK4 steps a sample interval at most (the step rule's bound): the axial period must be
+#: at least ``STEPS_PER_PERIOD / MAX_SUBSTEPS`` = 1/20 of the sample interval (a ringing
+#: faster than that shows in the samples at random phases only), and a sample's work stays
+#: bounded (a few hundred µs: a run stops within that of a signal).
+MAX_SUBSTEPS = 1000
 #: Steps a slack ↔ taut step is redone in: the kink's local error, O(h²) of the step,
 #: falls by REFINE² (measured: the analytic snap load to ~1e-6 at 50 steps a period).
 REFINE = 64
@@ -151,11 +164,12 @@ class ElasticResult:
         return float(T[k])
 
 
-def check_cable(ea, damping) -> None:
-    """An elastic cable's EA [N] (finite, > 0) and axial damping [N·s/m] (finite, ≥ 0).
+def check_cable(ea, damping, mass: float | None = None) -> None:
+    """An elastic cable's EA [N] (finite, > 0; with the payload's ``mass`` [kg], at most
+    ``mass g₀ /`` :data:`STRAIN_MIN`) and axial damping [N·s/m] (finite, ≥ 0).
 
     Raises:
-        InputError: naming the value and its unit.
+        InputError: naming the value, its unit and its bound.
     """
     for name, value, low, unit in (("ea", ea, "> 0", "N"), ("damping", damping, ">= 0",
                                                             "N·s/m")):
@@ -164,6 +178,40 @@ def check_cable(ea, damping) -> None:
         if not ok:
             raise InputError(f"cable {name} = {value!r} {unit}: give a finite number {low}",
                              name=name)
+    g0 = float(np.linalg.norm(GRAVITY))
+    if mass is not None and ea * STRAIN_MIN > mass * g0:
+        raise InputError(
+            f"cable ea = {ea:.4g} N: stiffer than any rope for a {mass:.4g} kg payload "
+            f"(static strain m·g/EA = {mass * g0 / ea:.2g} < {STRAIN_MIN:g}): give ea <= "
+            f"{mass * g0 / STRAIN_MIN:.4g} N, or no ea (the rigid cable)", name="ea")
+
+
+def check_steps(ea: float, mass: float, length: float, dt: float, substeps=None) -> int:
+    """RK4's steps a sample interval ``dt`` [s] for a cable of EA [N] carrying ``mass``
+    [kg] at its shortest length ``length`` [m]: ``substeps``, or by the step rule
+    :data:`STEPS_PER_PERIOD` steps in the axial period ``2π √(m L / EA)``; at most
+    :data:`MAX_SUBSTEPS` (the step may not vanish).
+
+    Raises:
+        InputError: ``substeps`` not an integer ≥ 1, or more steps than the bound (names
+            the axial period, the sample interval and what to change).
+    """
+    if substeps is not None:
+        if (isinstance(substeps, bool) or not isinstance(substeps, (int, np.integer))
+                or not 1 <= substeps <= MAX_SUBSTEPS):
+            raise InputError(f"substeps = {substeps!r} must be an integer >= 1 and <= "
+                             f"{MAX_SUBSTEPS} (RK4 steps a sample interval)", name="substeps")
+        return int(substeps)
+    period = 2.0 * math.pi * math.sqrt(mass * length / ea)
+    need = dt * STEPS_PER_PERIOD / period
+    if not need <= MAX_SUBSTEPS:
+        ea_max = mass * length * (2.0 * math.pi * MAX_SUBSTEPS / (STEPS_PER_PERIOD * dt)) ** 2
+        raise InputError(
+            f"cable ea = {ea:.4g} N: axial period {period:.3g} s (m {mass:.4g} kg, L "
+            f"{length:.4g} m) under 1/{MAX_SUBSTEPS // STEPS_PER_PERIOD} of the sample "
+            f"interval {dt:.3g} s (> {MAX_SUBSTEPS} RK4 steps a sample): give ea <= "
+            f"{ea_max:.4g} N or sample faster", name="ea")
+    return max(1, math.ceil(need))
 
 
 def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float = 0.0,
@@ -189,11 +237,14 @@ def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float 
         initial: ``(3,)`` the payload from the tip at ``t[0]`` [m], base axes; None:
             hanging along g at the static stretch.
         initial_velocity: ``(3,)`` relative to the tip [m/s].
-        substeps: RK4 steps a sample interval; None: :data:`STEPS_PER_PERIOD` a period.
+        substeps: RK4 steps a sample interval, at most :data:`MAX_SUBSTEPS`; None:
+            :data:`STEPS_PER_PERIOD` a period (:func:`check_steps`).
         limits, checks, thresholds: As :func:`offshore_crane.inverse_dynamics`.
 
     Raises:
-        InputError: EA or c out of range, bad shapes, an initial position at the tip.
+        InputError: EA or c out of range (EA above the payload's bound
+            :data:`STRAIN_MIN`, or an axial period the samples' step rule cannot resolve
+            in :data:`MAX_SUBSTEPS` steps), bad shapes, an initial position at the tip.
         NumericalError: the payload reaches the tip (a non-finite state).
         WorkspaceError, SingularConfigurationError: as the inverse dynamics.
     """
@@ -211,15 +262,13 @@ def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float 
     N = q.shape[0]
     g = as_gravity(gravity)
     m = float(robot.hybrid.cable.mass[-1])
+    check_cable(ea, damping, m)
     L0 = float(robot.hybrid.cable_length)
     tt, Q, Qd, Qdd = stage_grid(t, q, qd, qdd, reference, 1)
     Lh = np.array([[L0, 0.0, 0.0]]) if hoist is None else hoist_grid(hoist, tt)
     L_min = float(Lh[:, 0].min())
     period = 2.0 * math.pi * math.sqrt(m * L_min / float(ea))
-    if substeps is None:
-        substeps = max(1, math.ceil(dt * STEPS_PER_PERIOD / period))
-    if isinstance(substeps, bool) or not isinstance(substeps, (int, np.integer)) or substeps < 1:
-        raise InputError(f"substeps = {substeps!r} must be an integer >= 1", name="substeps")
+    substeps = check_steps(float(ea), m, L_min, dt, substeps)
     gn = float(np.linalg.norm(g))
     if initial is None:
         down = g / gn if gn > 0 else np.array([0.0, 0.0, -1.0])
@@ -235,11 +284,12 @@ def elastic_inverse_dynamics(robot, q, qd, qdd, *, t, ea: float, damping: float 
     status = np.zeros(3)
     y0 = np.concatenate([rho0, rate0])
     sway, drag = np.array(robot.hybrid.sway_damping, dtype=float), float(robot.hybrid.drag)
+    stop = progress.stop_flag()
     progress.run_polled(
         lambda: ek.integrate(arrays.flat, arrays.layout, arrays.prismatic, Q, Qd, Qdd, Lh,
                              g, int(substeps), REFINE, dt, float(ea), float(damping), sway,
-                             drag, m, y0, Y, status),
-        lambda: progress.filled_rows(Y), N, "sample", "elastic cable")
+                             drag, m, y0, Y, status, stop),
+        lambda: progress.filled_rows(Y), N, "sample", "elastic cable", stop)
     if int(status[0]) != ek.OK:
         k = int(status[1])
         raise NumericalError(f"elastic cable: the payload's state is not finite at sample {k} "

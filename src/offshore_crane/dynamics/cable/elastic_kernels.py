@@ -27,8 +27,9 @@ from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 cable_tension, sway_damping_force = c.K.cable_tension, c.K.sway_damping_force
 drag_force = c.K.drag_force
 unpack = c.unpack
-#: Stop codes (``status[0]``): none, a non-finite state (the payload at the tip).
-OK, DIVERGED = 0, 2
+#: Stop codes (``status[0]``): none, a non-finite state (the payload at the tip), asked
+#: to stop (the flag ``halt[0]`` set: a signal, :func:`offshore_crane.progress.run_polled`).
+OK, DIVERGED, STOPPED = 0, 2, 3
 #: Columns of the tip's state ``T`` (21,) (:func:`~.kernels.tip`): its attitude (by rows)
 #: and angular velocity, its acceleration, its velocity.
 _TURN, _ACC, _VEL = (0, 12), (15, 18), (18, 21)
@@ -126,7 +127,7 @@ def _make(stamp):
 
     @jit
     def integrate(flat, lay, prism, Qh, Qdh, Qddh, Lh, g, sub, refine, dt, EA, damping, sway,
-                  drag, m, y0, Y, status):
+                  drag, m, y0, Y, status, halt):
         """RK4 of the payload from ``y0`` (6,) = ρ [m], ρ̇ [m/s] (base axes, relative to
         the tip) along the samples ``dt`` [s] apart, ``sub`` steps an interval (a step
         that flips the cable's state redone in ``refine``); ``Qh, Qdh, Qddh``
@@ -136,7 +137,7 @@ def _make(stamp):
         Writes
         ``Y`` ``(N, 11)``: ρ, ρ̇, the tension [N], the stretch [m] and the sway damping's
         force on the payload [N]; ``status`` (3,): stop code, the sample of the stop, the
-        count of refined steps."""
+        count of refined steps. Ends before a sample when ``halt[0]`` (1,) is not zero."""
         if len(stamp) == 0:
             return
         C = unpack(flat, lay, prism)[0]
@@ -159,6 +160,10 @@ def _make(stamp):
         status[2] = 0.0
         dtheta = 1.0 / sub
         for k in range(N):
+            if halt[0] != 0:
+                status[0] = STOPPED
+                status[1] = k
+                return
             tip(C, Qh, Qdh, Qddh, 2 * k, q, qd, qdd, T[0], want_v)
             r = 2 * k if Lh.shape[0] > 1 else 0
             Lt[0] = Lh[r, 0]

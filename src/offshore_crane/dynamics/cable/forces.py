@@ -98,8 +98,13 @@ def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, 
             for i in range(len(chunks)):
                 run(i, pulled)
         else:
-            with ThreadPoolExecutor(threads) as pool:
+            pool = ThreadPoolExecutor(threads)
+            try:
                 list(pool.map(lambda i: run(i, pulled), range(len(chunks))))
+            except BaseException:   # a signal's: chunks not begun cancelled; those waiting
+                pool.shutdown(wait=False, cancel_futures=True)  # for the integration end
+                raise               # with it (the caller stops it), not before
+            pool.shutdown()
 
     passes(P is not None)
     if P is None and robot.hybrid.drag > 0.0:           # the chain's pull, and the drag

@@ -41,8 +41,9 @@ kane_sample_call, kane_sample_pull_call = c.KE.kane_sample, c.KE.kane_sample_pul
 finite_inputs = c._finite_inputs
 kane_sample, unpack, post, tangent_bounds = c.K.kane_sample, c.unpack, c._post, c.tangent_bounds
 jit = njit(**c.JIT)
-#: Stop codes of :func:`integrate` (``status[0]``).
-OK, SINGULAR, DIVERGED = 0, 1, 2
+#: Stop codes of :func:`integrate` (``status[0]``); STOPPED: asked to (its flag set by
+#: :func:`offshore_crane.progress.run_polled` on a signal, which the caller raises).
+OK, SINGULAR, DIVERGED, STOPPED = 0, 1, 2, 3
 
 
 def _helpers(stamp):
@@ -117,7 +118,7 @@ def _make(stamp):
 
     @jit
     def integrate(flat, lay, prism, damp, drag, Qh, Qdh, Qddh, Lh, g, h, sub, y0, rel_min,
-                  Y, status):
+                  Y, status, halt):
         """RK4 of the sway from ``y0`` (4,) with step ``h`` [s], the sway joints'
         damping ``damp`` (2,) [N·m·s/rad] and the payload's drag ``½ ρ C_d A`` = ``drag``
         [kg/m] (against still air); ``Qh, Qdh, Qddh`` ``(2 n + 1, 9)`` the robot's
@@ -128,7 +129,8 @@ def _make(stamp):
         φ̇2 [rad/s], φ̈1, φ̈2 [rad/s²]. ``status`` (3,): stop code, sample index of the
         stop, and the worst ``1 / cos²φ2`` met (the sway inertia's condition); the run
         stops at the first output sample whose state is not finite or whose ``cos²φ2``
-        falls below ``rel_min`` (``Y`` holds every sample before it)."""
+        falls below ``rel_min`` (``Y`` holds every sample before it), or before a step
+        when ``halt[0]`` (1,) is not zero (code STOPPED, the step's index)."""
         if len(stamp) == 0:
             return
         C = unpack(flat, lay, prism)[0]
@@ -152,6 +154,10 @@ def _make(stamp):
         status[2] = 0.0
         tip(C, Qh, Qdh, Qddh, 0, q, qd, qdd, T0, want_v)
         for s in range(n_steps + 1):
+            if halt[0] != 0:
+                status[0] = STOPPED
+                status[1] = s
+                return
             rel = rhs(C, gt, damp, drag, T0, y, Lh, 2 * s, k1)
             if s % sub == 0:
                 k = s // sub

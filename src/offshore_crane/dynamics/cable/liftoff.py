@@ -120,6 +120,8 @@ def lift_off(robot, trajectory, deck, *, ea: float, damping: float = 0.0, hoist=
     rho, rhod, T, s, u = _on_deck(p_tip, v_tip, p_tip[0, :2] if xy is None else xy, z, zd,
                                   L, ea, damping)
     lifting = -T * u[2] >= m * (g + zdd)               # the deck's normal force ≤ 0
+    if xy is None:
+        _check_resting(s[0], L[0, 0], ea, m, g, z[0], p_tip[0, 2])
     from offshore_crane.robot.kinematics.workspace import Thresholds
 
     checked = dict(limits=limits, checks=checks, thresholds=thresholds or Thresholds())
@@ -144,6 +146,25 @@ def lift_off(robot, trajectory, deck, *, ea: float, damping: float = 0.0, hoist=
     return LiftOff(float(t[k]), j is not None,
                    float("nan") if j is None else float(rest.t[1 + j]), speed,
                    float((zl[1:] - z[k + 1:]).min()), flight, whole)
+
+
+def _check_resting(s0: float, L0: float, ea: float, m: float, g: float, z0: float,
+                   z_tip: float) -> None:
+    """A lift-off starts with the load resting on the deck: the cable's stretch there
+    ``s0`` [m] (unstretched length ``L0``) may not exceed its static stretch
+    ``m g L0 / EA``, where it would carry the whole weight (the deck below where the load
+    hangs, which no deck can hold it at: the cable starts stretched, the load flung).
+
+    Raises:
+        InputError: naming the deck's height, by how much it is too low and what to do.
+    """
+    static = m * g * L0 / float(ea)
+    if s0 > static:
+        hang = z_tip - L0 - static
+        raise InputError(
+            f"lift-off: the deck at {z0:.4g} m is {s0 - static:.3g} m below where the load "
+            f"hangs ({hang:.4g} m), so the load cannot rest on it: raise deck_height above "
+            f"{hang:.4g} m or lengthen the cable", name="deck")
 
 
 def _on_deck(p_tip, v_tip, xy, z, zd, L, ea, damping):
@@ -250,6 +271,7 @@ def set_down(robot, trajectory, deck, *, ea: float, damping: float = 0.0, hoist=
     checked = dict(limits=limits, checks=checks, thresholds=thresholds or Thresholds())
     t = np.asarray(trajectory.t, dtype=float)
     z, zd, _ = _deck(deck, t)
+    _check_above(robot, trajectory, hoist, initial, ea, gravity, z[0])
     res = elastic_inverse_dynamics(
         robot, trajectory.q, trajectory.qd, trajectory.qdd, t=t, ea=ea, damping=damping,
         hoist=hoist, reference=trajectory.reference if trajectory.source is not None
@@ -266,6 +288,33 @@ def set_down(robot, trajectory, deck, *, ea: float, damping: float = 0.0, hoist=
     whole = replace(_joined(head(res, k), after.result), airborne=(0, k),
                     event=SetDown(float(t[k]), speed, after))
     return float(t[k]), speed, whole
+
+
+def _check_above(robot, trajectory, hoist, initial, ea, gravity, z0: float) -> None:
+    """A set-down lowers the load onto the deck: it starts above it (``initial`` [m]
+    from the tip, or hanging at its static stretch; the deck at ``z0`` [m]).
+
+    Raises:
+        InputError: the load at or below the deck, naming by how much and what to do.
+    """
+    from offshore_crane.dynamics.cable.tip import tip_positions
+
+    t0 = float(np.asarray(trajectory.t, dtype=float)[0])
+    z_tip = float(tip_positions(robot, np.asarray(trajectory.q, dtype=float)[:1])[0][0, 2])
+    if initial is not None:
+        z_load = z_tip + float(np.asarray(initial, dtype=float).reshape(3)[2])
+    else:
+        from offshore_crane.dynamics.cable.hoist import hoist_grid
+
+        L0 = (float(robot.hybrid.cable_length) if hoist is None
+              else float(hoist_grid(hoist, np.array([t0]))[0, 0]))
+        g = float(np.linalg.norm(gravity))
+        z_load = z_tip - L0 * (1.0 + float(robot.hybrid.cable.mass[-1]) * g / float(ea))
+    if not z_load > z0:
+        raise InputError(
+            f"set-down: the load starts {z0 - z_load:.3g} m below the deck (load at "
+            f"{z_load:.4g} m, deck at {z0:.4g} m), so it cannot be lowered onto it: lower "
+            f"deck_height below {z_load:.4g} m or shorten the cable", name="deck")
 
 
 def _tail(trajectory, k: int):
