@@ -29,17 +29,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from offshore_crane.conventions import (ACTUATOR_UNITS, ACTUATORS, Q_COLUMNS, QD_COLUMNS,
-                                        QDD_COLUMNS, coordinate_column)
 from offshore_crane.errors import InputError
+from offshore_crane.outputs.visual.runs import (FORCE_COLUMNS, KNOWN_COLUMNS,  # noqa: F401
+                                                SWAY_COLUMNS)
 from offshore_crane.validation import check_memory
-
-#: Columns of a run's CSV that :func:`read_run` reads (others are ignored if known).
-FORCE_COLUMNS = tuple(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS, ACTUATOR_UNITS))
-SWAY_COLUMNS = ("phi1_rad", "phi2_rad")
-KNOWN_COLUMNS = (("t_s",) + Q_COLUMNS
-                 + tuple(coordinate_column(k, tag="_ref") for k in range(9))
-                 + QD_COLUMNS + QDD_COLUMNS + FORCE_COLUMNS + SWAY_COLUMNS + ("tension_N",))
 
 
 @dataclass(frozen=True)
@@ -83,7 +76,7 @@ def from_trajectory(traj) -> Motion:
 
 def read_run(path, option: str = "--from", **kw) -> Motion:
     """Read a run's CSV (see the module docstring for the accepted files) as it streams:
-    :func:`offshore_crane.outputs.visual.runs.read_run` (``option`` is the command-line
+    :func:`offshore_crane.outputs.visual.runs.read_fields` (``option`` is the command-line
     option that named it, for the messages; ``header_check``, ``memory``: see there).
 
     Raises:
@@ -92,9 +85,9 @@ def read_run(path, option: str = "--from", **kw) -> Motion:
             unknown column, a row of the wrong length, a non-numeric or non-finite cell
             (naming the line and column), or a time that does not increase.
     """
-    from offshore_crane.outputs.visual.runs import read_run as read
+    from offshore_crane.outputs.visual.runs import read_fields
 
-    return read(path, option, **kw)
+    return Motion(*read_fields(path, option, **kw))
 
 
 #: Numbers held per frame: its time, and q, q̇, q̈, X, the sway and a varying cable's

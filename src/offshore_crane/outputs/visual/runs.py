@@ -1,7 +1,8 @@
 """A run's CSV read as it streams: the rows parsed a chunk at a time, only the columns a
 :class:`~offshore_crane.outputs.visual.motion.Motion` holds kept, so that memory is the
-numbers read and one chunk of text (a 30-minute log at 1 kHz is ~1 GB of text; read whole
-and split into cells it took ~10 GB).
+numbers read and one chunk of text (a 30-minute log at 1 kHz is a gigabyte of text, which
+read whole and split into cells took ten times that). :func:`read_fields` reads;
+:func:`offshore_crane.outputs.visual.motion.read_run` makes its :class:`Motion`.
 
 The accepted files are :mod:`~offshore_crane.outputs.visual.motion`'s. A force column
 that is ``nan`` on every row is an actuator the run did not have (``offshore-crane id``
@@ -18,11 +19,17 @@ import stat
 
 import numpy as np
 
-from offshore_crane.conventions import LEGACY_COLUMNS, Q_COLUMNS, QD_COLUMNS, QDD_COLUMNS
+from offshore_crane.conventions import (ACTUATOR_UNITS, ACTUATORS, LEGACY_COLUMNS, Q_COLUMNS,
+                                        QD_COLUMNS, QDD_COLUMNS, coordinate_column)
 from offshore_crane.errors import InputError, TrajectoryError
-from offshore_crane.outputs.visual.motion import (FORCE_COLUMNS, KNOWN_COLUMNS, SWAY_COLUMNS,
-                                                  Motion)
 from offshore_crane.validation import check_memory
+
+#: Columns of a run's CSV that are read (others are refused, or ignored if known).
+FORCE_COLUMNS = tuple(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS, ACTUATOR_UNITS))
+SWAY_COLUMNS = ("phi1_rad", "phi2_rad")
+KNOWN_COLUMNS = (("t_s",) + Q_COLUMNS
+                 + tuple(coordinate_column(k, tag="_ref") for k in range(9))
+                 + QD_COLUMNS + QDD_COLUMNS + FORCE_COLUMNS + SWAY_COLUMNS + ("tension_N",))
 
 #: Bytes of text parsed at a time (whole lines): ~10× this is its parse's peak.
 CHUNK_BYTES = 1 << 20
@@ -30,9 +37,10 @@ CHUNK_BYTES = 1 << 20
 KEPT = ("t_s",) + Q_COLUMNS + QD_COLUMNS + QDD_COLUMNS + FORCE_COLUMNS + SWAY_COLUMNS
 
 
-def read_run(path, option: str = "--from", header_check=None, memory=None) -> Motion:
-    """Read a run's CSV; ``option`` is the command-line option that named it, for the
-    messages.
+def read_fields(path, option: str = "--from", header_check=None, memory=None) -> tuple:
+    """Read a run's CSV: ``(name, t (N,), q (N, 9), qd, qdd, X (N, 9), sway (N, 2))``
+    [s, m, rad, N, N·m], None for what the file does not give; ``option`` is the
+    command-line option that named it, for the messages.
 
     Args:
         path: A file, or a pipe that ends (read once, :data:`~offshore_crane.io.PIPE_TIMEOUT`).
@@ -236,9 +244,9 @@ class _Numbers:
                               "early keeps every sample it computed: cut the file there)",
                               name=name, index=row, path=self.where)
 
-    def motion(self) -> Motion:
-        """The :class:`Motion` of the numbers read (a force column ``nan`` throughout
-        stays NaN: an actuator the run did not have)."""
+    def fields(self) -> tuple:
+        """The fields of :func:`read_fields` of the numbers read (a force column ``nan``
+        throughout stays NaN: an actuator the run did not have)."""
         if self.rows < 2:
             raise TrajectoryError(f"{self.where}: {self.rows} data row(s), at least 2 are "
                                   "needed", path=self.where)
@@ -265,10 +273,10 @@ class _Numbers:
         fields = [block(list(c)) for c in (Q_COLUMNS, QD_COLUMNS, QDD_COLUMNS,
                                             FORCE_COLUMNS, SWAY_COLUMNS)]
         self.parts = []
-        return Motion(os.path.splitext(os.path.basename(self.where))[0], t, *fields)
+        return (os.path.splitext(os.path.basename(self.where))[0], t, *fields)
 
 
-def _parse(fh, size: int, where: str, option: str, header_check, memory) -> Motion:
+def _parse(fh, size: int, where: str, option: str, header_check, memory) -> tuple:
     numbers = None
     for text in _chunks(fh, where):
         if numbers is None:
@@ -289,4 +297,4 @@ def _parse(fh, size: int, where: str, option: str, header_check, memory) -> Moti
     if numbers is None:
         raise TrajectoryError(f"{where}: the file is empty: it needs a header line with "
                               "t_s,q1_m..q9_m and at least 2 rows", path=where)
-    return numbers.motion()
+    return numbers.fields()
