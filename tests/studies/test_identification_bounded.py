@@ -104,7 +104,7 @@ def test_identify_refuses_beyond_the_memory_limit_before_computing(tmp_path, rob
     assert main(["identify", "--log", str(log), "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and re.search(
-        r"--log .*log\.csv \(about 101 rows\) needs 150 MB of memory, over the limit 100 MB "
+        r"--log .*log\.csv \(about 101 rows\) needs 350 MB of memory, over the limit 100 MB "
         r"\(OFFSHORE_CRANE_MEMORY_LIMIT\): give a shorter log", err), err
     assert not out.exists()
 

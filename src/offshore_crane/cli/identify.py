@@ -10,7 +10,10 @@ log determines (the base parameters with σ and meaning, the identifiable mass t
 apart from what the prior decided (each body's own values: not identifiable alone), the
 noise and residual per actuator, one line naming what a poorly exciting log leaves
 undetermined and the coordinates to move, and with ``--validate`` the prediction error on
-a second log. Any log gives this answer or one line saying why not.
+a second log. Any log gives this answer or one line saying why not: a log of a run it
+cannot model (a hanging or elastic load, a winch, another robot: its columns say so,
+:mod:`offshore_crane.cli.logs`) is refused, and every input is read and its memory
+checked before anything is computed; the fit runs a block of the log at a time.
 """
 
 from __future__ import annotations

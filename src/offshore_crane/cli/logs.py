@@ -21,13 +21,14 @@ DEFAULT_CUTOFF = 5.0
 #: Bytes identify holds per sample of a log at its peak: the numbers read, then the
 #: positions, their low-passed copy and two derivatives, the forces and the filter's
 #: padding of one column (measured with tracemalloc: 450 B a sample on a log of 10⁵
-#: samples without rates, the fit's phase 296 B; benchmarks/identification_memory.py),
-#: with room.
+#: samples without rates, the fit's phase 296 B), with room.
 BYTES_PER_SAMPLE = 600.0
-#: Bytes of the work that does not grow with the log, with room: a block of the
-#: regressor and the fit's triangles (~27 MB with blocks of 1024 samples), a chunk of
-#: the file's text parsed (~10 MB), the libraries identify imports (~32 MB).
-FIXED_BYTES = 1.5e8
+#: Bytes that do not grow with the log, with room: the libraries identify loads
+#: (NumPy, SciPy, Pinocchio, the kernels) and its fixed work, a block of the regressor
+#: and the fit's triangles (~27 MB with blocks of 1024 samples) and a chunk of the file's
+#: text parsed (~10 MB). Measured: a peak resident set of 0.31 GB on a 20 s log at 1 kHz
+#: and 0.37 GB on 200 s (benchmarks/identification_memory.py).
+FIXED_BYTES = 3.5e8
 
 
 class Log(NamedTuple):

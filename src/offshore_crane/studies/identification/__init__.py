@@ -11,9 +11,10 @@ in the bodies' inertial parameters, ``X = Y(q, q̇, q̈) π``.
   :func:`fit_base`: the base parameters from a record by weighted least squares (QR and
   SVD of the weighted regressor, never normal equations), with their standard
   deviations, along what the record excites; :func:`consistent_parameters`: every
-  body's ten parameters, physically consistent (by :data:`MARGIN` of the nominal robot; judged as a
-  description file judges it: :func:`physical`), closest to them (a convex problem, solved by a barrier
-  method); :func:`fit_log`, :func:`predict`: a log of any length block by block;
+  body's ten parameters, physically consistent (by :data:`MARGIN` of the nominal robot;
+  judged as a description file judges it: :func:`physical`), closest to them (a convex
+  problem, solved by a barrier method); :func:`fit_log`, :func:`predict`: a log of any
+  length block by block;
   :func:`base_rows`, :func:`mass_totals`, :func:`unexcited`: what a log determines and
   what the prior decided;
   :func:`identified_description`: the identified robot as a description file.

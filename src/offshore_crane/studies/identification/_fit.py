@@ -13,11 +13,12 @@ updated block by block (:class:`Triangles`: memory is a block's, whatever the re
 length). Each solve stacks the triangles weighted, scales the columns to unit norm
 (``D``: the column norms are the triangles'), takes the R of a QR of that ``[W D⁻¹ | y]``
 up to an orthogonal factor (its last column gives ``Qᵀ y`` without forming Q), then the
-SVD of the small triangle ``R = U S Vᵀ``. The record excites the directions whose singular values exceed
-:data:`~._base.RANK_TOLERANCE` times the largest; along them ``β̂ = D⁻¹ V S⁻¹ Uᵀ Qᵀ y``
-(none along the others), the information matrix's square root is ``S Vᵀ D`` and the
-covariance of β̂ ``D⁻¹ V S⁻² Vᵀ D⁻¹``: positive semi-definite by construction, and
-nothing is ever squared, so a record with condition number 10⁸ loses 8 digits, not 16.
+SVD of the small triangle ``R = U S Vᵀ``. The record excites the directions whose
+singular values exceed :data:`~._base.RANK_TOLERANCE` times the largest; along them
+``β̂ = D⁻¹ V S⁻¹ Uᵀ Qᵀ y`` (none along the others), the information matrix's square root
+is ``S Vᵀ D`` and the covariance of β̂ ``D⁻¹ V S⁻² Vᵀ D⁻¹``: positive semi-definite by
+construction, and nothing is ever squared, so a record with condition number 10⁸ loses
+8 digits, not 16.
 """
 
 from __future__ import annotations
