@@ -140,6 +140,10 @@ CASES = [
          oc.InputError, r"column\(s\) Fl4_N are nan on every row: identify needs every "
          r"actuator's force", cli=_identify(_log("fl4.csv", edit=_set_column(("Fl4_N",),
                                                                               np.nan)))),
+    Case("identify-arm-force-missing", "a log of the lab robot whose T2 column alone is "
+         "nan on every row", oc.InputError, r"column\(s\) T2_Nm are nan on every row: "
+         r"identify needs every actuator's force",
+         cli=_identify(_log("t2.csv", edit=_set_column(("T2_Nm",), np.nan)))),
     Case("identify-outside-workspace", "a log whose platform runs 0.3 m higher (a bigger "
          "robot's)", oc.InputError, r"the positions leave the robot's workspace: leg\d "
          r"length = .* is outside .*: a run of another robot\? give its description with "

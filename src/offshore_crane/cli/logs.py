@@ -139,16 +139,18 @@ def _same_robot(m, robot, path: str, what: str) -> None:
     arm, legs = m.X[:, :3], m.X[:, 3:]
     names = ", ".join(FORCE_COLUMNS[:3])
     absent = np.isnan(m.X).all(axis=0)
-    if absent[3:].any():
-        shown = ", ".join(c for c, a in zip(FORCE_COLUMNS[3:], absent[3:]) if a)
+    has_arm = robot.hybrid.has_arm
+    if has_arm and (absent[:3].all() or (not np.any(arm) and np.any(legs))):
+        how = "nan" if absent[:3].all() else "0"
+        raise InputError(f"{what} {path}: columns {names} are {how} on every row: a run of "
+                         "a platform without the crane arm; give that robot's description "
+                         "with --robot", name=what)
+    missing = absent & np.r_[[has_arm] * 3, [True] * 6]
+    if missing.any():
+        shown = ", ".join(c for c, a in zip(FORCE_COLUMNS, missing) if a)
         raise InputError(f"{what} {path}: column(s) {shown} are nan on every row: "
                          "identify needs every actuator's force", name=what)
-    if robot.hybrid.has_arm:
-        if absent[:3].any() or (not np.any(arm) and np.any(legs)):
-            how = "nan" if absent[:3].any() else "0"
-            raise InputError(f"{what} {path}: columns {names} are {how} on every row: a run "
-                             "of a platform without the crane arm; give that robot's "
-                             "description with --robot", name=what)
+    if has_arm:
         return
     moved = np.abs(m.q[:, 6:]).max() > 0.0
     if moved or np.nan_to_num(arm).any():
