@@ -33,7 +33,8 @@ from figures_kernels import (animate_rows, bench_rows, bench_serial_rows,  # noq
                              mjcf_agreement_rows, pinocchio_fd_rows, read_summary,
                              roofline_rows, sea_synthesis_rows)
 from figures_studies import (compensation_rows, extremes_rows,  # noqa: E402
-                             identification_rows, operability_rows, sweep_rows)
+                             identification_memory_rows, identification_rows,
+                             operability_rows, sweep_rows)
 
 
 #: Each saved result and the figures it renders.
@@ -42,7 +43,8 @@ RENDERERS = {"sweep": sweep_rows, "animate": animate_rows, "cable_swing": cable_
              "mjcf_agreement": mjcf_agreement_rows, "lift": lift_rows,
              "roofline": roofline_rows, "compile": compile_rows, "ci": ci_rows,
              "bench_serial": bench_serial_rows, "bench": bench_rows,
-             "identification": identification_rows, "extremes": extremes_rows,
+             "identification": identification_rows,
+             "identification_memory": identification_memory_rows, "extremes": extremes_rows,
              "compensation": compensation_rows, "operability": operability_rows}
 
 #: Saved results that are not ``benchmarks/results/NAME.json``, and how to read them.

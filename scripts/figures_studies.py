@@ -1,6 +1,6 @@
-"""The renderers of the studies' benchmarks (sweeps, extremes, operability, identification):
-each ``NAME_rows(saved result) -> {(file, first cell or 'figure KEY'): text}``
-(``scripts/figures.py``)."""
+"""The renderers of the studies' benchmarks (sweeps, extremes, operability, identification
+and its memory): each ``NAME_rows(saved result) -> {(file, first cell or 'figure KEY'):
+text}`` (``scripts/figures.py``)."""
 
 from __future__ import annotations
 
@@ -92,6 +92,30 @@ def identification_rows(r: dict) -> dict:
             f"samples once the filter's ends are dropped) takes **{i['cpu_s']:.1f} s of "
             f"CPU** ({i['cpu_min_s']:.1f}–{i['cpu_max_s']:.1f} s, wall {i['wall_s']:.1f} s; "
             f"{where})",
+    }
+
+
+def identification_memory_rows(r: dict) -> dict:
+    """benchmarks/identification_memory.py's figures: identify's peak resident memory on
+    long logs at 1 kHz under a memory limit."""
+    runs = sorted(r["runs"], key=lambda x: x["duration_s"])
+    last = runs[-1]
+
+    def gb(x: float) -> str:
+        return f"{x / 1e9:.2f} GB"
+
+    others = "; ".join(f"a {x['duration_s']:g} s log {gb(x['peak_rss_bytes'])} "
+                       f"({x['cpu_s']:.0f} s of CPU)" for x in runs[:-1])
+    return {
+        ("docs/identification.md", "figure identification-memory"):
+            f"`identify` on a {last['duration_s'] / 60:g}-minute log at 1 kHz without rates "
+            f"({last['rows']} rows, {gb(last['csv_bytes'])} of CSV) peaks at "
+            f"**{gb(last['peak_rss_bytes'])}** of resident memory, under "
+            f"`OFFSHORE_CRANE_MEMORY_LIMIT` = {gb(r['limit_bytes'])} (its own estimate "
+            f"{gb(last['estimate_bytes'])}), in {last['cpu_s']:.0f} s of CPU"
+            + (f"; {others}" if others else "")
+            + f" (`benchmarks/identification_memory.py`, {r['cores']} cores at load average "
+            f"{r['load_average']:.1f}, {r['date']})",
     }
 
 

@@ -452,7 +452,7 @@ def test_scene_tables_and_conflicts(tmp_path):
     data = tomllib.loads("""
         [robot]
         description = "robot.toml"
-        legs.lower.mass = 3.0
+        legs.upper.mass = 3.0
         "platform.mass" = 50.0
         ujoint_limit = 1.0
         [payload]
@@ -465,14 +465,21 @@ def test_scene_tables_and_conflicts(tmp_path):
     scene = scenes.scene_from_dict(data, "s.toml", tmp_path)
     path, over = scene.robot_description, scene.robot
     assert path == str(tmp_path / "robot.toml")
-    assert over == {"legs.lower.mass": 3.0, "platform.mass": 50.0, "legs.ujoint.limit": 1.0,
+    assert over == {"legs.upper.mass": 3.0, "platform.mass": 50.0, "legs.ujoint.limit": 1.0,
                     "payload.mass": 2.0, "payload.com": [0.0, 0.0, -0.05],
                     "arm.enabled": True}
-    cli = parse_set(["payload.com.z=-0.1", "payload_mass=2", "with_arm=0", "legs.upper.mass=1"])
+    cli = parse_set(["payload.com.z=-0.1", "payload_mass=2", "with_arm=0",
+                     "legs.lower.length=0.4"])
     found = {c.field: (c.scene, c.cli) for c in conflicts(over, cli)}
     assert found == {"payload.com.z": ([0.0, 0.0, -0.05], -0.1), "arm.enabled": (True, False)}
     assert "the scene sets true, --set gives false" in str(conflicts(over, cli)[-1])
     assert oc.load_robot(path, over).spec.payload.mass == 2.0
+    # the description gives every leg its own lower mass: legs.lower.mass would change
+    # nothing, and says so (issue 36)
+    data["robot"]["legs"]["lower"] = {"mass": 3.0}
+    with pytest.raises(oc.SceneError, match=r"legs 1-6 have their own legs\.N\.lower\.mass "
+                       r"\(per-leg tables\)"):
+        scenes.scene_from_dict(data, "s.toml", tmp_path)
     with pytest.raises(oc.SceneError, match=r'\[robot\] description = "nope\.toml": no such'):
         scenes.scene_from_dict({"robot": {"description": "nope.toml"}}, "s.toml", tmp_path)
 

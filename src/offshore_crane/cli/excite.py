@@ -37,12 +37,15 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
+    import math
+
     import numpy as np
 
     from offshore_crane import scenes
     from offshore_crane.cli.common import robot_scene
     from offshore_crane.io import plan_outputs, write_csv
-    from offshore_crane.motion.trajectories import load
+    from offshore_crane.errors import WorkspaceError
+    from offshore_crane.motion.trajectories import load, time_grid
     from offshore_crane.motion.trajectories.files import CSV_COLUMNS_DERIVATIVES
     from offshore_crane.studies import identification as ident
 
@@ -58,15 +61,36 @@ def run(args) -> int:
     target = plan_outputs({"--out": args.out}, scene.inputs())["--out"]
     robot = scenes.load_robot(scene)
     base = ident.base_parameters(robot)
+    _enough(args, len(time_grid(args.duration, args.rate)), base.rank,
+            len(ident.actuator_rows(robot)))
     traj, cond = ident.optimise_excitation(
         robot, base, args.duration, args.rate, args.harmonics, args.period,
         seeds=range(args.seeds), iterations=args.iterations, gravity=scene.gravity)
-    reference = ident.excitation_condition(robot, load("table1"), base)
+    if not math.isfinite(cond):
+        raise InputError(f"--duration {args.duration:g}: the excitation's base regressor is "
+                         f"rank-deficient (it excites {ident.excited(robot, traj, base)} of "
+                         f"the {base.rank} base parameters): lengthen --duration (e.g. one "
+                         f"--period, {args.period:g} s)", name="--duration")
+    try:
+        reference = ident.excitation_condition(robot, load("table1"), base)
+        against = f"Table 1: {reference:.4g}, {reference / cond:.3g}× larger"
+    except WorkspaceError:
+        against = "Table 1 leaves this robot's workspace: no comparison"
     write_csv(target, ",".join(CSV_COLUMNS_DERIVATIVES),
               np.column_stack([traj.t, traj.q, traj.qd, traj.qdd]))
     print(f"offshore-crane excite: {traj.name}, {len(traj.t)} samples at {args.rate:g} Hz; "
           f"base regressor ({base.rank} parameters) condition number {cond:.4g} "
-          f"(Table 1: {reference:.4g}, {reference / cond:.3g}× larger); inside the "
-          "workspace and the actuators' speed and force capacities")
+          f"({against}); inside the workspace and the actuators' speed and force capacities")
     print(f"wrote {args.out}")
     return 0
+
+
+def _enough(args, samples: int, rank: int, rows: int) -> None:
+    """Refuse, before optimising, an excitation with no more equations (samples × the
+    robot's actuators) than base parameters: no excitation that short determines them."""
+    if samples * rows <= rank:
+        need = (rank // rows) / args.rate               # rank // rows + 1 samples
+        raise InputError(f"--duration {args.duration:g} at {args.rate:g} Hz: {samples} "
+                         f"samples, {samples * rows} equations for the {rank} base "
+                         f"parameters: give --duration ≥ {need:g} s (one --period, "
+                         f"{args.period:g} s, excites them well)", name="--duration")

@@ -10,7 +10,10 @@ log determines (the base parameters with σ and meaning, the identifiable mass t
 apart from what the prior decided (each body's own values: not identifiable alone), the
 noise and residual per actuator, one line naming what a poorly exciting log leaves
 undetermined and the coordinates to move, and with ``--validate`` the prediction error on
-a second log. Any log gives this answer or one line saying why not.
+a second log. Any log gives this answer or one line saying why not: a log of a run it
+cannot model (a hanging or elastic load, a winch, another robot: its columns say so,
+:mod:`offshore_crane.cli.logs`) is refused, and every input is read and its memory
+checked before anything is computed; the fit runs a block of the log at a time.
 """
 
 from __future__ import annotations
@@ -45,26 +48,6 @@ def add_parser(sub) -> None:
 #: Above this RMS misfit [σ] of the consistent robot a line says the log is not a rigid
 #: robot's (noise alone gives ~1).
 MISFIT = 3.0
-#: The positions' low-pass when the log has no rates [Hz].
-DEFAULT_CUTOFF = 5.0
-
-
-def _log(path: str, what: str, cutoff):
-    """``(t, q, qd, qdd, X)`` of a log, the filtered ends dropped."""
-    from offshore_crane.outputs.visual.motion import read_run
-    from offshore_crane.studies import identification as ident
-
-    m = read_run(path, what)
-    if m.X is None:
-        raise InputError(f"{what} {path}: the log has no actuator forces (columns "
-                         "T1_Nm..Fl6_N): identification needs them", name=what)
-    if m.qd is not None and m.qdd is not None and cutoff is None:
-        return m.t, m.q, m.qd, m.qdd, m.X
-    try:
-        keep, q, qd, qdd = ident.log_derivatives(m.t, m.q, cutoff or DEFAULT_CUTOFF)
-    except InputError as exc:
-        raise InputError(f"{what} {path}: {exc}", name=what) from None
-    return m.t[keep], q[keep], qd[keep], qdd[keep], m.X[keep]
 
 
 def run(args) -> int:
@@ -75,50 +58,74 @@ def run(args) -> int:
         return _run(args)
 
 
+def _inputs(args, robot):
+    """Every input read and checked before anything is computed: ``(log, validation log
+    or None, planned excitation or None)``."""
+    from offshore_crane.cli.logs import read_log
+
+    log = read_log(args.log, "--log", robot, args.cutoff)
+    other = (read_log(args.validate, "--validate", robot, args.cutoff, held=log.nbytes)
+             if args.validate else None)
+    plan = None
+    if args.excite:
+        from offshore_crane.motion.trajectories import load
+
+        plan = load(args.excite)
+        t = log.t
+        if t[0] < plan.t[0] or t[-1] > plan.t[-1]:
+            raise InputError(f"--excite {args.excite}: it spans t = {plan.t[0]:g}.."
+                             f"{plan.t[-1]:g} s, the log {t[0]:g}..{t[-1]:g} s: give the "
+                             "excitation the log ran", name="--excite")
+    return log, other, plan
+
+
 def _run(args) -> int:
     import numpy as np
 
     from offshore_crane import scenes
     from offshore_crane.cli.common import robot_scene
     from offshore_crane.conventions import ACTUATOR_UNITS, ACTUATORS
+    from offshore_crane.io import plan_outputs
     from offshore_crane.studies import identification as ident
 
     if args.cutoff is not None and not (args.cutoff > 0 and args.cutoff < float("inf")):
         raise InputError(f"--cutoff {args.cutoff:g}: give a frequency > 0 [Hz]",
                          name="--cutoff")
-    from offshore_crane.io import plan_outputs
-
     scene = robot_scene(args, scenes.Scene())
     read = scene.inputs() + [f for f in (args.log, args.validate, args.excite) if f]
     outputs = plan_outputs({"--out": args.out}, read, {"--out": ("toml",)})
     robot = scenes.load_robot(scene)
-    t, q, qd, qdd, X = _log(args.log, "--log", args.cutoff)
+    _identifiable(robot)
+    log, other, plan = _inputs(args, robot)
     base = ident.base_parameters(robot, gravity=scene.gravity)
-    if args.excite:
-        _excitation(args.excite, robot, base, t, q)
-    R = ident.regressor(robot, q, qd, qdd, gravity=scene.gravity)
+    if plan is not None:
+        _excitation(args.excite, plan, robot, base, log.t, log.q)
     try:
-        fit = ident.fit_base(base.base_regressor(R.Y), X)
+        fit, R = ident.fit_log(robot, base, log.q, log.qd, log.qdd, log.X,
+                               gravity=scene.gravity)
     except InputError as exc:
         raise InputError(f"--log {args.log}: {exc}", name="--log") from None
     bounds = ident.com_bounds(robot, R)
     pi, misfit = ident.consistent_parameters(base.K, fit.beta, fit.root, R.pi,
                                              com_bounds=bounds)
     rows = ident.base_rows(base, fit, R)
+    t = log.t
     print(f"offshore-crane identify: {args.log}, {len(t)} samples, t = {t[0]:.2f}.."
           f"{t[-1]:.2f} s; the log determines {int(fit.determined.sum())} of the {base.rank} "
           f"base parameters (of {len(R.pi)} standard ones; it excites {fit.excited} "
           f"independent combinations, condition number {fit.condition:.4g}); every "
-          f"body physically consistent: {'yes' if ident.consistent(pi) else 'NO'} (base "
-          f"misfit {misfit:.3g} σ RMS)")
+          f"body physically consistent: "
+          f"{'yes' if ident.physical(pi) else 'NO'} (base misfit "
+          f"{misfit:.3g} σ RMS)")
     print(f"{'actuator':<9}{'unit':<6}{'noise σ':>12}{'residual RMS':>14}")
-    for k, (a, u) in enumerate(zip(ACTUATORS, ACTUATOR_UNITS)):
-        print(f"{a:<9}{u:<6}{fit.noise[k]:>12.4g}"
-              f"{np.sqrt(np.mean(fit.residual[:, k] ** 2)):>14.4g}")
+    actuators = ident.actuator_rows(robot)
+    for k, j in enumerate(actuators):
+        print(f"{ACTUATORS[j]:<9}{ACTUATOR_UNITS[j]:<6}{fit.noise[k]:>12.4g}"
+              f"{fit.rms[k]:>14.4g}")
     masses = _masses(*ident.mass_totals(base, fit, R, pi))
     for line in _determined(rows) + masses:
         print(line)
-    missing = ident.unexcited(rows, base, R.names, qd)
+    missing = ident.unexcited(rows, base, R.names, log.qd)
     if missing:
         print(missing)
     if misfit > MISFIT:
@@ -130,17 +137,30 @@ def _run(args) -> int:
     if held:
         print(f"centres of mass held at their part's end (the log did not place them "
               f"inside): {', '.join(held)}")
-    if args.validate:
-        t2, q2, qd2, qdd2, X2 = _log(args.validate, "--validate", args.cutoff)
-        pred = ident.regressor(robot, q2, qd2, qdd2, gravity=scene.gravity).Y @ pi
-        err = np.sqrt(np.mean((X2 - pred) ** 2, axis=0))
-        print(f"validation on {args.validate} ({len(t2)} samples): RMS error per actuator "
-              + ", ".join(f"{a} {e:.4g}" for a, e in zip(ACTUATORS, err))
-              + f" [N·m, N]; largest {err.max() / np.abs(X2).max():.3g} of the peak force")
+    if other is not None:
+        pred = ident.predict(robot, pi, other.q, other.qd, other.qdd, gravity=scene.gravity)
+        err = np.sqrt(np.mean((other.X - pred)[:, actuators] ** 2, axis=0))
+        print(f"validation on {args.validate} ({len(other.t)} samples): RMS error per "
+              "actuator " + ", ".join(f"{ACTUATORS[j]} {e:.4g}" for j, e in zip(actuators,
+                                                                                err))
+              + f" [N·m, N]; largest {err.max() / np.abs(other.X).max():.3g} of the peak "
+              "force")
     if args.out:
         _write(outputs["--out"], args, robot, R, pi, rows, masses + [missing or ""],
                len(t))
     return 0
+
+
+def _identifiable(robot) -> None:
+    """Refuse, before any log is read, a robot the regressor does not model."""
+    from offshore_crane.studies import identification as ident
+
+    try:
+        ident.identifiable(robot)
+    except InputError:
+        raise InputError(f"the robot's payload hangs on a {robot.spec.cable_length:g} "
+                         "m cable: identify models it welded (--set payload.cable_length=0)",
+                         name="--set") from None
 
 
 def _determined(rows) -> list[str]:
@@ -180,20 +200,14 @@ def _masses(totals, alone) -> list[str]:
     return out
 
 
-def _excitation(path: str, robot, base, t, q) -> None:
+def _excitation(path: str, plan, robot, base, t, q) -> None:
     """Print the planned excitation's condition number and the log's departure from it
     (RMS of q − planned at the log's times, the worst coordinate)."""
     import numpy as np
 
     from offshore_crane.conventions import Q_COLUMNS
-    from offshore_crane.motion.trajectories import load
     from offshore_crane.studies import identification as ident
 
-    plan = load(path)
-    if t[0] < plan.t[0] or t[-1] > plan.t[-1]:
-        raise InputError(f"--excite {path}: it spans t = {plan.t[0]:g}..{plan.t[-1]:g} s, "
-                         f"the log {t[0]:g}..{t[-1]:g} s: give the excitation the log ran",
-                         name="--excite")
     planned = np.column_stack([np.interp(t, plan.t, plan.q[:, j]) for j in range(9)])
     rms = np.sqrt(np.mean((q - planned) ** 2, axis=0))
     j = int(np.argmax(rms))

@@ -25,23 +25,14 @@ welded.
 
 from __future__ import annotations
 
-import csv
-import os
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from offshore_crane.conventions import (ACTUATOR_UNITS, ACTUATORS, LEGACY_COLUMNS, Q_COLUMNS,
-                                        QD_COLUMNS, QDD_COLUMNS, coordinate_column)
-from offshore_crane.errors import InputError, TrajectoryError
+from offshore_crane.errors import InputError
+from offshore_crane.outputs.visual.runs import (FORCE_COLUMNS, KNOWN_COLUMNS,  # noqa: F401
+                                                SWAY_COLUMNS)
 from offshore_crane.validation import check_memory
-
-#: Columns of a run's CSV that :func:`read_run` reads (others are ignored if known).
-FORCE_COLUMNS = tuple(f"{a}_{u.replace('·', '')}" for a, u in zip(ACTUATORS, ACTUATOR_UNITS))
-SWAY_COLUMNS = ("phi1_rad", "phi2_rad")
-KNOWN_COLUMNS = (("t_s",) + Q_COLUMNS
-                 + tuple(coordinate_column(k, tag="_ref") for k in range(9))
-                 + QD_COLUMNS + QDD_COLUMNS + FORCE_COLUMNS + SWAY_COLUMNS + ("tension_N",))
 
 
 @dataclass(frozen=True)
@@ -83,103 +74,20 @@ def from_trajectory(traj) -> Motion:
     return Motion(traj.name, traj.t, traj.q, traj.qd, traj.qdd, source=traj.source)
 
 
-def read_run(path, option: str = "--from") -> Motion:
-    """Read a run's CSV (see the module docstring for the accepted files); ``option`` is
-    the command-line option that named it, for the message of a missing file.
+def read_run(path, option: str = "--from", **kw) -> Motion:
+    """Read a run's CSV (see the module docstring for the accepted files) as it streams:
+    :func:`offshore_crane.outputs.visual.runs.read_fields` (``option`` is the command-line
+    option that named it, for the messages; ``header_check``, ``memory``: see there).
 
     Raises:
-        TrajectoryError: the file is missing or unreadable, lacks ``t_s`` or one of
-            q1..q9 (an ``offshore-crane id`` CSV: named as such), has an unknown column,
-            a row of the wrong length, a non-numeric or non-finite cell (naming the line
-            and column), or a time that does not increase.
+        TrajectoryError: the file is missing, a directory or a device, unreadable, lacks
+            ``t_s`` or one of q1..q9 (an ``offshore-crane id`` CSV: named as such), has an
+            unknown column, a row of the wrong length, a non-numeric or non-finite cell
+            (naming the line and column), or a time that does not increase.
     """
-    from offshore_crane.io import read_text
+    from offshore_crane.outputs.visual.runs import read_fields
 
-    where = os.fspath(path)
-    if not os.path.isfile(where):
-        raise TrajectoryError(f"{option} {where}: no such file (a CSV of offshore-crane "
-                              "simulate --out, or a trajectory t_s,q1..q9)", path=where)
-    try:
-        rows = [r for r in csv.reader(read_text(where, "run CSV").removeprefix("\ufeff")
-                                      .splitlines()) if r and any(c.strip() for c in r)]
-    except InputError as exc:
-        raise TrajectoryError(str(exc), path=where) from None
-    if not rows:
-        raise TrajectoryError(f"{where}: the file is empty: it needs a header line with "
-                              "t_s,q1_m..q9_m and at least 2 rows", path=where)
-    header = [LEGACY_COLUMNS.get(c.strip(), c.strip()) for c in rows[0]]
-    if "t_s" in header and Q_COLUMNS[0] not in header and "T1_Nm" in header:
-        raise TrajectoryError(f"{where}: holds actuator forces only (the CSV of "
-                              "offshore-crane id): give the trajectory it was computed on "
-                              "with --trajectory (the forces are recomputed)", path=where)
-    missing = [c for c in ("t_s",) + Q_COLUMNS if c not in header]
-    if missing:
-        raise TrajectoryError(f"{where}, line 1: missing column(s) {', '.join(missing)}: "
-                              "a run's CSV needs t_s,q1_m..q9_m", name=",".join(missing),
-                              path=where)
-    unknown = [c for c in header if c not in KNOWN_COLUMNS]
-    repeated = sorted({c for c in header if header.count(c) > 1})
-    if unknown or repeated:
-        bad = unknown or repeated
-        raise TrajectoryError(f"{where}, line 1: {'unknown' if unknown else 'repeated'} "
-                              f"column(s) {', '.join(map(repr, bad))}: accepted are t_s, "
-                              "q1..q9, q1_ref..q9_ref, qd1..qd9, qdd1..qdd9, "
-                              f"{FORCE_COLUMNS[0]}..{FORCE_COLUMNS[-1]}, phi1_rad, phi2_rad, "
-                              "tension_N", name=bad[0], path=where)
-    data = rows[1:]
-    for i, row in enumerate(data):
-        if len(row) != len(header):
-            raise TrajectoryError(f"{where}, data row {i + 1}: {len(row)} cells, expected "
-                                  f"{len(header)}", index=i, path=where)
-    if len(data) < 2:
-        raise TrajectoryError(f"{where}: {len(data)} data row(s), at least 2 are needed",
-                              path=where)
-    try:
-        values = np.array(data, dtype=str).astype(float)
-    except ValueError:
-        for i, row in enumerate(data):
-            for j, cell in enumerate(row):
-                try:
-                    float(cell)
-                except ValueError:
-                    raise TrajectoryError(f"{where}, data row {i + 1}, column {header[j]}: "
-                                          f"{cell.strip()!r} is not a number", name=header[j],
-                                          index=i, path=where) from None
-        raise
-    col = {name: k for k, name in enumerate(header)}
-    needed = [c for c in header if not c.endswith("_ref") and c != "tension_N"]
-    bad = ~np.isfinite(values[:, [col[c] for c in needed]])
-    if bad.any():
-        i, j = (int(x) for x in np.argwhere(bad)[0])
-        raise TrajectoryError(f"{where}, data row {i + 1}, column {needed[j]}: "
-                              f"{data[i][col[needed[j]]].strip()!r} is not finite (a simulation "
-                              "that stopped early keeps every sample it computed: cut the "
-                              "file there)", name=needed[j], index=i, path=where)
-    t = values[:, col["t_s"]]
-    back = np.diff(t) <= 0.0
-    if back.any():
-        i = int(np.argmax(back)) + 1
-        raise TrajectoryError(f"{where}, data row {i + 1}: t_s = {float(t[i])!r} s does "
-                              f"not increase after {float(t[i - 1])!r} s", name="t_s", index=i,
-                              path=where)
-
-    def block(names):
-        given = [n in col for n in names]
-        if not all(given):
-            if any(given):
-                missing = [n for n, g in zip(names, given) if not g]
-                raise TrajectoryError(f"{where}, line 1: missing column(s) "
-                                      f"{', '.join(missing)} of {names[0]}..{names[-1]}: "
-                                      "give all of them or none", name=missing[0],
-                                      path=where)
-            return None
-        return np.ascontiguousarray(values[:, [col[n] for n in names]])
-
-    qd = block(list(QD_COLUMNS))
-    qdd = block(list(QDD_COLUMNS))
-    X = block(list(FORCE_COLUMNS))
-    return Motion(os.path.splitext(os.path.basename(where))[0], np.ascontiguousarray(t),
-                  block(list(Q_COLUMNS)), qd, qdd, X, block(list(SWAY_COLUMNS)))
+    return Motion(*read_fields(path, option, **kw))
 
 
 #: Numbers held per frame: its time, and q, q̇, q̈, X, the sway and a varying cable's

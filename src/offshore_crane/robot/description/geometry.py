@@ -25,6 +25,27 @@ def solid_inertia(m: float, shape: dict) -> np.ndarray:
     return np.eye(3) * (2.0 * m * r * r / 5.0)
 
 
+def inertia_problem(m: float, I: np.ndarray) -> str | None:
+    """What keeps an inertia about the centre of mass ``I (3, 3)`` [kg·m²] of a body of
+    mass ``m`` [kg] from being a rigid body's, for a message, or None: a principal moment
+    below ``−tol``, the triangle inequality broken by more than ``tol`` (``tol`` =
+    :data:`~offshore_crane.conventions.INERTIA_RTOL` of the moments' sum), an inertia
+    without mass. The one rule of description files and of the identified robot."""
+    from offshore_crane.conventions import INERTIA_RTOL
+
+    lam = np.linalg.eigvalsh(I)                           # ascending
+    tol = INERTIA_RTOL * float(np.abs(lam).sum())
+    shown = ", ".join(f"{x:.6g}" for x in lam)
+    if lam[0] < -tol:
+        return f"not positive definite: principal moments ({shown}) kg·m² include a negative one"
+    if lam[2] > lam[0] + lam[1] + tol:
+        return (f"principal moments ({shown}) kg·m² break the triangle inequality "
+                f"({lam[2]:.6g} > {lam[0]:.6g} + {lam[1]:.6g})")
+    if m == 0.0 and lam[2] > 0.0:
+        return "an inertia without mass: give the mass too"
+    return None
+
+
 def rpy_angles(R: np.ndarray) -> np.ndarray:
     """URDF rpy of a rotation matrix; for ``Rz(y) Ry(p)`` (roll 0, the historical U-joint
     frames) it returns the angles that built it up to round-off."""

@@ -77,4 +77,34 @@ def flat_values(data: dict, path: str, overrides: dict | None = None) -> Values:
     values.add_table(data, SCHEMA, "", values.path)
     for name, value in (overrides or {}).items():
         values.override(name, value)
+    for name, value in (overrides or {}).items():
+        _shadowed(values, name, value)
     return values
+
+
+def _shadowed(values: Values, name: str, value) -> None:
+    """Refuse an override of a field for all legs (``legs.lower.mass``) that the file's
+    per-leg tables (``[legs.N.lower]``) give for some legs: those take precedence, so the
+    override would change nothing there, silently.
+
+    Raises:
+        DescriptionError: naming the legs and their own fields.
+    """
+    from offshore_crane.errors import DescriptionError
+    from offshore_crane.io import toml_value
+    from offshore_crane.robot.description.schema import LEG_KEYS
+
+    parts = name.split(".")
+    if parts[0] != "legs" or len(parts) < 2 or parts[1] in LEG_KEYS:
+        return
+    rest = ".".join(parts[1:])
+    legs = [i for i in LEG_KEYS if any(
+        values.origin.get(k) == values.path and (k == f"legs.{i}.{rest}" or k.startswith(
+            f"legs.{i}.{rest}.")) for k in values.raw)]
+    if legs:
+        which = f"legs {legs[0]}-{legs[-1]}" if len(legs) == len(LEG_KEYS) else (
+            "leg " if len(legs) == 1 else "legs ") + ", ".join(legs)
+        raise DescriptionError(f"{values.path} with {name} = {toml_value(value)}: {which} "
+                               f"have their own legs.N.{rest} (per-leg tables), which take "
+                               f"precedence: set legs.{legs[0]}.{rest} (and each other leg's) "
+                               "instead", path=values.path, field=name)

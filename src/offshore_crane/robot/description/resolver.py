@@ -9,11 +9,12 @@ from pathlib import Path
 
 import numpy as np
 
-from offshore_crane.conventions import AIR_DENSITY, INERTIA_RTOL
+from offshore_crane.conventions import AIR_DENSITY
 from offshore_crane.errors import DescriptionError
 from offshore_crane.io import toml_value
 from offshore_crane.robot.description.files import label
-from offshore_crane.robot.description.geometry import rpy_angles, solid_inertia
+from offshore_crane.robot.description.geometry import (inertia_problem, rpy_angles,
+                                                        solid_inertia)
 from offshore_crane.spatial import attitude_matrix
 from offshore_crane.robot.description.capacities import (capacities, load_limits,
                                                         winch_capacities)
@@ -195,17 +196,9 @@ class Resolver:
         return Body(m, com, I, visual)
 
     def _check_inertia(self, name: str, m: float, I: np.ndarray, *involved):
-        lam = np.linalg.eigvalsh(I)                           # ascending
-        tol = INERTIA_RTOL * float(np.abs(lam).sum())
-        shown = ", ".join(f"{x:.6g}" for x in lam)
-        if lam[0] < -tol:
-            self.fail(name, f"not positive definite: principal moments ({shown}) kg·m² "
-                      "include a negative one", *involved)
-        if lam[2] > lam[0] + lam[1] + tol:
-            self.fail(name, f"principal moments ({shown}) kg·m² break the triangle "
-                      f"inequality ({lam[2]:.6g} > {lam[0]:.6g} + {lam[1]:.6g})", *involved)
-        if m == 0.0 and lam[2] > 0.0:
-            self.fail(name, "an inertia without mass: give the mass too", *involved)
+        problem = inertia_problem(m, I)
+        if problem is not None:
+            self.fail(name, problem, *involved)
 
     def _leg_name(self, i: int, key: str) -> str:
         """``legs.{i+1}.key`` when given for that leg, else ``legs.key``."""

@@ -65,7 +65,8 @@ class BaseParameters(NamedTuple):
 
 def random_states(robot, n: int, seed: int = 0, speed: float = 1.0, accel: float = 5.0):
     """``n`` random states ``(q, q̇, q̈)`` ``(n, 9)`` inside the workspace: the platform
-    within ±5 cm and ±0.3 rad of home, the arm within its joint limits (±π where none),
+    within ±5 cm and ±0.3 rad of home, the arm within its joint limits (±π where none;
+    0 with its rates and accelerations for a robot without the arm),
     rates uniform in ±``speed``, accelerations in ±``accel`` (rejection-sampled on the
     workspace checks)."""
     from offshore_crane.errors import WorkspaceError
@@ -74,7 +75,8 @@ def random_states(robot, n: int, seed: int = 0, speed: float = 1.0, accel: float
 
     rng = np.random.default_rng(seed)
     home = robot.home_pose()
-    arm = np.clip(limits_of(robot.hybrid).arm[:3], -np.pi, np.pi)
+    arm = (np.clip(limits_of(robot.hybrid).arm[:3], -np.pi, np.pi) if robot.hybrid.has_arm
+           else np.zeros((3, 2)))                      # no arm: q7..q9 stay 0
     lo = np.concatenate([home[:3] - 0.05, home[3:6] - 0.3, arm[:, 0]])
     hi = np.concatenate([home[:3] + 0.05, home[3:6] + 0.3, arm[:, 1]])
     kept: list = []
@@ -88,7 +90,9 @@ def random_states(robot, n: int, seed: int = 0, speed: float = 1.0, accel: float
                 ok[i] = False
         kept.append(q[ok])
     q = np.concatenate(kept)[:n]
-    return q, rng.uniform(-speed, speed, q.shape), rng.uniform(-accel, accel, q.shape)
+    moving = (hi > lo).astype(float)
+    return (q, rng.uniform(-speed, speed, q.shape) * moving,
+            rng.uniform(-accel, accel, q.shape) * moving)
 
 
 @one_blas_thread()
@@ -102,10 +106,10 @@ def base_parameters(robot, n: int = 200, seed: int = 0, gravity=GRAVITY,
     """
     from scipy.linalg import qr
 
-    from offshore_crane.studies.identification._regressor import regressor
+    from offshore_crane.studies.identification._regressor import actuator_rows, regressor
 
     R_ = regressor(robot, *random_states(robot, n, seed), gravity=gravity, friction=friction)
-    W = R_.Y.reshape(-1, R_.Y.shape[-1])
+    W = R_.Y[:, actuator_rows(robot)].reshape(-1, R_.Y.shape[-1])
     scale = np.linalg.norm(W, axis=0)
     scale[scale == 0] = 1.0
     _, R, perm = qr(W / scale, mode="economic", pivoting=True)

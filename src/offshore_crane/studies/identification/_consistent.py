@@ -57,6 +57,12 @@ MAX_STEPS = 300
 #: A centring stops when the Newton decrement ``λ²/2`` (the model's decrease, cost
 #: units) is below this share of μ (the decrement of the self-concordant ``cost / μ``).
 CENTRED = 1e-6
+#: The identified robot keeps every body's pseudo-inertia at least this share of its
+#: nominal one, ``J ⪰ MARGIN · J_0`` (the lift solves for ``π − MARGIN · π_0`` inside the
+#: consistent set): an exact log's optimum lies on the edge of consistency, where a
+#: principal moment about the centre of mass is 0 and round-off makes it negative (a
+#: description no MuJoCo export takes). The forces move by ~MARGIN of a body's own.
+MARGIN = 1e-8
 #: A decrease of the cost below this [σ²] is nothing (the decrement's round-off floor on
 #: an exact log is ~1e-13): a centring stops there whatever μ.
 NEGLIGIBLE = 1e-10
@@ -88,12 +94,18 @@ def parameters(J: np.ndarray) -> np.ndarray:
                      I[0, 2], I[1, 2], I[2, 2]])
 
 
-def consistent(p: np.ndarray, margin: float = 0.0) -> bool:
-    """True when every body of ``p (10 b,)`` has a positive definite pseudo-inertia (its
-    smallest eigenvalue above ``margin`` times its largest)."""
+def consistent(p: np.ndarray) -> bool:
+    """True when every body of ``p (10 b,)`` has a positive definite pseudo-inertia
+    (tested scaled to a unit diagonal, so that its mixed units, kg, kg·m and kg·m², do
+    not decide the verdict; the identified robot is judged as a description file judges
+    it: :func:`~._description.physical`)."""
     for k in range(0, len(p), 10):
-        w = np.linalg.eigvalsh(pseudo_inertia(p[k:k + 10]))
-        if not w[0] > margin * w[-1]:
+        J = pseudo_inertia(p[k:k + 10])
+        d = np.diag(J)
+        if not np.all(d > 0.0):
+            return False
+        s = 1.0 / np.sqrt(d)
+        if not np.linalg.eigvalsh(J * np.outer(s, s))[0] > 0.0:
             return False
     return True
 
@@ -101,7 +113,7 @@ def consistent(p: np.ndarray, margin: float = 0.0) -> bool:
 @one_blas_thread()
 def consistent_parameters(K: np.ndarray, beta: np.ndarray, root: np.ndarray,
                           pi0: np.ndarray, prior: float = PRIOR_WEIGHT,
-                          com_bounds: np.ndarray | None = None):
+                          com_bounds: np.ndarray | None = None, margin: float = MARGIN):
     """The physically consistent parameters closest to identified base parameters (the
     module docstring's convex problem, by a barrier method).
 
@@ -120,6 +132,8 @@ def consistent_parameters(K: np.ndarray, beta: np.ndarray, root: np.ndarray,
             per axis of its frame (``±inf``: none), e.g. a leg part's along the leg
             (:func:`~._description.com_bounds`), held exactly (the centre of mass stays
             strictly inside). ``pi0`` must lie strictly inside.
+        margin: Every body's pseudo-inertia stays at least this share of its nominal
+            one (:data:`MARGIN`): the problem is solved for ``π − margin · π_0``.
 
     Returns:
         ``(pi (P,), misfit)``: the parameters, and ``|root (K π − β̂)|`` per excited
@@ -128,6 +142,15 @@ def consistent_parameters(K: np.ndarray, beta: np.ndarray, root: np.ndarray,
     Raises:
         InputError: ``pi0`` not consistent or not inside its bounds.
     """
+    shift = margin * np.asarray(pi0, dtype=float)
+    pi, _ = _lift(K, beta - K @ shift, root, pi0 - shift, prior, com_bounds)
+    pi = pi + shift
+    misfit = root @ (K @ pi - beta)
+    return pi, float(np.sqrt(np.mean(misfit ** 2))) if len(misfit) else 0.0
+
+
+def _lift(K, beta, root, pi0, prior, com_bounds):
+    """:func:`consistent_parameters` without its margin."""
     from offshore_crane import progress
     from offshore_crane.errors import InputError
 
@@ -144,14 +167,23 @@ def consistent_parameters(K: np.ndarray, beta: np.ndarray, root: np.ndarray,
                          "bounds: check the robot description", name="pi0")
     Bd = rows * d                                              # slack = Bd u + (rows π0 − low)
     s0 = rows @ pi0 - low
-    inv0 = np.linalg.inv(_pseudo(pi0, b))                      # J_0⁻¹ per body (4 × 4)
+    G = _scaled_generators(pi0, b)                             # (b, 10, 4, 4)
+
+    def pseudo(p):
+        """The bodies' pseudo-inertias scaled by their nominal diagonal ``S J S``: the
+        barrier and its derivatives are the same (congruence leaves the log-det
+        divergence unchanged), their round-off is each direction's own (a body as thin
+        as a rod, J's eigenvalues 1e-13 of its largest, is resolved)."""
+        return np.einsum("bn,bnij->bij", p.reshape(b, 10), G)
+
+    inv0 = np.linalg.inv(pseudo(pi0))                          # J_0⁻¹ per body (4 × 4)
 
     def barrier(u):
         """``−Σ log λ(J_b) − Σ log(slack)`` at ``u``; inf outside (a J not positive
         definite, a centre of mass on or past its bound, anything not finite)."""
         if not np.isfinite(u).all():
             return np.inf
-        J = _pseudo(pi0 + d * u, b)
+        J = pseudo(pi0 + d * u)
         lam = np.linalg.eigvalsh(J)
         slack = Bd @ u + s0
         if not (lam.min() > 0.0 and np.all(slack > 0.0)):
@@ -168,12 +200,12 @@ def consistent_parameters(K: np.ndarray, beta: np.ndarray, root: np.ndarray,
 
     def newton(u, mu):
         """The Newton step at ``u`` and its decrement ``λ²``."""
-        lam, Q = np.linalg.eigh(_pseudo(pi0 + d * u, b))
+        lam, Q = np.linalg.eigh(pseudo(pi0 + d * u))
         lam = np.maximum(lam, 1e-300)
         C = np.einsum("bij,bj,bkj->bik", Q, lam ** -0.5, Q)       # J^-½
         H = np.einsum("bij,bj,bkj->bik", Q, lam ** 0.5, Q)        # J^½
         T = np.eye(4) - H @ inv0 @ H          # ⟨C G_i C, T⟩ = −dφ/dπ_i: log det and trace
-        M = np.einsum("bij,njk,bkl->bnil", C, _GENERATORS, C)     # (b, 10, 4, 4)
+        M = np.einsum("bij,bnjk,bkl->bnil", C, G, C)              # (b, 10, 4, 4)
         blocks = np.zeros((16 * b, P))
         for k in range(b):
             blocks[16 * k:16 * k + 16, 10 * k:10 * k + 10] = (
@@ -226,9 +258,12 @@ def _newton(lhs: np.ndarray, rhs: np.ndarray):
     return solve_triangular(R, z, check_finite=False), float(z @ z)
 
 
-def _pseudo(p: np.ndarray, b: int) -> np.ndarray:
-    """``(b, 4, 4)`` the bodies' pseudo-inertias of ``p (10 b,)``."""
-    return np.einsum("bn,nij->bij", p.reshape(b, 10), _GENERATORS)
+def _scaled_generators(pi0: np.ndarray, b: int) -> np.ndarray:
+    """``(b, 10, 4, 4)`` ``S_b (dJ/dπ_i) S_b``, ``S_b`` the inverse square root of body
+    b's nominal pseudo-inertia's diagonal (positive for a consistent ``pi0``)."""
+    J0 = np.einsum("bn,nij->bij", pi0.reshape(b, 10), _GENERATORS)
+    s = 1.0 / np.sqrt(np.einsum("bii->bi", J0))
+    return _GENERATORS[None] * (s[:, None, :, None] * s[:, None, None, :])
 
 
 def _bound_rows(bounds, b: int, pi0: np.ndarray):

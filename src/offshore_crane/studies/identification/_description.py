@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from offshore_crane.studies.identification._consistent import consistent, origin_inertia
+from offshore_crane.studies.identification._consistent import origin_inertia
 from offshore_crane.studies.identification._regressor import Regressor
 
 #: The description's table of each regressor body (leg parts: per leg).
@@ -47,6 +47,44 @@ def body_fields(p: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
     return m, c, origin_inertia(p) - m * (c @ c * np.eye(3) - np.outer(c, c))
 
 
+def physical(p: np.ndarray) -> bool:
+    """True when every body of ``p (10 b,)`` is one a description file takes: a mass > 0
+    and an inertia about its centre of mass that the description's rule accepts
+    (:func:`offshore_crane.robot.description.geometry.inertia_problem`, tolerance
+    :data:`~offshore_crane.conventions.INERTIA_RTOL`). The one verdict ``identify``
+    prints and the rule its written description is read by; the moments it writes are
+    then clipped to :data:`MOMENT_FLOOR` (:func:`clipped`)."""
+    from offshore_crane.robot.description.geometry import inertia_problem
+
+    for k in range(0, len(p), 10):
+        if not p[k] > 0.0:
+            return False
+        m, _, I = body_fields(p[k:k + 10])
+        if inertia_problem(m, I) is not None:
+            return False
+    return True
+
+
+#: The principal moments of inertia written are at least this share of their sum, and
+#: meet the triangle inequality: a body the consistent lift leaves on the edge of
+#: consistency (a moment of 0, −2e-17 after the conversion to the centre of mass) is
+#: written within the description's tolerance (INERTIA_RTOL, 1e-6) as a strict one, which
+#: every command, MuJoCo's export included, takes.
+MOMENT_FLOOR = 1e-12
+
+
+def clipped(I: np.ndarray) -> tuple[np.ndarray, bool]:
+    """``(I', changed)``: an inertia about the centre of mass ``(3, 3)`` [kg·m²] with its
+    principal moments raised to :data:`MOMENT_FLOOR` of their sum and the largest
+    lowered to the sum of the others where they are not (the axes kept)."""
+    lam, V = np.linalg.eigh(0.5 * (I + I.T))
+    new = np.maximum(lam, MOMENT_FLOOR * float(np.abs(lam).sum()))
+    new[2] = min(new[2], new[0] + new[1])
+    if np.array_equal(new, lam):
+        return I, False
+    return (V * new) @ V.T, True
+
+
 def identified_description(robot, R: Regressor, pi: np.ndarray, header: str = "",
                            notes: dict | None = None) -> str:
     """The text of the identified robot's description file.
@@ -63,7 +101,12 @@ def identified_description(robot, R: Regressor, pi: np.ndarray, header: str = ""
     Returns:
         The TOML text; loading it gives a robot whose regressor parameters are ``pi``
         to round-off (tested).
+
+    Raises:
+        InputError: a body of ``pi`` that no description takes (:func:`physical`): no
+            description is written of it.
     """
+    from offshore_crane.errors import InputError
     from offshore_crane.robot.description import read_description, read_toml
     from offshore_crane.robot.description.loading import flat_values
     from offshore_crane.robot.description.writing import description_text
@@ -78,6 +121,10 @@ def identified_description(robot, R: Regressor, pi: np.ndarray, header: str = ""
         if not cols:
             continue
         own = pi[cols]
+        if not physical(own):
+            raise InputError(f"identified description: {body}'s parameters are no rigid "
+                             "body a description takes (its mass or its inertia about its "
+                             "centre of mass): not written", name="pi")
         lines = [f"{body}: not identifiable alone (nominal mass {nominal[body][0]:.6g} kg): "
                  "the consistent split, nearest the nominal values, of the base "
                  "parameters the header lists"]
@@ -87,7 +134,7 @@ def identified_description(robot, R: Regressor, pi: np.ndarray, header: str = ""
             if part is not None and part.mass > 0:
                 extra = R.pi[cols] - body_parameters(*nominal[body])
                 rest = own - extra
-                if consistent(rest):
+                if physical(rest):
                     own = rest
                     lines.append(f"{welded} (welded to it) kept nominal: the forces see "
                                  "the sum")
@@ -97,6 +144,11 @@ def identified_description(robot, R: Regressor, pi: np.ndarray, header: str = ""
                                  f"minus its nominal values is no physical body; "
                                  f"{welded}.mass set to 0")
         m, c, I = body_fields(own)
+        I, changed = clipped(I)
+        if changed:
+            lines.append(f"principal moments about the centre of mass clipped to at least "
+                         f"{MOMENT_FLOOR:g} of their sum (the lift left it on the edge of "
+                         "consistency; the change is within the description's tolerance)")
         _set_body(raw, table, m, c, I)
         comments[table] = "\n".join(lines + [(notes or {}).get(body, "")]).rstrip()
     return description_text(raw, comments, header)

@@ -69,6 +69,8 @@ def fourier_excitation(robot, duration: float, rate: float = 100.0, harmonics: i
     t = time_grid(duration, rate)
     rng = np.random.default_rng(seed)
     weight = np.array([0.1, 0.1, 0.1, 1, 1, 1, 1, 1, 0.1])[:, None]
+    if not robot.hybrid.has_arm:
+        weight[6:] = 0.0                                   # no arm: q7..q9 stay 0
     a = rng.uniform(-speed, speed, (9, harmonics)) * weight
     b = rng.uniform(-speed, speed, (9, harmonics)) * weight
     centre = robot.home_pose().copy()
@@ -95,15 +97,39 @@ OPTIMISE_SAMPLES = 300
 @one_blas_thread()
 def excitation_condition(robot, traj, base, samples: int = OPTIMISE_SAMPLES) -> float:
     """The condition number of the base regressor (columns scaled to unit norm) on
-    ``samples`` evenly spread samples of ``traj``."""
-    from offshore_crane.studies.identification._regressor import regressor
+    ``samples`` evenly spread samples of ``traj``; ``inf`` when it is rank-deficient
+    (:func:`excited` below ``base.rank``: some base parameter not excited at all)."""
+    s = _singular_values(robot, traj, base, samples)
+    if len(s) < base.rank or not s[-1] > _rank_tolerance() * s[0]:
+        return math.inf
+    return float(s[0] / s[-1])
+
+
+@one_blas_thread()
+def excited(robot, traj, base, samples: int = OPTIMISE_SAMPLES) -> int:
+    """How many independent combinations of the base parameters ``traj`` excites (the
+    base regressor's numerical rank on ``samples`` of its samples, at
+    :data:`~._base.RANK_TOLERANCE`): ``base.rank`` when it excites them all."""
+    s = _singular_values(robot, traj, base, samples)
+    return int(np.sum(s > _rank_tolerance() * s[0])) if len(s) and s[0] > 0 else 0
+
+
+def _rank_tolerance() -> float:
+    from offshore_crane.studies.identification._base import RANK_TOLERANCE
+
+    return RANK_TOLERANCE
+
+
+def _singular_values(robot, traj, base, samples: int) -> np.ndarray:
+    """The base regressor's singular values (columns scaled to unit norm) on ``samples``
+    evenly spread samples of ``traj``, on the actuators the robot has."""
+    from offshore_crane.studies.identification._regressor import actuator_rows, regressor
 
     k = np.unique(np.linspace(0, len(traj.t) - 1, min(samples, len(traj.t))).astype(int))
     W = base.base_regressor(regressor(robot, traj.q[k], traj.qd[k], traj.qdd[k]).Y)
-    W = W.reshape(-1, W.shape[-1])
+    W = W[:, actuator_rows(robot)].reshape(-1, W.shape[-1])
     norms = np.linalg.norm(W, axis=0)
-    s = np.linalg.svd(W / np.where(norms > 0, norms, 1.0), compute_uv=False)
-    return float(s[0] / s[-1]) if s[-1] > 0 else math.inf
+    return np.linalg.svd(W / np.where(norms > 0, norms, 1.0), compute_uv=False)
 
 
 def within_limits(robot, traj, gravity) -> bool:

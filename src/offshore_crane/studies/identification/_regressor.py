@@ -39,13 +39,21 @@ class Regressor(NamedTuple):
     units: tuple
 
 
+def actuator_rows(robot) -> np.ndarray:
+    """The rows of ``Y`` (and columns of X) of the actuators ``robot`` has: all nine, or
+    the six legs' (3..8) for a platform without the crane arm (its T1, T2, Fs rows are
+    NaN: no such actuator)."""
+    return np.arange(9) if robot.hybrid.has_arm else np.arange(3, 9)
+
+
 @one_blas_thread()
 def regressor(robot, q, qd, qdd, gravity=GRAVITY, friction: bool = False) -> Regressor:
     """The closed-loop regressor ``Y (N, 9, P)`` and the standard parameters ``π (P,)``.
 
     Args:
         robot: From :func:`offshore_crane.load_robot` (a payload welded to the tip; not
-            on a cable).
+            on a cable). Without the crane arm, the rows of T1, T2 and Fs are NaN
+            (:func:`actuator_rows`).
         q, qd, qdd: ``(N, 9)`` [m, rad], rates, accelerations.
         gravity: ``(3,)`` base frame [m/s²].
         friction: Add 3 friction columns per actuator (:data:`FRICTION`).
@@ -55,35 +63,14 @@ def regressor(robot, q, qd, qdd, gravity=GRAVITY, friction: bool = False) -> Reg
             payload hangs on a cable (identify it welded).
         WorkspaceError: a pose outside the workspace.
     """
-    from offshore_crane import progress
-    from offshore_crane.errors import InputError
-    from offshore_crane.reference.rnea.regressor import regressor as tree_regressor
-    from offshore_crane.robot.kinematics import actuator_motion, check_workspace
-    from offshore_crane.validation import as_gravity, as_samples
+    from offshore_crane.robot.kinematics import actuator_motion
 
-    if robot.hybrid.cable is not None:
-        raise InputError("regressor: the payload hangs on a cable; identify the robot "
-                         "with its payload welded (payload.cable_length = 0)",
-                         name="robot")
-    q, _ = as_samples("q", q)
-    qd, _ = as_samples("qd", qd)
-    qdd, _ = as_samples("qdd", qdd)
-    for name, a in (("qd", qd), ("qdd", qdd)):
-        if len(a) != len(q):
-            raise InputError(f"regressor: {name} has {len(a)} samples and q {len(q)}",
-                             name=name)
-    check_workspace(robot, q)
-    g = as_gravity(gravity)
-    parts = []
-    with progress.bar(len(q), "sample", "regressor") as shown:
-        for a in range(0, len(q), BLOCK):
-            parts.append(tree_regressor(robot, q[a:a + BLOCK], qd[a:a + BLOCK],
-                                        qdd[a:a + BLOCK], g))
-            shown.update(len(parts[-1].Y))
+    parts = [R for _, R in regressor_blocks(robot, q, qd, qdd, gravity)]
+    q = np.asarray(q, dtype=float).reshape(-1, 9)
     Y = np.concatenate([p.Y for p in parts])
     pi, names, units = parts[0].pi, parts[0].names, parts[0].units
     if friction:
-        v = actuator_motion(robot, q, qd)[1]                       # (N, 9)
+        v = actuator_motion(robot, q, np.asarray(qd, dtype=float).reshape(-1, 9))[1]
         F = np.zeros((len(q), 9, 27))
         for k in range(9):
             F[:, k, 3 * k:3 * k + 3] = np.stack([v[:, k], np.sign(v[:, k]),
@@ -94,3 +81,52 @@ def regressor(robot, q, qd, qdd, gravity=GRAVITY, friction: bool = False) -> Reg
         units = units + tuple(u for unit in ACTUATOR_UNITS for u in
                               (f"{unit}·s/{'rad' if unit == 'N·m' else 'm'}", unit, unit))
     return Regressor(Y, pi, names, units)
+
+
+def identifiable(robot) -> None:
+    """Check that ``robot`` is one the regressor models.
+
+    Raises:
+        InputError: its payload hangs on a cable (identify it welded).
+    """
+    from offshore_crane.errors import InputError
+
+    if robot.hybrid.cable is not None:
+        raise InputError("regressor: the payload hangs on a cable; identify the robot "
+                         "with its payload welded (payload.cable_length = 0)",
+                         name="robot")
+
+
+def regressor_blocks(robot, q, qd, qdd, gravity=GRAVITY, block: int = BLOCK):
+    """The regressor of :func:`regressor` (inertial columns) block by block:
+    ``(start, Regressor of samples start..start + block)``, so that a long log's
+    ``Y`` is never held whole (a block's ``Y`` is ``block × 9 × P`` doubles). The
+    samples are checked first (shapes, finite values, the workspace); a progress bar
+    counts them.
+
+    Raises:
+        As :func:`regressor`.
+    """
+    from offshore_crane import progress
+    from offshore_crane.errors import InputError
+    from offshore_crane.reference.rnea.regressor import regressor as tree_regressor
+    from offshore_crane.robot.kinematics import check_workspace
+    from offshore_crane.validation import as_gravity, as_samples
+
+    identifiable(robot)
+    q, _ = as_samples("q", q)
+    qd, _ = as_samples("qd", qd)
+    qdd, _ = as_samples("qdd", qdd)
+    for name, a in (("qd", qd), ("qdd", qdd)):
+        if len(a) != len(q):
+            raise InputError(f"regressor: {name} has {len(a)} samples and q {len(q)}",
+                             name=name)
+    check_workspace(robot, q)
+    g = as_gravity(gravity)
+    with progress.bar(len(q), "sample", "regressor") as shown:
+        for a in range(0, len(q), block):
+            part = Regressor(*tree_regressor(robot, q[a:a + block], qd[a:a + block],
+                                             qdd[a:a + block], g))
+            shown.update(len(part.Y))
+            yield a, part
+            del part                        # before the next block: one alive at a time
