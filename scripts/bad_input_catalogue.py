@@ -54,11 +54,12 @@ def main(argv=None) -> int:
         with tempfile.TemporaryDirectory() as d:
             if case.lib is not None:
                 print(f"    - library: {_library(case, Path(d)).replace(d, 'DIR')}")
-        with tempfile.TemporaryDirectory() as d:
-            if case.cli is not None:
+        if case.cli is not None:
+            with tempfile.TemporaryDirectory() as d:      # the argv, its files made apart
                 argv_shown = " ".join(case.cli(Path(d))).replace(d, "DIR")
+            with tempfile.TemporaryDirectory() as d:      # the run makes its own
                 shown = _cli(case, Path(d)).replace(d, "DIR")
-                print(f"    - CLI `offshore-crane {argv_shown}`: {shown}")
+            print(f"    - CLI `offshore-crane {argv_shown}`: {shown}")
     return 0
 
 
