@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from offshore_crane.lazy import submodule_getattr
-from offshore_crane.conventions import LANES
+from offshore_crane.conventions import GRAVITY, LANES
 from offshore_crane.dynamics.inverse import (APPROXIMATIONS, LEG_MODELS, METHODS, PYTHON_MAX, REGISTRY,
                                              STATIC_MIN, Result, inverse_dynamics, solve)
 from offshore_crane.dynamics.runtime import BACKENDS, numba_available, quick_backend, resolve_backend
@@ -47,6 +47,12 @@ def warm_up(robot=None, methods: tuple[str, ...] = METHODS,
             moving = np.repeat(q, LANES, axis=0)
             solve(robot, moving, np.full_like(moving, 1e-3), 0 * moving, backend="numba",
                   limits=False)
+        if method == "rnea":                  # more samples: Fortran-ordered tree states
+            from offshore_crane.reference.rnea.regressor import regressor
+
+            two = np.repeat(q, 2, axis=0)     # (one sample's are C-ordered too: another type)
+            solve(robot, two, 0 * two, 0 * two, method=method, backend="numba", limits=False)
+            regressor(robot, two, 0 * two, 0 * two, GRAVITY)   # identification's projection
         out.append((f"{method} kernels", time.perf_counter() - t0))
     if not forward:
         return out
