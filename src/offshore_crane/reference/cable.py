@@ -46,8 +46,11 @@ from offshore_crane.conventions import ARM_JOINTS, CABLE_JOINTS, N_LEGS, PLATFOR
 from offshore_crane.errors import require
 from offshore_crane.reference.rnea import Forces, rnea_projected, tree_state
 from offshore_crane.reference.rnea.projection import project, read_tree
+from offshore_crane.stops import CODES
 
 #: The prismatic joint a winch adds along the cable (the payload its body).
+#: The integration's stop codes (:class:`~offshore_crane.stops.StopCause`).
+_, _, SINGULAR, DIVERGED, _, _ = CODES
 HOIST_JOINT = "cable_hoist"
 
 
@@ -178,7 +181,7 @@ def integrate(robot: Any, Q: np.ndarray, Qd: np.ndarray, Qdd: np.ndarray, g: np.
             finite = bool(np.isfinite(Y[k]).all())
             status[2] = max(status[2], worst) if finite else np.inf
             if not finite or not rel >= rel_min:
-                status[0], status[1] = (2 if not finite else 1), k
+                status[0], status[1] = (DIVERGED if not finite else SINGULAR), k
                 return Y, status
         if s == n_steps:
             break

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 from offshore_crane.kernel_cache import njit
+from offshore_crane.stops import CODES
 
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
@@ -19,9 +20,9 @@ kinetic_energy = c.kinetic_energy
 tangent_bounds = c.tangent_bounds
 STAMP = c.STAMP
 jit = njit(**c.JIT)
-#: Stop codes; STOPPED: asked to (the flag set by
-#: :func:`offshore_crane.progress.run_polled` on a signal, which the caller raises).
-OK, WORKSPACE, SINGULAR, DIVERGED, STOPPED = 0, 1, 2, 3, 4
+#: Stop codes (:class:`~offshore_crane.stops.StopCause`); STOPPED: asked to (the flag set
+#: by :func:`offshore_crane.progress.run_polled` on a signal, which the caller raises).
+OK, WORKSPACE, SINGULAR, DIVERGED, STOPPED, _ = CODES
 _VIOLATION = 3
 #: The law code of computed torque on the plant's own model with the law applied at
 #: every stage (:func:`offshore_crane.simulation.rigid.simulate` chooses it): one

@@ -42,6 +42,7 @@ import numpy as np
 
 from offshore_crane import progress
 from offshore_crane.lazy import submodule_getattr
+from offshore_crane.stops import StopCause
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import (InputError, NumericalError, SingularConfigurationError,
                                    SlackCableError)
@@ -164,24 +165,24 @@ def inverse_dynamics(robot: Robot, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, 
 
         Y, status = ref.integrate(robot, Q, Qd, Qdd, g, h, int(substeps), y0,
                                   1.0 / thresholds.error, None if hoist is None else Lh)
-    code, stop, worst = int(status[0]), int(status[1]), float(status[2])
-    n = len(t) if code == 0 else stop
+    code, stop, worst = StopCause(int(status[0])), int(status[1]), float(status[2])
+    n = len(t) if code == StopCause.NONE else stop
     L = None if hoist is None else np.ascontiguousarray(Lh[::2 * int(substeps)][:n])
     if done is not None:
         X, F, kappa = done
         done = X[:n], F[:n], None if kappa is None else kappa[:, :n]
     res = _forces(robot, t[:n], q[:n], qd[:n], qdd[:n], Y[:n], g, method, limits, checks,
                   thresholds, worst, length_, mass_, h, L, threads, done)
-    if code != 0:
+    if code != StopCause.NONE:
         if slack == "error":
             _slack(res, slack)         # a slack cable before the stop is its first cause
         cause = ("the sway reached the singular set cos(phi2) = 0 (1/cos^2 above "
-                 f"{thresholds.error:.3g})" if code == 1 else "the sway diverged (a "
+                 f"{thresholds.error:.3g})" if code == StopCause.SINGULAR else "the sway diverged (a "
                  "non-finite state)")
         exc = (SingularConfigurationError(
             f"hanging load: {cause} at sample {stop} (t = {t[stop]:.6g} s); the {n} samples "
             "before it are in error.result", index=stop, time=float(t[stop]),
-            condition=worst, kind="sway") if code == 1 else NumericalError(
+            condition=worst, kind="sway") if code == StopCause.SINGULAR else NumericalError(
             f"hanging load: {cause} at sample {stop} (t = {t[stop]:.6g} s): shorten the step "
             "(substeps) or check the motion", index=stop, name="sway"))
         exc.result = res
@@ -247,7 +248,7 @@ def _alongside(job, follow, Y, status, stop):
             time.sleep(WAIT)
         if "error" in box:
             return 0
-        return b if status[0] == 0 else min(b, int(status[1]))
+        return b if status[0] == StopCause.NONE else min(b, int(status[1]))
 
     try:
         out = follow(ready)

@@ -21,15 +21,16 @@ from __future__ import annotations
 import numpy as np
 
 from offshore_crane.dynamics import compiled as c
+from offshore_crane.stops import CODES
 from offshore_crane.dynamics.cable.kernels import jit, tip
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 
 cable_tension, sway_damping_force = c.K.cable_tension, c.K.sway_damping_force
 drag_force = c.K.drag_force
 unpack = c.unpack
-#: Stop codes (``status[0]``): none, a non-finite state (the payload at the tip), asked
+#: Stop codes (``status[0]``, :class:`~offshore_crane.stops.StopCause`): none, a non-finite state (the payload at the tip), asked
 #: to stop (the flag ``halt[0]`` set: a signal, :func:`offshore_crane.progress.run_polled`).
-OK, DIVERGED, STOPPED = 0, 2, 3
+OK, _, _, DIVERGED, STOPPED, _ = CODES
 #: Columns of the tip's state ``T`` (21,) (:func:`~.kernels.tip`): its attitude (by rows)
 #: and angular velocity, its acceleration, its velocity.
 _TURN, _ACC, _VEL = (0, 12), (15, 18), (18, 21)

@@ -22,6 +22,7 @@ They close over the formulas' hash only (the disk cache keys on it, see
 from __future__ import annotations
 
 import numpy as np
+from offshore_crane.stops import CODES
 from offshore_crane.kernel_cache import njit
 
 from offshore_crane.dynamics import compiled as c
@@ -41,9 +42,10 @@ kane_sample_call, kane_sample_pull_call = c.KE.kane_sample, c.KE.kane_sample_pul
 finite_inputs = c._finite_inputs
 kane_sample, unpack, post, tangent_bounds = c.K.kane_sample, c.unpack, c._post, c.tangent_bounds
 jit = njit(**c.JIT)
-#: Stop codes of :func:`integrate` (``status[0]``); STOPPED: asked to (its flag set by
+#: Stop codes of :func:`integrate` (``status[0]``, :class:`~offshore_crane.stops.
+#: StopCause`); STOPPED: asked to (its flag set by
 #: :func:`offshore_crane.progress.run_polled` on a signal, which the caller raises).
-OK, SINGULAR, DIVERGED, STOPPED = 0, 1, 2, 3
+OK, _, SINGULAR, DIVERGED, STOPPED, _ = CODES
 
 
 def _helpers(stamp):
