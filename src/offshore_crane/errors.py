@@ -171,14 +171,17 @@ class SimulationError(OffshoreCraneError, RuntimeError):
         time: Simulated time of the stop [s].
         cause: What happened, in words.
         result: The run up to that point (every sample computed is kept).
+        stop_cause: What happened, as a :class:`offshore_crane.stops.StopCause` (None
+            where the stopping loop does not say).
     """
 
     def __init__(self, message: str, time: float | None = None, cause: str | None = None,
-                 result=None):
+                 result=None, stop_cause=None):
         super().__init__(message)
         self.time = time
         self.cause = cause
         self.result = result
+        self.stop_cause = stop_cause
 
 
 class OutputError(OffshoreCraneError, OSError):

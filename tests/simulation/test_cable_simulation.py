@@ -135,8 +135,9 @@ def test_the_first_cause_wins(crane):
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(controller=Controller("pd")), "takes 'computed-torque'"),
-    (dict(controller=Controller(noise_q=0.001)), "noise is not simulated"),
+    (dict(controller=Controller(noise_q=0.001)), "control instants of a sampled law"),
+    (dict(controller=Controller(noise_q=0.001, rate=500.0),
+          sensors=oc.simulation.instruments.Sensors(noise_q=1e-4)), "noise given twice"),
     (dict(integrator="dop853"), "runs RK4"),
     (dict(initial=(0.0, np.nan)), "initial must be two finite numbers"),
 ])

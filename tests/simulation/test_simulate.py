@@ -145,7 +145,7 @@ def test_bad_arguments(robot, kwargs, match):
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(law="lqr"), "unknown controller 'lqr'"),
+    (dict(law="lqr"), "unknown control law 'lqr'"),
     (dict(kp=-1.0), r"kp\[0\] = -1.0: gains must be finite and ≥ 0"),
     (dict(kd=[1.0] * 8 + [np.nan]), r"kd\[8\] = nan"),
     (dict(rate=-3.0), "control rate = -3.0 Hz"),
@@ -312,7 +312,7 @@ def test_the_shared_pass_equals_the_law_with_its_own(robot, monkeypatch):
     and states to 1e-12 of their peaks (measured 3.7e-15 and 1.7e-15 on Table 1: round-off
     of M q̈_cmd + h against Kane's pass at q̈_cmd), saturation included."""
     from offshore_crane.simulation import rigid
-    from offshore_crane.simulation.control import LAW_CODES
+    from offshore_crane.simulation.laws import codes
 
     loop = rigid._loop()
     q0 = table1(0.0)[0].copy()
@@ -321,7 +321,7 @@ def test_the_shared_pass_equals_the_law_with_its_own(robot, monkeypatch):
     upper[3] = 335.0                                 # Fl1 (peak 342 N) saturates at times
     ctl = Controller(lower=lower, upper=upper)
     fast = simulate(robot, 2.0, table1, q0=q0, controller=ctl, limits=False)
-    general = LAW_CODES["computed-torque"]           # the law's code, not the shared one
+    general = codes.COMPUTED_TORQUE           # the law's code, not the shared one
     monkeypatch.setattr(rigid, "_loop", lambda: loop[:3] + (general,))
     slow = simulate(robot, 2.0, table1, q0=q0, controller=ctl, limits=False)
     for a, b, bound in ((fast.X, slow.X, 1e-12), (fast.q, slow.q, 1e-12),

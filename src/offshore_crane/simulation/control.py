@@ -1,6 +1,7 @@
-"""Controllers of the simulation: computed torque, PD with gravity compensation, PD.
+"""A controller: a law of the registry by name (:mod:`offshore_crane.simulation.laws`)
+and its options.
 
-The laws (README, "Simulation and control"; with a hanging load, ``docs/cable.md``):
+The laws (``docs/simulation.md``; with a hanging load, ``docs/cable.md``):
 
 - ``"computed-torque"``: ``X = ID_model(q, q̇, q̈_ref + Kd (q̇_ref − q̇) + Kp (q_ref − q))``
   at the *measured* state, with the controller's own robot model. With an exact model the
@@ -12,6 +13,10 @@ The laws (README, "Simulation and control"; with a hanging load, ``docs/cable.md
   ``kd`` [N·m·s/rad, N·s/m].
 - ``"pd"``: the same PD without gravity compensation.
 - ``"none"``: X = 0 (a free, unactuated motion; for energy checks).
+- ``"pid"``: PD with gravity compensation plus an integral term with anti-windup
+  (:mod:`offshore_crane.simulation.laws.pid`; gains ``ki``, tracking time ``windup``).
+- ``"anti-sway"``: computed torque with a reference shift that damps a hanging load's
+  swing (``anti_sway=ζ`` selects it).
 
 Options: actuator saturation (each X_k clipped to ``[lower_k, upper_k]``, push and pull
 apart: the actuators' capacities; the time spent saturated is reported, never silent), a
@@ -31,8 +36,10 @@ import numpy as np
 from offshore_crane.conventions import ACTUATORS
 from offshore_crane.errors import InputError
 
-LAWS = ("computed-torque", "pd-gravity", "pd", "none")
-LAW_CODES = {name: k for k, name in enumerate(LAWS)}
+from offshore_crane.simulation.laws import law_class, names
+
+#: The registered laws' names (:mod:`offshore_crane.simulation.laws`).
+LAWS = names()
 #: Default computed-torque gains: critically damped, natural frequency 20 rad/s (3.2 Hz,
 #: well above Table 1's 0.5 rad/s and a ship's 0.3-1.5 rad/s motions at model scale).
 CT_OMEGA = 20.0
@@ -77,7 +84,12 @@ class Controller:
             and [m/s, rad/s] (zeros: none); ``seed`` seeds it.
         anti_sway: With a payload on a cable: the damping ratio ζ ≥ 0 the anti-sway law
             adds to the swing (suspension-point velocity feedback through the platform's
-            horizontal reference, :mod:`offshore_crane.simulation.swing`); None: none.
+            horizontal reference, :mod:`offshore_crane.simulation.laws.anti_sway`); None:
+            none. Given, the law is ``"anti-sway"``.
+        ki: ``(9,)`` integral gains of ``"pid"`` (or one number) [N·m/(rad·s), N/(m·s)];
+            None: ``Kp / T_i`` with ``T_i = 4 Kd / Kp``.
+        windup: The anti-windup's tracking time constant T_t [s] > 0 of ``"pid"``;
+            None: ``√(T_i T_d)``.
     """
 
     law: str = "computed-torque"
@@ -92,13 +104,13 @@ class Controller:
     noise_qd: object = None
     seed: int = 0
     anti_sway: float | None = None
+    ki: object = None
+    windup: float | None = None
     _arrays: dict = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self):
-        if self.law not in LAWS:
-            raise InputError(f"unknown controller {self.law!r}: use one of {', '.join(LAWS)}",
-                             name="controller")
-        ct = self.law == "computed-torque"
+        law_class(self.law)                    # a registered law ("did you mean")
+        ct = self.law in ("computed-torque", "anti-sway")
         kp = _gains("kp", self.kp, np.full(9, CT_OMEGA ** 2) if ct else PD_KP)
         kd = _gains("kd", self.kd, np.full(9, 2.0 * CT_OMEGA) if ct else PD_KD)
         if self.rate is not None:
@@ -124,15 +136,39 @@ class Controller:
                     math.isfinite(z) and z >= 0.0):
                 raise InputError(f"anti_sway = {z!r}: the damping ratio it adds to the swing "
                                  "must be a finite number ≥ 0", name="anti_sway")
-            if self.law != "computed-torque":
+            if self.law not in ("computed-torque", "anti-sway"):
                 raise InputError(f"anti_sway works through the computed-torque law, not "
                                  f"{self.law!r}", name="anti_sway")
+        elif self.law == "anti-sway":
+            raise InputError("law 'anti-sway' needs the damping ratio it adds to the swing: "
+                             "give anti_sway = ζ", name="anti_sway")
+        if self.ki is not None and self.law != "pid":
+            raise InputError(f"ki: integral gains are the 'pid' law's, not {self.law!r}",
+                             name="ki")
+        if self.windup is not None:
+            w = self.windup
+            if self.law != "pid" or isinstance(w, bool) or not isinstance(w, (int, float)) \
+                    or not (math.isfinite(w) and w > 0.0):
+                raise InputError(f"windup = {w!r} s: the 'pid' law's anti-windup time "
+                                 "constant, a finite number > 0", name="windup")
         noise = []
         for name, value in (("noise_q", self.noise_q), ("noise_qd", self.noise_qd)):
             n = np.zeros(9) if value is None else _gains(name, value, np.zeros(9))
             noise.append(n)
+        ki = None if self.ki is None else _gains("ki", self.ki, np.zeros(9))
         self._arrays.update(kp=kp, kd=kd, lower=lower, upper=upper, noise_q=noise[0],
-                            noise_qd=noise[1])
+                            noise_qd=noise[1], ki=ki)
+
+    @property
+    def law_name(self) -> str:
+        """The registry's law this controller runs: ``"anti-sway"`` when ``anti_sway``
+        is given, else :attr:`law`."""
+        return "anti-sway" if self.anti_sway or self.law == "anti-sway" else self.law
+
+    @property
+    def integral_gains(self) -> np.ndarray | None:
+        """``ki`` ``(9,)`` as given, or None (the PID's default)."""
+        return self._arrays["ki"]
 
     @property
     def gains(self) -> tuple[np.ndarray, np.ndarray]:

@@ -15,10 +15,12 @@ Integrators:
 - ``"dop853"``: SciPy's adaptive ``solve_ivp`` (DOP853, ``rtol``/``atol`` stated in the
   result), driven from Python: the accuracy reference for RK4.
 
-A controller may also be any Python callable ``law(t, q, qd, q_ref, qd_ref, qdd_ref) ->
-X (9,)`` [s, m, rad, ... → N·m, N]: the same RK4 then runs in Python, one forward-dynamics
-call and one call of the law per stage (slower than the compiled built-in laws; X clipped
-to the robot description's capacities, the time saturated reported).
+The built-in laws with a code in the compiled loop (:mod:`.laws.codes`) run there. Any
+other law of the registry (``"pid"``, ``"anti-sway"``), a Python callable ``law(t, q, qd,
+q_ref, qd_ref, qdd_ref) -> X (9,)`` [s, m, rad, ... → N·m, N], sensors and actuator models
+(:mod:`.instruments`) run on the RK4 driver (:mod:`.driver`) with the rigid plant
+(:class:`~offshore_crane.simulation.plants.RigidPlant`): one forward-dynamics call and one
+call of the law per stage (X clipped to the capacities, the time saturated reported).
 
 The simulation stops at the first sample that leaves the workspace, reaches a singular
 configuration (the mass matrix at the attitude singularity) or diverges (a non-finite
@@ -32,10 +34,11 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
-from offshore_crane.simulation.control import LAW_CODES, Controller
+from offshore_crane.simulation.control import Controller
 from offshore_crane import progress
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError, SimulationError
+from offshore_crane.stops import StopCause
 from offshore_crane.validation import as_gravity
 from offshore_crane.simulation.record import (LawParameters, Packed, Recording, SimulationResult,
                                               StageGrid, divergence, diverging, finite_rows,
@@ -45,6 +48,7 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
     from offshore_crane.robot import Robot
+    from offshore_crane.simulation.instruments import Actuators, Sensors
 
 #: A reference motion: ``reference(t (n,) [s]) -> (q, qd, qdd)``, each ``(n, 9)``.
 Reference = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
@@ -52,8 +56,6 @@ Reference = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
 Law = Callable[..., np.ndarray]
 
 INTEGRATORS = ("rk4", "dop853")
-#: Stop codes of the compiled loop.
-OK, WORKSPACE, SINGULAR, DIVERGED = 0, 1, 2, 3
 
 
 # --------------------------------------------------------------------------- compiled
@@ -62,7 +64,7 @@ def _loop():
     imports Numba: loaded on first use)."""
     from offshore_crane.simulation import rk4 as _rk4
 
-    return _rk4.run, _rk4.law, _rk4.accel, _rk4.SHARED
+    return _rk4.run, _rk4.law, _rk4.accel
 
 
 # --------------------------------------------------------------------------- public
@@ -70,7 +72,8 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
              qd0: ArrayLike | None = None, controller: Controller | Law | None = None, *,
              gravity: ArrayLike = GRAVITY, step: float = 1e-3, rate: float | None = None,
              integrator: str = "rk4", limits: bool = True, rtol: float = 1e-10,
-             atol: float = 1e-12, t0: float = 0.0, **cable) -> SimulationResult:
+             atol: float = 1e-12, t0: float = 0.0, sensors: Sensors | None = None,
+             actuators: Actuators | None = None, **cable) -> SimulationResult:
     """Simulate the robot from ``(q0, q̇0)`` for ``duration`` seconds.
 
     Args:
@@ -79,7 +82,9 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
         reference: A callable ``reference(t (n,)) -> (q, qd, qdd)`` each ``(n, 9)``
             (e.g. :func:`offshore_crane.motion.trajectories.table1`), evaluated at every stage.
         q0, qd0: ``(9,)`` initial state (default: the reference at ``t0``).
-        controller: :class:`~offshore_crane.simulation.control.Controller` (default computed torque).
+        controller: :class:`~offshore_crane.simulation.control.Controller` (default
+            computed torque) or a Python law ``law(t, q, qd, q_ref, qd_ref, qdd_ref) -> X``
+            (:mod:`offshore_crane.simulation.laws.python`).
         gravity: ``(3,)`` [m/s²].
         step: Integration step [s] (RK4).
         rate: Output sampling rate [Hz] (default every step); 1/rate must be a multiple
@@ -88,6 +93,10 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
         limits: Stop at the first sample outside the workspace.
         rtol, atol: Tolerances of DOP853.
         t0: Start time [s].
+        sensors: :class:`~offshore_crane.simulation.instruments.Sensors` (noise, delay,
+            quantisation of the measured q, q̇; with a control rate).
+        actuators: :class:`~offshore_crane.simulation.instruments.Actuators` (rate limit,
+            first-order lag).
         **cable: With a payload on a cable: ``initial``, ``initial_rate`` (2,) of the
             sway [rad, rad/s] (:func:`offshore_crane.simulation.swing.simulate_swing`,
             which then runs).
@@ -99,17 +108,7 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
         InputError: bad arguments (one-line message).
         SimulationError: the run stopped early (``error.result`` holds what was computed).
     """
-    controller = controller or Controller()
-    if not isinstance(controller, Controller):
-        if not callable(controller):
-            raise InputError(f"controller must be a Controller or a callable law(t, q, qd, "
-                             f"q_ref, qd_ref, qdd_ref) -> X, got {controller!r}",
-                             name="controller")
-        if integrator != "rk4" or robot.hybrid.cable is not None or cable:
-            raise InputError("a Python controller runs with RK4 on a robot without a "
-                             "hanging load", name="controller")
-        return _python_law(robot, duration, reference, q0, qd0, controller, gravity, step,
-                           rate, limits, t0)
+    controller = Controller() if controller is None else controller
     if robot.hybrid.cable is not None or cable:
         if integrator != "rk4":
             raise InputError(f"integrator {integrator!r}: with a payload on a cable the "
@@ -118,14 +117,24 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
 
         return simulate_swing(robot, duration, reference, q0, qd0, controller,
                               gravity=gravity, step=step, rate=rate, limits=limits, t0=t0,
-                              **cable)
-    if controller.anti_sway:
-        raise InputError("anti_sway damps the swing of a payload on a cable, but this "
-                         "robot's payload is welded (payload.cable_length = 0)",
-                         name="anti_sway")
+                              sensors=sensors, actuators=actuators, **cable)
     if integrator not in INTEGRATORS:
         raise InputError(f"unknown integrator {integrator!r}: use one of "
                          f"{', '.join(INTEGRATORS)}", name="integrator")
+    if not _compiled(controller, sensors, actuators):
+        if integrator != "rk4":
+            raise InputError("DOP853 runs the built-in laws without sensor or actuator "
+                             "models: use integrator 'rk4'", name="integrator")
+        return _driven(robot, duration, reference, q0, qd0, controller, gravity, step, rate,
+                       limits, t0, sensors, actuators)
+    from offshore_crane.simulation.laws import codes, law_class
+
+    law_class(controller.law_name)
+    if any(np.any(n) for n in controller.noise):
+        if controller.rate is None:
+            raise InputError("measurement noise (noise_q, noise_qd) acts at the control "
+                             "instants of a sampled law: give a control rate",
+                             name="noise_q")
     n_steps, out_every, hold = steps(duration, step, rate, controller.rate)
     g = as_gravity(gravity)
     tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
@@ -147,12 +156,12 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
     nq = rng.normal(size=(n_ctrl, 9)) * sq
     nqd = rng.normal(size=(n_ctrl, 9)) * sqd
     n_out = n_steps // out_every + 1
-    kind = LAW_CODES[controller.law]
-    if (controller.law == "computed-torque" and hold == 0 and all(
+    kind = law_class(controller.law).code
+    if (kind == codes.COMPUTED_TORQUE and hold == 0 and all(
             np.array_equal(a, b) for a, b in ((plant.flat, model.flat), (plant.layout,
                                               model.layout), (plant.prismatic,
                                                               model.prismatic)))):
-        kind = _loop()[3]                          # one explicit pass a stage serves both
+        kind = codes.SHARED                        # one explicit pass a stage serves both
     rec = Recording.empty(n_out)
     health = ws.new_health()
     status = np.zeros(3, dtype=np.int64)
@@ -167,71 +176,56 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
     n_done = int(status[2])
     t_out = tt[::2][::out_every][:n_out]
     res = SimulationResult(t=t_out, **rec._asdict(), integrator="rk4", step=step)
-    if status[0] != OK:
+    if status[0] != StopCause.NONE:
+        code = StopCause(int(status[0]))
         k = int(status[1])
         when = t0 + k * step
         res = res.truncated(n_done)
-        if status[0] == WORKSPACE:
+        if code is StopCause.WORKSPACE:
             try:
                 ws.check_limits(health, plant.limits, res.q[-1:], None)
                 cause = "left the workspace"
             except Exception as exc:          # the WorkspaceError's text names the limit
                 cause = str(exc).split(" at sample")[0] + " (outside its limits)"
-        diverged = status[0] == DIVERGED or diverging(res)
+        diverged = code is StopCause.DIVERGED or diverging(res)
         res = res.truncated(finite_rows(res))
         if diverged:
-            cause = divergence(res)
-        elif status[0] == SINGULAR:
+            code, cause = StopCause.DIVERGED, divergence(res)
+        elif code is StopCause.SINGULAR:
             cause = ("the mass matrix became singular (attitude singularity, "
                      f"q5 = {res.q[-1, 4]:.4g} rad)")
-        raise stopped(res, when, cause)
+        exc = stopped(res, when, cause)
+        exc.stop_cause = code
+        raise exc
     return res
 
 
-def _python_law(robot, duration, reference, q0, qd0, law, gravity, step, rate, limits, t0):
-    """RK4 with a Python controller (module docstring): the law and Kane's forward
-    dynamics (:func:`offshore_crane.forward_dynamics`, its one-sample path) at every stage."""
-    from offshore_crane.dynamics.forward import forward_dynamics
-    from offshore_crane.dynamics.integrator import rk4_step
-    from offshore_crane.simulation.record import actuator_power
-    from offshore_crane.validation import as_samples
+def _compiled(controller, sensors, actuators) -> bool:
+    """True when the compiled loop runs this law: a controller whose law has a code in
+    it (:mod:`.laws.codes`), without sensor models or actuator dynamics."""
+    if not isinstance(controller, Controller):
+        return False
+    from offshore_crane.simulation.laws import law_class
 
-    n_steps, out_every, _ = steps(duration, step, rate, None)
-    g = as_gravity(gravity)
-    tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
-    y = np.concatenate(initial_state(q0, qd0, qr[0], qdr[0]))
-    lo, hi = Controller().bounds(robot)
+    return (law_class(controller.law_name).code is not None
+            and not (sensors is not None and sensors.active)
+            and not (actuators is not None and actuators.active))
 
-    def f(i, y):
-        q, qd = y[:9].copy(), y[9:].copy()
-        X_cmd = as_samples("X returned by the controller", law(tt[i], q, qd, qr[i], qdr[i],
-                                                                qddr[i]))[0][0]
-        X = np.clip(X_cmd, lo, hi)
-        return np.concatenate([qd, forward_dynamics(robot, q, qd, X, gravity=g)]), X_cmd, X
 
-    n_out = n_steps // out_every + 1
-    rec = {k: np.full((n_out, 9), np.nan) for k in ("q", "qd", "qdd", "q_ref", "qd_ref",
-                                                    "X_cmd", "X")}
-    for s in range(n_steps + 1):
-        k1, X_cmd, X = f(2 * s, y)
-        if s % out_every == 0:
-            k = s // out_every
-            rec["q"][k], rec["qd"][k], rec["qdd"][k] = y[:9], y[9:], k1[9:]
-            rec["q_ref"][k], rec["qd_ref"][k] = qr[2 * s], qdr[2 * s]
-            rec["X_cmd"][k], rec["X"][k] = X_cmd, X
-        if s == n_steps:
-            break
-        y = rk4_step(lambda i, x: f(i, x)[0], 2 * s, y, k1, step)
-    res = SimulationResult(t=tt[::2][::out_every][:n_out], **rec,
-                           saturated=(rec["X_cmd"] < lo) | (rec["X_cmd"] > hi),
-                           energy=np.full(n_out, np.nan), power=np.full(n_out, np.nan),
-                           integrator="rk4", step=step, info={"controller": "python"})
-    res.power = actuator_power(robot, res.q, res.qd, res.X)
-    if limits:
-        from offshore_crane.robot.kinematics import check_workspace
+def _driven(robot, duration, reference, q0, qd0, controller, gravity, step, rate, limits, t0,
+            sensors, actuators):
+    """The rigid plant on the RK4 driver (module docstring)."""
+    from offshore_crane.simulation.plants import RigidPlant
+    from offshore_crane.simulation.runs import prepare
 
-        check_workspace(robot, res.q, res.t)
-    return res
+    if isinstance(controller, Controller) and controller.anti_sway:
+        raise InputError("anti_sway damps the swing of a payload on a cable, but this "
+                         "robot's payload is welded (payload.cable_length = 0)",
+                         name="anti_sway")
+    run = prepare(robot, duration, reference, q0, qd0, controller, gravity=gravity,
+                  step=step, rate=rate, t0=t0, sensors=sensors, actuators=actuators,
+                  plant=lambda model, g: RigidPlant(robot, model, g))
+    return run.drive(np.concatenate([run.q0, run.qd0]), limits)
 
 
 def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol, out_every):
@@ -239,7 +233,7 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
     from offshore_crane.errors import require
 
     integrate = require("scipy.integrate", "scipy", "The DOP853 integrator")
-    _, law, accel, _ = _loop()
+    _, law, accel = _loop()
     from offshore_crane.dynamics.constants import robot_arrays
 
     plant = robot_arrays(robot)
@@ -263,7 +257,9 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
     gt = tuple(float(x) for x in g)
     X = np.empty(9)
     qdd = np.empty(9)
-    kind = LAW_CODES[controller.law]
+    from offshore_crane.simulation.laws import law_class
+
+    kind = law_class(controller.law).code
     del c
 
     def rhs(t, x):

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 from offshore_crane.kernel_cache import njit
 from offshore_crane.stops import CODES
+from offshore_crane.simulation.laws import codes
 
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
@@ -24,10 +25,12 @@ jit = njit(**c.JIT)
 #: by :func:`offshore_crane.progress.run_polled` on a signal, which the caller raises).
 OK, WORKSPACE, SINGULAR, DIVERGED, STOPPED, _ = CODES
 _VIOLATION = 3
-#: The law code of computed torque on the plant's own model with the law applied at
-#: every stage (:func:`offshore_crane.simulation.rigid.simulate` chooses it): one
-#: explicit pass a stage serves the law and the accelerations (:func:`_helpers`' ``ct``).
-SHARED = 4
+#: The laws' codes (:mod:`offshore_crane.simulation.laws.codes`, one enumeration). SHARED:
+#: computed torque on the plant's own model with the law applied at every stage
+#: (:func:`offshore_crane.simulation.rigid.simulate` chooses it): one explicit pass a stage
+#: serves the law and the accelerations (:func:`_helpers`' ``ct``).
+COMPUTED_TORQUE, PD_GRAVITY, PD, NONE, SHARED = (
+    codes.COMPUTED_TORQUE, codes.PD_GRAVITY, codes.PD, codes.NONE, codes.SHARED)
 
 
 def _helpers(stamp):
@@ -71,16 +74,16 @@ def _helpers(stamp):
             return
         B, J, Mm, store, Vw, Ww, Vs, diag, mc, A, rhs, x, M13, zero, qdd_c, pos, rate, posr, \
             rater = w
-        if kind == 3:
+        if kind == NONE:
             for j in range(9):
                 Xout[j] = 0.0
             return
         for j in range(9):
             Xout[j] = 0.0
-        if kind <= 1:
+        if kind == COMPUTED_TORQUE or kind == PD_GRAVITY:
             B[:] = 0.0
             Mm[:] = 0.0
-            if kind == 0:
+            if kind == COMPUTED_TORQUE:
                 command(kp, kd, q, qd, qr, qdr, qddr, qdd_c)
                 explicit_sample(Cc, q, qd, qdd_c, g, False, B, J, Mm, store, Vw, Ww, Vs,
                                 diag, mc)
@@ -88,7 +91,7 @@ def _helpers(stamp):
                 explicit_sample(Cc, q, zero, zero, g, False, B, J, Mm, store, Vw, Ww, Vs,
                                 diag, mc)
             forces(Cc, B, J, A, rhs, x, M13, Xout)
-        if kind >= 1:
+        if kind == PD_GRAVITY or kind == PD:
             actuator_coordinates(Cc, q, qd, pos, rate)
             actuator_coordinates(Cc, qr, qdr, posr, rater)
             for j in range(9):

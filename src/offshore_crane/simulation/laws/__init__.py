@@ -1,0 +1,18 @@
+"""Control laws by name: each law is a :class:`Law` subclass in one file, registered by
+its name (:func:`register`); :func:`law_class` finds one ("did you mean" for a misspelt
+name). Adding a law is one file and its test (``docs/simulation.md``, the PID law as the
+worked example).
+
+Built in: ``computed-torque`` (:mod:`.computed_torque`), ``pd-gravity`` and ``pd``
+(:mod:`.pd`), ``none`` (:mod:`.none`), ``pid`` (:mod:`.pid`), ``anti-sway``
+(:mod:`.anti_sway`), and a user's Python callable (:mod:`.python`).
+"""
+
+from __future__ import annotations
+
+from offshore_crane.simulation.laws._registry import (PLANTS, Law, check_plant, law_class,
+                                                      names, register)
+from offshore_crane.simulation.laws import computed_torque, pd, none  # noqa: F401 (register)
+from offshore_crane.simulation.laws import pid, anti_sway, python  # noqa: F401 (register)
+
+__all__ = ["Law", "PLANTS", "check_plant", "law_class", "names", "register"]

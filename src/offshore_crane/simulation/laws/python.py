@@ -1,0 +1,57 @@
+"""A user's Python law: any callable ``law(t, q, qd, q_ref, qd_ref, qdd_ref) -> X (9,)``
+[s, m, rad, /s, /s² → N·m, N], on every plant. A law that also takes keyword arguments
+receives the plant's other measured channels by name (those its signature names, or all
+with ``**measured``): with a rigid hanging load ``sway``, ``sway_rate`` (2,) [rad,
+rad/s]; on an elastic cable ``payload``, ``payload_velocity`` (3,) [m, m/s, base frame],
+``tension`` [N], ``length`` [m] (:meth:`~offshore_crane.simulation.plants.Plant.channels`).
+"""
+
+from __future__ import annotations
+
+import inspect
+
+import numpy as np
+
+from offshore_crane.errors import InputError
+from offshore_crane.simulation.laws._registry import Law, register
+
+
+@register
+class PythonLaw(Law):
+    name = "python"
+    selectable = False
+
+    def __init__(self, controller, plant, function):
+        super().__init__(controller, plant)
+        self.function = function
+        self.wants = _keywords(function)
+
+    def command(self, i, t, y, z, ref):
+        from offshore_crane.validation import as_samples
+
+        p = self.plant
+        extra = {}
+        if self.wants:
+            extra = p.channels(i, y)
+            if self.wants is not True:
+                extra = {k: v for k, v in extra.items() if k in self.wants}
+        X = self.function(t, p.q(y).copy(), p.qd(y).copy(), ref[0], ref[1], ref[2], **extra)
+        try:
+            return as_samples("X returned by the controller", X)[0][0]
+        except InputError:
+            raise
+        except Exception:       # noqa: BLE001 - a shape as_samples cannot read
+            raise InputError(f"X returned by the controller must be 9 numbers, got "
+                             f"{np.shape(X)}", name="controller") from None
+
+
+def _keywords(function):
+    """True when ``function`` takes ``**kwargs``; else the names of its parameters after
+    the six positional ones (an empty set: none)."""
+    try:
+        params = list(inspect.signature(function).parameters.values())
+    except (TypeError, ValueError):
+        return set()
+    if any(p.kind is p.VAR_KEYWORD for p in params):
+        return True
+    return {p.name for p in params[6:] if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)}

@@ -1,0 +1,95 @@
+"""What a plant is to the RK4 driver (:mod:`offshore_crane.simulation.driver`): its state
+layout, its right-hand side, what it records, its stop causes; and, on the controller's
+side (its ``model``), the inverse dynamics a law asks of it."""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import numpy as np
+
+from offshore_crane.stops import StopCause
+
+
+class Plant:
+    """A plant: the robot and whatever moves with it, in one state vector ``y``.
+
+    A subclass sets :attr:`name`, :attr:`size` and the slices :attr:`Q`, :attr:`QD` of
+    the robot's coordinates and rates in ``y``, and implements :meth:`derivative`,
+    :meth:`inverse` and :meth:`gravity` (the law's side, on the controller's model).
+
+    Attributes:
+        robot: The simulated robot (the plant).
+        model: The robot the controller believes in (the plant's own by default).
+        g: ``(3,)`` gravity [m/s²].
+    """
+
+    name: ClassVar[str] = ""
+    size: ClassVar[int] = 18
+    Q: ClassVar[slice] = slice(0, 9)
+    QD: ClassVar[slice] = slice(9, 18)
+    #: Arrays the plant records beside the driver's, ``{name: width}`` (0: a scalar).
+    RECORDED: ClassVar[dict] = {}
+
+    def __init__(self, robot, model, gravity):
+        self.robot, self.model, self.g = robot, model, gravity
+
+    # ----------------------------------------------------------- the state
+    def q(self, y: np.ndarray) -> np.ndarray:
+        """The robot's coordinates q1..q9 ``(9,)`` [m, rad] in ``y``."""
+        return y[self.Q]
+
+    def qd(self, y: np.ndarray) -> np.ndarray:
+        """Their rates ``(9,)`` [m/s, rad/s]."""
+        return y[self.QD]
+
+    def channels(self, i: int, y: np.ndarray) -> dict:
+        """The plant's measured channels beyond q and q̇, by name (a Python law's
+        keyword arguments)."""
+        return {}
+
+    # ----------------------------------------------------------- the physics
+    def derivative(self, i: int, y: np.ndarray, X: np.ndarray):
+        """``(ẏ (size,), aux)`` under the applied forces ``X (9,)`` [N·m, N] at stage
+        point ``i`` of the reference grid; ``aux`` is what :meth:`record` keeps of the
+        stage (and ``aux["ok"]``: False for a singular mass matrix)."""
+        raise NotImplementedError
+
+    def check(self, y: np.ndarray, aux) -> tuple[StopCause, str] | None:
+        """``(StopCause, words)``: why the run stops at this recorded sample (beyond a
+        non-finite state, which the driver checks), or None."""
+        return None
+
+    def record(self, rec: dict, k: int, y: np.ndarray, dy: np.ndarray, aux) -> None:
+        """Write the plant's own arrays (:attr:`RECORDED`) of output sample ``k``."""
+
+    def finish(self, res, rec: dict, limits: bool):
+        """Complete the result from the recorded samples (tension, power, ...) and
+        return ``(sample, StopCause, words)`` of the first stop found on the record (a
+        workspace violation, a slack cable), or None."""
+        return None
+
+    # ----------------------------------------------------------- the law's side
+    def inverse(self, i: int, y: np.ndarray, qdd: np.ndarray) -> np.ndarray:
+        """X ``(9,)`` that gives the accelerations ``qdd (9,)`` at the measured ``y``, on
+        the controller's model (computed torque's inverse dynamics)."""
+        raise NotImplementedError
+
+    def gravity(self, i: int, y: np.ndarray) -> np.ndarray:
+        """X ``(9,)`` that holds the model still at the measured positions (gravity
+        compensation)."""
+        raise NotImplementedError
+
+    def actuator_coordinates(self, q: np.ndarray, qd: np.ndarray):
+        """The actuated joints' positions and rates ``(9,)`` each (arm joints, leg
+        lengths, in the order of X) [rad, m, /s], on the model."""
+        from offshore_crane.dynamics import compiled as c
+
+        if not hasattr(self, "_legs"):
+            from offshore_crane.dynamics.constants import robot_arrays
+
+            self._legs = robot_arrays(self.model.without_hanging_payload()).kane
+        s, sd = np.empty(9), np.empty(9)
+        c.KE.actuator_coordinates(self._legs, np.ascontiguousarray(q),
+                                  np.ascontiguousarray(qd), s, sd)
+        return s, sd

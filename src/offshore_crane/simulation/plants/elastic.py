@@ -1,0 +1,129 @@
+"""The robot with its payload on an elastic cable and a winch (docs/cable.md, "Forward
+simulation of the real lift"): ``y = (q, p, q̇, v)`` (24,), the payload a point mass at
+``p`` (base frame) with three free coordinates.
+
+- the cable's tension ``T = EA s / L + c ṡ`` while taut and pulling, else 0 (the formulas
+  of :func:`offshore_crane.dynamics.sway.cable_tension`, ``L(t)`` the winch's length);
+- the payload: ``m p̈ = m g − T ρ̂ + F_s + F_d`` (``ρ`` from the tip to the payload; the
+  sway damping ``F_s`` while the cable pulls and the air's drag ``F_d``, as the elastic
+  cable's inverse dynamics, :mod:`offshore_crane.dynamics.cable.elastic`);
+- the robot: its equations of motion with the cable's pull ``P = T ρ̂ − F_s`` on it at the
+  payload's place, written as actuator forces: ``a = FD(q, q̇, X − ΔX(P))``, with ``ΔX(P)``
+  the forces the pull alone asks of the actuators (the Kane pass with the pull,
+  :func:`offshore_crane.dynamics.cable.forces.kane_forces`, at zero acceleration less the
+  same without pull: exact, the pull enters the equations linearly).
+
+The law's side measures the pull at the tip (a load cell): computed torque is the Kane
+pass with that pull at the commanded accelerations. Its stops: a non-finite state, the
+workspace. Checked against the elastic cable's inverse dynamics of the simulated motion
+(``tests/simulation/test_elastic_simulation.py``)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from offshore_crane.simulation.plants._base import Plant
+from offshore_crane.stops import StopCause
+
+
+class ElasticPlant(Plant):
+    name = "elastic"
+    size = 24
+    Q = slice(0, 9)
+    QD = slice(12, 21)
+    RECORDED = {"payload": 3, "payload_velocity": 3, "tension": 0, "length": 0}
+
+    def __init__(self, robot, model, gravity, *, ea, damping, lengths):
+        """``lengths`` ``(n_stages, 3)``: the winch's L [m], L̇, L̈ at every stage time."""
+        from offshore_crane.dynamics import backends
+        from offshore_crane.dynamics.cable.grid import cable_robot
+        from offshore_crane.dynamics.constants import cable_arrays
+
+        robot = cable_robot(robot)
+        super().__init__(robot, robot, gravity)
+        self.empty = robot.without_hanging_payload()
+        self.m = float(robot.hybrid.cable.mass[-1])
+        self.ea, self.damping, self.Lg = float(ea), float(damping), lengths
+        self._B, self._one = backends.NUMPY, backends.PYTHON
+        self._C = cable_arrays(robot).kane
+        self._c1, self._c2 = (float(c) for c in robot.hybrid.sway_damping)
+        self._drag = float(robot.hybrid.drag)
+        self._memo = (None, None, None)
+
+    def _pulled(self, q, qd, qdd, pull, at):
+        """X of the robot moving at qdd with ``pull`` [N] on it at ``at`` [m] from the
+        tip (the Kane pass)."""
+        from offshore_crane.dynamics.cable.forces import kane_forces
+        from offshore_crane.robot.kinematics.workspace import Thresholds
+
+        return kane_forces(self.robot, np.zeros(1), q[None], qd[None], qdd[None],
+                           np.zeros((1, 6)), self.g, False, False, Thresholds(),
+                           P=pull[None], at=at[None])[0][0]
+
+    def cable(self, i, y):
+        """``(pull on the robot (3,), where it acts (ρ, 3,), tension, the cable's, the
+        damping's and the air's force on the payload (3,))`` at stage point i, state y
+        (the last one kept: the law and the plant read the same stage)."""
+        key = y.tobytes()
+        if self._memo[0] == i and self._memo[1] == key:
+            return self._memo[2]
+        from offshore_crane.dynamics.cable.elastic import drag_forces
+        from offshore_crane.dynamics.cable.tip import tip_positions
+
+        pt, vt = (x[0] for x in tip_positions(self.robot, y[None, :9], y[None, 12:21]))
+        rho, rhod = y[9:12] - pt, y[21:24] - vt
+        Lg = self.Lg
+        with np.errstate(divide="ignore", invalid="ignore"):
+            T, s, _ = self._B.cable_tension(tuple(rho[:, None]), tuple(rhod[:, None]),
+                                            Lg[i:i + 1, 0], Lg[i:i + 1, 1], self.ea,
+                                            self.damping)
+        T = float(T[0]) if (s[0] > 0 and T[0] > 0) else 0.0
+        pull = T * rho / np.linalg.norm(rho)
+        if T > 0.0 and self._c1 + self._c2 > 0.0:     # the sway damping, carried by the cable
+            Rt, w = self._one.tip_motion(self._C, y[:9].tolist(), y[12:21].tolist(),
+                                         [0.0] * 9)[:2]
+            pull = pull - np.array(self._one.sway_damping_force(
+                Rt, w, tuple(rho.tolist()), tuple(rhod.tolist()), self._c1, self._c2),
+                dtype=float)
+        out = pull, rho, T, drag_forces(y[None, 21:24], self._drag)[0] - pull
+        self._memo = (i, key, out)
+        return out
+
+    def channels(self, i, y):
+        return {"payload": y[9:12].copy(), "payload_velocity": y[21:24].copy(),
+                "tension": self.cable(i, y)[2], "length": float(self.Lg[i, 0])}
+
+    def derivative(self, i, y, X):
+        from offshore_crane.dynamics.forward import forward_dynamics
+
+        pull, at, T, force = self.cable(i, y)
+        rest = np.zeros(9)
+        shift = (self._pulled(y[:9], y[12:21], rest, pull, at)
+                 - self._pulled(y[:9], y[12:21], rest, 0 * pull, at))
+        a = forward_dynamics(self.empty, y[:9], y[12:21], X - shift, self.g)
+        a_p = self.g + force / self.m
+        return np.concatenate([y[12:21], y[21:24], a, a_p]), {"ok": True, "tension": T,
+                                                               "length": self.Lg[i, 0]}
+
+    def record(self, rec, k, y, dy, aux):
+        rec["payload"][k], rec["payload_velocity"][k] = y[9:12], y[21:24]
+        rec["tension"][k], rec["length"][k] = aux["tension"], aux["length"]
+
+    def finish(self, res, rec, limits):
+        from offshore_crane.simulation.record import actuator_power, workspace_stop
+
+        n = len(res)
+        res.tension = rec["tension"][:n]
+        res.info.update(payload=rec["payload"][:n], payload_velocity=rec[
+            "payload_velocity"][:n], length=rec["length"][:n])
+        res.power = actuator_power(self.robot, res.q, res.qd, res.X)
+        found = workspace_stop(self.robot, res, limits)
+        return None if found is None else (found[0], StopCause.WORKSPACE, found[1])
+
+    def inverse(self, i, y, qdd):
+        pull, at = self.cable(i, y)[:2]
+        return self._pulled(y[:9], y[12:21], qdd, pull, at)
+
+    def gravity(self, i, y):
+        pull, at = self.cable(i, y)[:2]
+        return self._pulled(y[:9], np.zeros(9), np.zeros(9), pull, at)

@@ -1,0 +1,152 @@
+"""The robot with its payload hanging on a rigid cable (docs/cable.md): 11 coordinates,
+q1..q9 and the sway angles φ1, φ2, and their rates, ``y = (q, φ, q̇, φ̇)`` (22,). The
+accelerations solve ``M a + h = [A X; −c φ̇] + Jᵀ f`` (M, h from the explicit Kane pass on
+the arm chain continued by the sway joints and the payload,
+:func:`offshore_crane.dynamics.cable.kernels.accelerations`; ``Jᵀ f`` the payload's air
+drag). Its stops: a non-finite or runaway state, a singular mass matrix (the attitude
+singularity, cos φ2 = 0), a slack cable, the workspace. Checked against the pendulum's own
+equations on the tip's motion (the hanging load's inverse dynamics) and by its energy
+(``tests/simulation/test_cable_simulation.py``)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from offshore_crane.simulation.plants._base import Plant
+from offshore_crane.stops import StopCause
+
+
+class HangingPlant(Plant):
+    name = "hanging"
+    size = 22
+    Q = slice(0, 9)
+    QD = slice(11, 20)
+    RECORDED = {"sway": 2, "sway_rate": 2, "sway_acc": 2, "energy": 0}
+
+    def __init__(self, robot, model, gravity):
+        from offshore_crane.dynamics.cable import cable_robot
+        from offshore_crane.dynamics.constants import cable_arrays
+        from offshore_crane.dynamics.runtime import compiled_kernels
+
+        robot = cable_robot(robot)
+        model = cable_robot(model) if model is not robot else robot
+        super().__init__(robot, model, gravity)
+        compiled_kernels()
+        self.plant_arrays, self.model_arrays = cable_arrays(robot), cable_arrays(model)
+        self.damp_p, self.damp_c = robot.hybrid.sway_damping, model.hybrid.sway_damping
+        self.drag_p, self.drag_c = float(robot.hybrid.drag), float(model.hybrid.drag)
+        self._a, self._en, self._pay = np.empty(11), np.empty(2), np.empty(6)
+
+    def channels(self, i, y):
+        return {"sway": y[9:11].copy(), "sway_rate": y[20:22].copy()}
+
+    def pendulum_frequency(self) -> float:
+        """ω0 = √(|g| / L) [rad/s] of the model's pendulum."""
+        return float(np.sqrt(np.linalg.norm(self.g) / self.model.hybrid.cable_length))
+
+    def model_payload(self, y) -> np.ndarray:
+        """The payload's position and velocity relative to the tip ``(6,)`` on the
+        model [m, m/s] (what the anti-sway law reads)."""
+        from offshore_crane.dynamics.cable import kernels as ck
+
+        a = self.model_arrays
+        ck.payload(a.flat, a.layout, a.prismatic, y[:11], y[11:22], self._pay)
+        return self._pay
+
+    def derivative(self, i, y, X):
+        from offshore_crane.dynamics.cable import kernels as ck
+
+        a = self.plant_arrays
+        ok = ck.accelerations(a.flat, a.layout, a.prismatic, self.damp_p, self.drag_p,
+                              y[:11], y[11:22], X, self.g, self._a, self._en)
+        return np.concatenate([y[11:22], self._a]), {"ok": ok, "energy": self._en.sum()}
+
+    def check(self, y, aux):
+        from offshore_crane.simulation.record import DIVERGED_STATE
+
+        if (np.abs(y[:11]) > DIVERGED_STATE).any():
+            return StopCause.DIVERGED, ""
+        if not aux["ok"]:
+            return StopCause.SINGULAR, ("the mass matrix became singular (the attitude "
+                                        "coordinates at q5 = ±π/2, or the sway at cos φ2 = 0)")
+        return None
+
+    def record(self, rec, k, y, dy, aux):
+        rec["sway"][k], rec["sway_rate"][k], rec["sway_acc"][k] = y[9:11], y[20:22], dy[20:22]
+        rec["energy"][k] = aux["energy"]
+
+    def finish(self, res, rec, limits):
+        n = len(res)
+        res.sway, res.sway_rate = rec["sway"][:n], rec["sway_rate"][:n]
+        res.energy = rec["energy"][:n]
+        return finish(self.robot, res, rec["sway_acc"][:n], self.g, limits)
+
+    def inverse(self, i, y, qdd):
+        from offshore_crane.dynamics.cable import kernels as ck
+
+        a, X = self.model_arrays, np.empty(9)
+        ck.computed_torque(a.flat, a.layout, a.prismatic, self.damp_c, self.drag_c, y[:11],
+                           y[11:22], qdd, self.g, X)
+        return X
+
+    def gravity(self, i, y):
+        return self.inverse(i, np.concatenate([y[:11], np.zeros(11)]), np.zeros(9))
+
+
+def finish(robot, res, sway_acc, g, limits):
+    """The hanging plant's record completed (:func:`_finish`) and its first slack-cable
+    sample or workspace violation ``(sample, StopCause, words)``, or None."""
+    from offshore_crane.simulation.record import finite_rows
+
+    _finish(robot, res, sway_acc, g, limits)
+    return _slack_or_workspace(robot, res.truncated(finite_rows(res)), limits)
+
+
+def _finish(robot, res, sway_acc, g, limits) -> None:
+    """The tension, the actuators' power and the energy's gravitational part are filled in
+    from the recorded samples (one pass of the cable's Kane kernel, on blocks of samples
+    vectorised across them)."""
+    from offshore_crane.dynamics.cable import kernels as ck
+    from offshore_crane.dynamics.constants import cable_arrays
+    from offshore_crane.dynamics.lanes import kane_kernel
+    from offshore_crane.robot.kinematics.formulas import FULL
+    from offshore_crane.simulation.record import actuator_power
+    from offshore_crane.robot.kinematics import workspace as ws
+
+    n = len(res)
+    if n == 0:
+        return
+    arrays = cable_arrays(robot)
+    q11 = np.ascontiguousarray(np.concatenate([res.q, res.sway], 1))
+    qd11 = np.ascontiguousarray(np.concatenate([res.qd, res.sway_rate], 1))
+    qdd11 = np.ascontiguousarray(np.concatenate([res.qdd, sway_acc], 1))
+    F = np.full((n, 6), np.nan)              # a non-finite sample is skipped: NaN row
+    kane = kane_kernel(arrays, FULL, cable=True) or ck.kane      # blocks of samples
+    kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11, qd11,
+         qdd11, g, False, False, np.inf, np.inf, 0, n, np.empty((n, 9)), np.empty((3, 1)),
+         ws.new_health(), F)
+    if robot.hybrid.drag > 0.0:             # the pull along the cable takes the drag too
+        from offshore_crane.dynamics.cable.forces import hanging_drag
+
+        f, _, _, _, e = hanging_drag(robot, arrays.kane, res.q, res.qd, res.qdd,
+                                     np.hstack([res.sway, res.sway_rate]), None)
+        F[:, 3] += np.einsum("ij,ij->i", f, e)
+    res.tension = F[:, 3]
+    res.power = actuator_power(robot, res.q, res.qd, res.X)
+
+
+def _slack_or_workspace(robot, res, limits):
+    """``(sample, StopCause, words)`` of the first slack-cable sample or workspace
+    violation, or None."""
+    from offshore_crane.simulation.record import workspace_stop
+
+    slack = ~(res.tension > 0.0)
+    first = None
+    if slack.any():
+        k = int(np.argmax(slack))
+        first = (k, StopCause.SLACK, f"the cable went slack (tension {res.tension[k]:.4g} N: a cable cannot "
+                    "push, the pendulum model no longer holds)")
+    outside = workspace_stop(robot, res, limits)
+    if outside is not None and (first is None or outside[0] < first[0]):
+        first = (outside[0], StopCause.WORKSPACE, outside[1])
+    return first
