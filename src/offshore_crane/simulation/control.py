@@ -90,6 +90,9 @@ class Controller:
             None: ``Kp / T_i`` with ``T_i = 4 Kd / Kp``.
         windup: The anti-windup's tracking time constant T_t [s] > 0 of ``"pid"``;
             None: ``√(T_i T_d)``.
+        function: A Python law ``function(t, q, qd, q_ref, qd_ref, qdd_ref) -> X``
+            (:mod:`offshore_crane.simulation.laws.python`) run with these options (a
+            control rate, saturation); ``law`` is then ``"python"``.
     """
 
     law: str = "computed-torque"
@@ -106,10 +109,18 @@ class Controller:
     anti_sway: float | None = None
     ki: object = None
     windup: float | None = None
+    function: object = None
     _arrays: dict = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self):
-        law_class(self.law)                    # a registered law ("did you mean")
+        if self.function is not None:
+            if not callable(self.function):
+                raise InputError(f"function = {self.function!r}: a Python law must be "
+                                 "callable as function(t, q, qd, q_ref, qd_ref, qdd_ref)",
+                                 name="function")
+            object.__setattr__(self, "law", "python")
+        else:
+            law_class(self.law)                # a registered law ("did you mean")
         ct = self.law in ("computed-torque", "anti-sway")
         kp = _gains("kp", self.kp, np.full(9, CT_OMEGA ** 2) if ct else PD_KP)
         kd = _gains("kd", self.kd, np.full(9, 2.0 * CT_OMEGA) if ct else PD_KD)
@@ -163,6 +174,8 @@ class Controller:
     def law_name(self) -> str:
         """The registry's law this controller runs: ``"anti-sway"`` when ``anti_sway``
         is given, else :attr:`law`."""
+        if self.function is not None:
+            return "python"
         return "anti-sway" if self.anti_sway or self.law == "anti-sway" else self.law
 
     @property

@@ -161,12 +161,11 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
                 plant.record(own, k, yp, dyp, aux)
                 done = k + 1
                 shown.update()
-                if not (np.isfinite(y).all() and np.isfinite(k1).all()):
+                found = plant.check(yp, aux)
+                if found is not None:
+                    stop = (k, *found)
+                elif not (np.isfinite(y).all() and np.isfinite(k1).all()):
                     stop = (k, StopCause.DIVERGED, "")
-                else:
-                    found = plant.check(yp, aux)
-                    if found is not None:
-                        stop = (k, *found)
                 if stop is not None:
                     break
             if s == n_steps:

@@ -203,7 +203,7 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
 def _compiled(controller, sensors, actuators) -> bool:
     """True when the compiled loop runs this law: a controller whose law has a code in
     it (:mod:`.laws.codes`), without sensor models or actuator dynamics."""
-    if not isinstance(controller, Controller):
+    if not isinstance(controller, Controller) or controller.function is not None:
         return False
     from offshore_crane.simulation.laws import law_class
 

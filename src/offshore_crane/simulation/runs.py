@@ -52,6 +52,8 @@ def bind_law(controller, plant):
     from offshore_crane.simulation.laws import check_plant, law_class
     from offshore_crane.simulation.laws.python import PythonLaw
 
+    if isinstance(controller, Controller) and controller.function is not None:
+        return PythonLaw(controller, plant, controller.function)
     if isinstance(controller, Controller):
         cls = law_class(controller.law_name)
         check_plant(cls, plant.name)

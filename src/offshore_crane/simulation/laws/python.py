@@ -3,7 +3,9 @@
 receives the plant's other measured channels by name (those its signature names, or all
 with ``**measured``): with a rigid hanging load ``sway``, ``sway_rate`` (2,) [rad,
 rad/s]; on an elastic cable ``payload``, ``payload_velocity`` (3,) [m, m/s, base frame],
-``tension`` [N], ``length`` [m] (:meth:`~offshore_crane.simulation.plants.Plant.channels`).
+``tension`` [N], ``length`` [m], and the load cell's ``pull`` on the tip [N] with
+``pull_at``, where it acts from the tip [m] (base axes)
+(:meth:`~offshore_crane.simulation.plants.Plant.channels`).
 """
 
 from __future__ import annotations

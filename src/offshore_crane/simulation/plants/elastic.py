@@ -90,8 +90,10 @@ class ElasticPlant(Plant):
         return out
 
     def channels(self, i, y):
+        pull, at, T, _ = self.cable(i, y)
         return {"payload": y[9:12].copy(), "payload_velocity": y[21:24].copy(),
-                "tension": self.cable(i, y)[2], "length": float(self.Lg[i, 0])}
+                "tension": T, "length": float(self.Lg[i, 0]), "pull": pull.copy(),
+                "pull_at": at.copy()}
 
     def derivative(self, i, y, X):
         from offshore_crane.dynamics.forward import forward_dynamics

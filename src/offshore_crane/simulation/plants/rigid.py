@@ -32,9 +32,24 @@ class RigidPlant(Plant):
     def derivative(self, i, y, X):
         from offshore_crane.dynamics.forward import forward_dynamics
 
+        from offshore_crane.errors import SingularConfigurationError, WorkspaceError
+
         q, qd = y[:9].copy(), y[9:].copy()
-        qdd = forward_dynamics(self.robot, q, qd, X, gravity=self.g)
+        try:
+            try:
+                qdd = forward_dynamics(self.robot, q, qd, X, gravity=self.g)
+            except WorkspaceError:       # a stage outside: the record's check stops it
+                qdd = forward_dynamics(self.robot, q, qd, X, gravity=self.g, limits=False,
+                                       checks=False)
+        except SingularConfigurationError:
+            return np.concatenate([qd, np.full(9, np.nan)]), {"ok": False}
         return np.concatenate([qd, qdd]), {"ok": True}
+
+    def check(self, y, aux):
+        if not aux["ok"]:
+            return StopCause.SINGULAR, ("the mass matrix became singular (attitude "
+                                        f"singularity, q5 = {y[4]:.4g} rad)")
+        return None
 
     def finish(self, res, rec, limits):
         from offshore_crane.simulation.record import actuator_power, workspace_stop
