@@ -192,7 +192,9 @@ def test_cli_stop_keeps_the_samples(tmp_path, capsys):
 @pytest.mark.parametrize("argv, match", [
     (["simulate", "--kp", "1", "2"], "--kp takes one value or 9"),
     (["simulate", "--control-rate", "5000"], "control rate 5000.0 Hz is above"),
-    (["simulate", "--controller", "lqr"], "invalid choice: 'lqr'"),
+    (["simulate", "--controller", "lqr"], "unknown control law 'lqr'"),
+    (["simulate", "--controller", "pid-gravity"], "did you mean 'pd-gravity'"),
+    (["simulate", "--controller", "anti-sway"], "needs the damping ratio"),
     (["simulate", "--duration", "100"], "longer than the trajectory"),
 ])
 def test_cli_errors(argv, match, capsys):

@@ -30,11 +30,14 @@ def add_parser(sub) -> None:
                    "[control])")
     p.add_argument("--trajectory", help="reference: 'table1' or a CSV t_s,q1..q9 "
                    "(interpolated between samples)")
-    p.add_argument("--controller", choices=LAWS, help="control law (default computed-torque)")
+    p.add_argument("--controller", metavar="LAW", help="control law, one of "
+                   f"{', '.join(LAWS)} (default computed-torque)")
     p.add_argument("--kp", type=float, nargs="+", metavar="KP",
                    help="stiffness gains: one value or 9 (per coordinate for computed "
                    "torque [1/s²]; per actuator for PD [N·m/rad, N/m])")
     p.add_argument("--kd", type=float, nargs="+", metavar="KD", help="damping gains (as --kp)")
+    p.add_argument("--ki", type=float, nargs="+", metavar="KI", help="integral gains of the "
+                   "pid law, one value or 9 per actuator [N·m/(rad·s), N/(m·s)]")
     p.add_argument("--control-rate", type=float, metavar="HZ",
                    help="control rate with sample-and-hold (default: continuous, the law at "
                    "every integrator stage)")
@@ -92,7 +95,8 @@ def run(args) -> int:
     traj = scenes.load_trajectory(scene, robot)
     controller = scenes.controller(scene, robot)
     flags = {"law": args.controller, "kp": _gains(args.kp, "--kp"),
-             "kd": _gains(args.kd, "--kd"), "rate": args.control_rate}
+             "kd": _gains(args.kd, "--kd"), "ki": _gains(args.ki, "--ki"),
+             "rate": args.control_rate}
     flags = {k: v for k, v in flags.items() if v is not None}
     if args.no_saturation:
         flags.update(saturation=False, lower=None, upper=None)
@@ -100,6 +104,7 @@ def run(args) -> int:
         flags["anti_sway"] = args.anti_sway
     if flags:
         controller = replace(controller, _arrays={}, **flags)
+    extras = scenes.instruments(scene)
     c = scene.control
     elastic = None
     if scene.varying_cable:             # the elastic cable (a winch, a compensation)
@@ -138,13 +143,14 @@ def run(args) -> int:
             res = simulate_elastic(robot, duration, traj.reference, q0=q0, qd0=qd0,
                                    controller=controller, gravity=scene.gravity, step=step,
                                    rate=args.rate, limits=not args.no_limits,
-                                   t0=float(traj.t[0]), **elastic)
+                                   t0=float(traj.t[0]), **elastic, **extras)
         else:
             res = simulate(robot, duration, traj.reference, q0=q0, qd0=qd0,
                            controller=controller, gravity=scene.gravity, step=step,
                            rate=args.rate,
                            integrator=args.integrator or c.get("integrator", "rk4"),
-                           limits=not args.no_limits, t0=float(traj.t[0]), **swing)
+                           limits=not args.no_limits, t0=float(traj.t[0]), **swing,
+                           **extras)
     except SimulationError as exc:
         res, stopped = exc.result, exc
         if res is None or len(res) == 0:         # nothing to report, write or plot

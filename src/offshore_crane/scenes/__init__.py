@@ -97,7 +97,7 @@ from __future__ import annotations
 from offshore_crane.lazy import submodule_getattr
 
 from offshore_crane.scenes.reading import scene_from_dict, load_scene
-from offshore_crane.scenes.assembly import (controller, deck_pose, sea_trajectory, load_robot,
+from offshore_crane.scenes.assembly import (controller, instruments, deck_pose, sea_trajectory, load_robot,
                                             still_water_level, target_deck, lift_deck,
                                             with_robot_overrides, load_trajectory,
                                             sea_workspace_error, with_trajectory,

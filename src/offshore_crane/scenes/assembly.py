@@ -27,6 +27,17 @@ def controller(scene: Scene, robot=None):
     return Controller(**{k: v for k, v in c.items() if k in CONTROLLER_KEYS}, model=model)
 
 
+def instruments(scene: Scene) -> dict:
+    """``{"sensors": Sensors | None, "actuators": Actuators | None}`` of the scene's
+    ``[sensors]`` and ``[actuators] rate_limit, lag`` (None where the scene has none):
+    :func:`offshore_crane.simulation.rigid.simulate`'s keyword arguments."""
+    from offshore_crane.simulation.instruments import Actuators, Sensors
+
+    return {"sensors": Sensors(**scene.sensors) if scene.sensors else None,
+            "actuators": Actuators(**scene.actuator_models) if scene.actuator_models
+            else None}
+
+
 # --------------------------------------------------------------------------- running
 def deck_pose(scene: Scene, robot) -> np.ndarray:
     """q1..q6 ``(6,)`` of the fixed deck [m, rad]: ``scene.deck_pose`` or home."""

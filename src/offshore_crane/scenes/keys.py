@@ -10,7 +10,7 @@ from offshore_crane.io import toml_value
 
 
 SECTIONS = ("robot", "subsystems", "payload", "cable", "actuators", "trajectory", "sea",
-            "operation", "control", "lift", "extremes")
+            "operation", "control", "lift", "extremes", "sensors")
 TOP_KEYS = ("name", "description", "gravity", "outputs", "methods")
 SUBSYSTEM_KEYS = ("platform", "arm", "leg_model", "deck_pose")
 PAYLOAD_KEYS = ("mass", "offset", "inertia", "cable_length", "sway_damping", "drag_area",
@@ -29,7 +29,12 @@ OPERATION_KEYS = ("waypoints",)
 SEA_DURATION, SEA_RATE = 60.0, 100.0
 CONTROL_KEYS = ("law", "kp", "kd", "rate", "step", "integrator", "initial_error", "noise_q",
                 "noise_qd", "seed", "model", "lower", "upper", "saturation", "anti_sway",
-                "compensation", "delay", "target")
+                "compensation", "delay", "target", "ki", "windup")
+#: [sensors] keys (:class:`offshore_crane.simulation.instruments.Sensors`).
+SENSOR_KEYS = ("noise_q", "noise_qd", "delay", "resolution_q", "resolution_qd", "seed")
+#: [actuators] keys that describe the actuators' dynamics
+#: (:class:`offshore_crane.simulation.instruments.Actuators`), not the robot's capacities.
+ACTUATOR_MODEL_KEYS = ("rate_limit", "lag")
 #: [lift] keys: a lift-off from or a set-down onto a deck (docs/cable.md).
 LIFT_KEYS = ("event", "deck_height", "deck")
 #: [lift] events.
@@ -50,7 +55,7 @@ EXTREMES_DEFAULTS = {"exposure": 3.0, "record": "exposure", "seeds": GUMBEL_MIN_
 TARGET_KEYS = ("point", "seed", "vessel")
 #: [control] keys that are Controller arguments (the others: simulate's).
 CONTROLLER_KEYS = ("law", "kp", "kd", "rate", "lower", "upper", "saturation", "noise_q",
-                   "noise_qd", "seed", "anti_sway")
+                   "noise_qd", "seed", "anti_sway", "ki", "windup")
 #: Where a scene file sets the robot fields it owns besides [robot] (for messages).
 SCENE_FIELDS = {"arm.enabled": "[subsystems] arm", "payload.mass": "[payload] mass",
                 "payload.com": "[payload] offset", "payload.inertia": "[payload] inertia",

@@ -13,7 +13,7 @@ from offshore_crane.dynamics import LEG_MODELS, METHODS
 from offshore_crane.errors import SceneError
 from offshore_crane.io import toml_value
 from offshore_crane.validation import not_a_number
-from offshore_crane.scenes.keys import (CABLE_KEYS, CONTROLLER_KEYS, CONTROL_KEYS, INERTIA_KEYS,
+from offshore_crane.scenes.keys import (ACTUATOR_MODEL_KEYS, SENSOR_KEYS, CABLE_KEYS, CONTROLLER_KEYS, CONTROL_KEYS, INERTIA_KEYS,
                                         OPERATION_KEYS, PAYLOAD_KEYS, SEA_KEYS, SECTIONS,
                                         LOAD_LIMIT_KEYS, TARGET_KEYS, LIFT_KEYS,
                                         LIFT_EVENTS,
@@ -173,6 +173,7 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
     if not isinstance(actuators, dict):
         raise SceneError(f"{where}: actuators = {toml_value(actuators)}: must be a table "
                          "[actuators]", path=where, name="actuators")
+    actuators = {k: v for k, v in actuators.items() if k not in ACTUATOR_MODEL_KEYS}
     payload.update(normalised(where, {"actuators": actuators}, "[actuators]", flatten=True))
     for name, value in normalised(where, payload, None).items():
         if name in overrides and not same_value(overrides[name], value):
@@ -332,14 +333,20 @@ def _vessel(vessel: str, base: Path | None) -> str | None:
 def _control(where: str, data: dict, base: Path | None = None) -> dict:
     """The ``[control]`` section of ``offshore-crane simulate``: checked values, as a dict
     of :func:`controller`'s and :func:`offshore_crane.simulation.rigid.simulate`'s arguments."""
-    from offshore_crane.simulation.control import LAWS, Controller
+    from offshore_crane.simulation.control import Controller
     from offshore_crane.errors import InputError
     from offshore_crane.simulation.rigid import INTEGRATORS
 
     r = _section(where, data, "control", CONTROL_KEYS)
     out: dict = {}
     if "law" in r.table:
-        out["law"] = r.string("law", choices=LAWS)
+        out["law"] = r.string("law")          # a law of the registry: checked below
+    if "ki" in r.table:
+        v = r.get("ki")
+        out["ki"] = r.vector("ki", 9, unit="N·m/(rad·s), N/(m·s)") if isinstance(
+            v, list) else r.number("ki", unit="N·m/(rad·s), N/(m·s)", minimum=0.0)
+    if "windup" in r.table:
+        out["windup"] = r.number("windup", unit="s", positive=True)
     for key, unit in (("kp", "1/s² or N/m"), ("kd", "1/s or N·s/m"), ("noise_q", "m, rad"),
                       ("noise_qd", "m/s, rad/s")):
         if key in r.table:
@@ -385,6 +392,41 @@ def _control(where: str, data: dict, base: Path | None = None) -> dict:
     except InputError as exc:
         raise SceneError(f"{where}: [control] {exc}", path=where, name="control") from None
     return out
+
+
+def _instruments(where: str, data: dict) -> dict:
+    """``[sensors]`` and the actuator models of ``[actuators]`` (``rate_limit``, ``lag``):
+    ``{"sensors": {...}, "actuator_models": {...}}`` of
+    :class:`~offshore_crane.simulation.instruments.Sensors`' and ``Actuators``' arguments,
+    checked by them."""
+    from offshore_crane.errors import InputError
+    from offshore_crane.simulation.instruments import Actuators, Sensors
+
+    r = _section(where, data, "sensors", SENSOR_KEYS)
+    sensors: dict = {}
+    for key, unit in (("noise_q", "m, rad"), ("noise_qd", "m/s, rad/s"),
+                      ("resolution_q", "m, rad"), ("resolution_qd", "m/s, rad/s")):
+        if key in r.table:
+            v = r.get(key)
+            sensors[key] = r.vector(key, 9, unit=unit) if isinstance(v, list) else r.number(
+                key, unit=unit, minimum=0.0)
+    if "delay" in r.table:
+        sensors["delay"] = r.number("delay", unit="s", minimum=0.0)
+    if "seed" in r.table:
+        sensors["seed"] = r.integer("seed", 0)
+    table = data.get("actuators", {})
+    actuators: dict = {}
+    for key, unit in (("rate_limit", "N·m/s, N/s"), ("lag", "s")):
+        if isinstance(table, dict) and key in table:
+            actuators[key] = table[key]
+    for section, cls, values in (("sensors", Sensors, sensors),
+                                 ("actuators", Actuators, actuators)):
+        try:
+            cls(**values)
+        except (InputError, TypeError) as exc:
+            raise SceneError(f"{where}: [{section}] {exc}", path=where,
+                             name=section) from None
+    return {"sensors": sensors, "actuator_models": actuators}
 
 
 def _cable(where: str, data: dict) -> dict:
@@ -461,6 +503,7 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
         outputs=top.names("outputs", ACTUATORS),
         methods=top.names("methods", METHODS) or ("kane",), control=control, cable=cable,
         lift=_lift(where, data, base), extremes=_extremes(where, data),
+        **_instruments(where, data),
         **_trajectory(where, data, base),
         **_sea(where, data, base))
 

@@ -87,6 +87,10 @@ class Scene:
         cable: ``[cable]``: the hanging load's options.
         lift: ``[lift]``: ``{"event": "lift-off" | "set-down", "deck_height": [m],
             "deck": {point, seed, vessel}}`` or empty.
+        sensors: ``[sensors]``: the measured q, q̇'s noise, delay, quantisation
+            (:class:`~offshore_crane.simulation.instruments.Sensors`' arguments).
+        actuator_models: ``[actuators] rate_limit, lag``: the actuators' dynamics
+            (:class:`~offshore_crane.simulation.instruments.Actuators`' arguments).
         extremes: ``[extremes]``: how a sea scene's extremes are judged
             (:mod:`offshore_crane.scenes.exposure`): ``exposure`` [h] full scale,
             ``record`` (``"exposure"`` or ``"scene"``), ``seeds``, ``spin_up`` [s] model
@@ -116,6 +120,8 @@ class Scene:
     cable: dict = field(default_factory=dict)
     lift: dict = field(default_factory=dict)
     extremes: dict = field(default_factory=dict)
+    sensors: dict = field(default_factory=dict)
+    actuator_models: dict = field(default_factory=dict)
     #: Where the scene comes from, for messages (the file, or the file with the
     #: command-line options applied).
     origin: str | None = field(default=None, compare=False, repr=False)
