@@ -187,24 +187,34 @@ def test_pid_removes_the_steady_error_pd_leaves_under_a_model_error():
 
 
 def test_the_pid_anti_windup_bounds_the_integral_while_saturated(robot):
-    """Legs limited to 60 % of their static load: the command saturates; with
-    back-calculation the integral stays bounded by ~ (X_cmd − X) / Ki, without it
-    (``windup`` of 1e9 s) it keeps growing."""
+    """An actuator saturated at 60 % of its command: with back-calculation the integral's
+    rate is the error less (X_cmd − X) / (Ki T_t), smaller than the error alone (the
+    integral winds up more slowly); without it (``windup`` of 1e9 s) it is the error."""
     from offshore_crane.simulation.laws.pid import PID
+    from offshore_crane.simulation.loop import instantiate
     from offshore_crane.simulation.plants import RigidPlant
 
     plant = RigidPlant(robot, robot, np.array(oc.GRAVITY))
     home = robot.home_pose()
-    y = np.concatenate([home - np.r_[0, 0, 0.01, 0, 0, 0, 0, 0, 0], np.zeros(9)])
-    ref = (home, np.zeros(9), np.zeros(9))
-    z = np.zeros(9)
+    y = np.concatenate([home - np.r_[0, 0, 0.01, 0, 0, 0, 0, 0, 0], np.zeros(9),
+                        np.zeros(9)])
     rates = {}
     for windup in (None, 1e9):
         law = PID(Controller(law="pid", windup=windup), plant)
-        X_cmd = law.command(0, 0.0, y, z, ref)
-        X = 0.6 * X_cmd
-        rates[windup] = law.state_rate(0, 0.0, y, z, ref, X_cmd, X)
-    assert (np.abs(rates[None][3:]) < np.abs(rates[1e9][3:])).all()
+        ns = instantiate(plant.kernels(), law.templates(), {"IQ": 0, "IQD": 9}, False,
+                         "test")
+        L, P = law.params(), plant.params()
+        X_cmd, dy = np.zeros(9), np.zeros(27)
+        ns["command"](L, P, 0, 0.0, y, 18, home, np.zeros(9), np.zeros(9), X_cmd)
+        ns["law_rate"](L, P, 0, 0.0, y, 18, home, np.zeros(9), np.zeros(9), X_cmd,
+                       0.6 * X_cmd, dy)
+        rates[windup] = dy[18:]
+    legs = slice(3, 9)
+    e = plant.actuator_coordinates(home, np.zeros(9))[0] - plant.actuator_coordinates(
+        y[:9], y[9:18])[0]
+    assert (e[legs] > 0.0).all()                              # the legs are too short
+    assert np.allclose(rates[1e9], e, rtol=1e-3, atol=1e-12)  # back-calculation ~ off
+    assert (np.abs(rates[None][legs]) < np.abs(e[legs])).all()
 
 
 # -------------------------------------------------------------- stop causes

@@ -2,9 +2,11 @@
 under any law (:mod:`offshore_crane.simulation.laws`) with the sensors and actuators
 between them (:mod:`offshore_crane.simulation.instruments`), and records the run.
 
-The integrated state is ``y = (plant state, law state, actuator lag state)``. Classical
-RK4 at a fixed step on the grid of half steps (:func:`offshore_crane.dynamics.integrator.
-rk4_step`, the one text of the tableau), the reference evaluated at every stage time.
+The loop is one text (:mod:`offshore_crane.simulation.loop`), compiled with the plant's
+kernels and a built-in law's templates, or run as Python with a user's Python law. The
+integrated state is ``y = (plant state, law state, actuator lag state)``. Classical RK4 at
+a fixed step on the grid of half steps (:mod:`offshore_crane.dynamics.integrator`, the
+one text of the tableau), the reference evaluated at every stage time.
 
 - Continuous control (no control rate): the law is evaluated at every stage from the
   plant's state, and its own state integrated with its rate at every stage.
@@ -25,7 +27,6 @@ those seen on the record (a workspace violation, a slack cable). A stop raises
 
 from __future__ import annotations
 
-from collections import deque
 from dataclasses import dataclass
 
 import numpy as np
@@ -45,6 +46,23 @@ class Timing:
     out_every: int
     hold: int
     t0: float = 0.0
+
+
+#: Compiled (or Python) loops made in this process: ``{(plant, law, compiled): loop}``.
+_LOOPS: dict = {}
+
+
+def loop_for(plant, law):
+    """The driver's loop for ``plant`` under ``law`` (made once per process; a compiled
+    one is cached on disk)."""
+    key = (plant.name, law.name, law.compiled)
+    if key not in _LOOPS:
+        from offshore_crane.simulation.loop import instantiate
+
+        _LOOPS[key] = instantiate(plant.kernels(), law.templates(),
+                                  {"IQ": plant.Q.start, "IQD": plant.QD.start},
+                                  law.compiled, f"{plant.name} {law.name}")["loop"]
+    return _LOOPS[key]
 
 
 def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
@@ -72,7 +90,6 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
         SimulationError: the run stopped (its cause a :class:`~offshore_crane.stops.
             StopCause`); ``error.result`` keeps every sample before it.
     """
-    from offshore_crane.dynamics.integrator import rk4_step
     from offshore_crane.simulation.record import (SimulationResult, divergence, diverging,
                                                   finite_rows, stopped)
 
@@ -84,99 +101,43 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
         what = "sensor models" if sens is not None else "an actuator rate limit"
         raise InputError(f"{what} act at the control instants of a sampled law: give a "
                          "control rate ([control] rate, --control-rate)", name="rate")
-    lag = None if actuators is None else actuators.lag
-    n_p, n_z, n_l = plant.size, law.state_size, 0 if lag is None else 9
+    lag = np.zeros(0) if actuators is None or actuators.lag is None else actuators.lag
+    rlim = np.zeros(0) if not limit else actuators.rate_limit
+    n_p, n_z = plant.size, law.state_size
     delay = sens.delay_steps(step) if sens is not None else 0
-    nq, nqd = sens.noise(n_steps // hold + 2) if sens is not None else (None, None)
-    history = deque(maxlen=delay + 1)
-    period = hold * step
-
-    def ref(i):
-        return qr[i], qdr[i], qddr[i]
-
-    def f(i, y, held):
-        yp, z, xl = y[:n_p], y[n_p:n_p + n_z], y[n_p + n_z:]
-        if held is None:
-            r = ref(i)
-            X_cmd = X_in = law.command(i, tt[i], yp, z, r)
-        else:
-            X_cmd, X_in, dz = held
-        X = np.clip(xl if n_l else X_in, lower, upper)
-        dyp, aux = plant.derivative(i, yp, X)
-        if not (n_z or n_l):
-            return dyp, X_cmd, X, aux
-        parts = [dyp]
-        if n_z:
-            parts.append(law.state_rate(i, tt[i], yp, z, r, X_cmd, X) if held is None
-                         else dz)
-        if n_l:
-            parts.append((X_in - xl) / lag)
-        return np.concatenate(parts), X_cmd, X, aux
-
-    def sample(s, y, ctrl, last):
-        """The held ``(X_cmd, X_in, ż)`` at control instant ``s``."""
-        yp, z = y[:n_p], y[n_p:n_p + n_z]
-        if sens is not None:
-            meas = history[0].copy()
-            Q, QD = plant.Q, plant.QD
-            meas[Q] = sens.quantised(meas[Q] + nq[ctrl], sens.resolution_q)
-            meas[QD] = sens.quantised(meas[QD] + nqd[ctrl], sens.resolution_qd)
-        else:
-            meas = yp
-        r = ref(2 * s)
-        X_cmd = law.command(2 * s, tt[2 * s], meas, z, r)
-        X_in = actuators.limited(X_cmd, last, period) if limit else X_cmd
-        dz = law.state_rate(2 * s, tt[2 * s], meas, z, r, X_cmd,
-                            np.clip(X_in, lower, upper)) if n_z else None
-        return X_cmd, X_in, dz
-
-    parts = [np.asarray(y0, dtype=float), law.initial_state()]
-    y = np.concatenate(parts + [np.zeros(n_l)]) if n_l else np.concatenate(parts)
+    nq, nqd = sens.noise(n_steps // hold + 2) if sens is not None else (np.zeros((1, 9)),) * 2
+    res9 = [np.zeros(9) if r is None else r for r in (
+        (sens.resolution_q, sens.resolution_qd) if sens is not None else (None, None))]
+    y = np.concatenate([np.asarray(y0, dtype=float), law.initial_state(), np.zeros(len(lag))])
     n_out = n_steps // out_every + 1
-    rec = {k: np.full((n_out, 9), np.nan) for k in ("q", "qd", "qdd", "q_ref", "qd_ref",
-                                                    "X_cmd", "X")}
-    own = {k: np.full((n_out, w) if w else n_out, np.nan) for k, w in plant.RECORDED.items()}
+    rec = [np.full((n_out, 9), np.nan) for _ in range(7)]
     sat = np.zeros((n_out, 9), dtype=bool)
-    held, last, ctrl, stop, done = None, None, 0, None, 0
-    with progress.bar(n_out, "sample", "simulate") as shown:
-        for s in range(n_steps + 1):
-            if sens is not None:
-                history.append(y[:n_p].copy())
-            if hold and s % hold == 0:
-                held = sample(s, y, ctrl, last)
-                last, ctrl = held[1], ctrl + 1
-                if n_l and s == 0:
-                    y[n_p + n_z:] = held[1]
-            elif n_l and s == 0:
-                y[n_p + n_z:] = law.command(0, tt[0], y[:n_p], y[n_p:n_p + n_z], ref(0))
-            k1, X_cmd, X, aux = f(2 * s, y, held)
-            if s % out_every == 0:
-                k = s // out_every
-                yp, dyp = y[:n_p], k1[:n_p]
-                rec["q"][k], rec["qd"][k], rec["qdd"][k] = plant.q(yp), plant.qd(yp), dyp[
-                    plant.QD]
-                rec["q_ref"][k], rec["qd_ref"][k] = qr[2 * s], qdr[2 * s]
-                rec["X_cmd"][k], rec["X"][k] = X_cmd, X
-                sat[k] = (X_cmd < lower) | (X_cmd > upper)
-                plant.record(own, k, yp, dyp, aux)
-                done = k + 1
-                shown.update()
-                found = plant.check(yp, aux)
-                if found is not None:
-                    stop = (k, *found)
-                elif not (np.isfinite(y).all() and np.isfinite(k1).all()):
-                    stop = (k, StopCause.DIVERGED, "")
-                if stop is not None:
-                    break
-            if s == n_steps:
-                break
-            y = rk4_step(lambda i, x: f(i, x, held)[0], 2 * s, y, k1, step)
+    extra = np.full((n_out, plant.extra_width()), np.nan)
+    status = np.zeros(4, dtype=np.int64)
+    halt = progress.stop_flag()
+    run = loop_for(plant, law)
+    P, L = plant.params(), law.params()
+    lo, hi = (np.ascontiguousarray(np.asarray(b, dtype=float)) for b in (lower, upper))
+    progress.run_polled(
+        lambda: run(P, L, tt, qr, qdr, qddr, y, float(step), int(n_steps), int(out_every),
+                    int(hold), lo, hi, np.asarray(lag, dtype=float),
+                    np.asarray(rlim, dtype=float), int(delay), nq, nqd, res9[0], res9[1],
+                    sens is not None, n_p, n_z, *rec, sat, extra, status, halt),
+        lambda: status[2], n_out, "sample", "simulate", halt)
+    done = int(status[2])
     t_out = tt[::2][::out_every][:n_out]
-    res = SimulationResult(t=t_out, **rec, saturated=sat, energy=np.full(n_out, np.nan),
-                           power=np.full(n_out, np.nan), integrator="rk4", step=step,
+    names = ("q", "qd", "qdd", "q_ref", "qd_ref", "X_cmd", "X")
+    res = SimulationResult(t=t_out, **dict(zip(names, rec)), saturated=sat,
+                           energy=np.full(n_out, np.nan), power=np.full(n_out, np.nan),
+                           integrator="rk4", step=step,
                            info=dict(info or {}, law=law.name, plant=plant.name))
     res = res.truncated(done)
-    early = plant.finish(res, own, limits)           # what only the record shows
+    stop = None
+    code = StopCause(int(status[0]))
+    if code is not StopCause.NONE:
+        stop = (int(status[1]), code, plant.words(code, res) if code is StopCause.SINGULAR
+                else "")
+    early = plant.finish(res, plant.recorded(extra), limits)   # what only the record shows
     if early is not None and (stop is None or early[0] < stop[0]):
         stop = early
     if stop is None:

@@ -45,27 +45,29 @@ class Law:
         self.plant = plant
         self.kp, self.kd = controller.gains
 
+    #: False for a Python law: the driver's loop then runs as Python.
+    compiled: ClassVar[bool] = True
+
     def initial_state(self) -> np.ndarray:
         """The law's state at the start ``(state_size,)``."""
         return np.zeros(self.state_size)
 
-    def command(self, i: int, t: float, y: np.ndarray, z: np.ndarray, ref) -> np.ndarray:
-        """The commanded actuator forces ``X_cmd (9,)`` [N·m, N].
-
-        Args:
-            i: Index of the stage time on the reference grid (2 per step).
-            t: Time [s].
-            y: The plant's state as measured ``(plant.size,)``.
-            z: The law's own state ``(state_size,)``.
-            ref: ``(q_ref, qd_ref, qdd_ref)`` ``(9,)`` each at ``t``.
-        """
+    def params(self) -> tuple:
+        """``L``: what the law's templates read (gains, scratch arrays)."""
         raise NotImplementedError
 
-    def state_rate(self, i: int, t: float, y: np.ndarray, z: np.ndarray, ref,
-                   X_cmd: np.ndarray, X: np.ndarray) -> np.ndarray:
-        """``ż (state_size,)`` at a stage, from the command ``X_cmd`` and the forces the
-        actuators apply ``X`` (saturated: what an anti-windup reads)."""
-        return np.zeros(0)
+    def templates(self) -> dict:
+        """``{name: function}``: the law's templates, instantiated with the plant's
+        kernels in the driver's namespace (:func:`offshore_crane.simulation.loop.
+        instantiate`): ``command(L, P, i, t, y, n_p, qr, qdr, qddr, X)`` writes X (9,)
+        [N·m, N] at stage point ``i`` (time ``t`` [s]) from the measured state ``y``
+        (the plant's ``n_p`` entries, then the law's own) and the reference;
+        ``law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, X_cmd, X, dy)`` writes the law's
+        state's rate into ``dy[n_p:n_p + state_size]`` from the command and the applied
+        forces (what an anti-windup reads); and what they call. They call the plant's
+        ``inverse``, ``gravity``, ``coords``, ``payload`` and read ``IQ``, ``IQD``
+        (:class:`~offshore_crane.simulation.plants.Plant`)."""
+        raise NotImplementedError
 
 
 def register(cls: type[Law]) -> type[Law]:

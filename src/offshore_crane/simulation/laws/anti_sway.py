@@ -18,11 +18,50 @@ from __future__ import annotations
 
 import numpy as np
 
+from offshore_crane.simulation.laws import computed_torque
 from offshore_crane.simulation.laws._registry import register
 from offshore_crane.simulation.laws.computed_torque import ComputedTorque
 
 #: Centring frequency of the reference shift, as a fraction of ω0 = √(g/L).
 CENTRING = 0.1
+
+
+def shift(L, P, y, n_p, dd):
+    """δ̈ ``(2,)`` [m/s²] of the reference shift into ``dd`` (zeros with ζ = 0)."""
+    k, wc, pay = L[3], L[4], L[5]
+    if k == 0.0:
+        dd[0] = 0.0
+        dd[1] = 0.0
+        return
+    payload(P, y, pay)  # noqa: F821 (the plant's, in the driver's namespace)
+    for j in range(2):
+        dd[j] = k * pay[j] - wc * wc * y[n_p + j] - 2.0 * wc * y[n_p + 2 + j]
+
+
+def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
+    """Computed torque on the shifted reference (``L``: kp, kd, scratch (9,), k, ω_c,
+    scratch (6,), (2,), (9,) × 3)."""
+    dd, rq, rqd, rqdd = L[6], L[7], L[8], L[9]
+    shift(L, P, y, n_p, dd)
+    for j in range(9):
+        rq[j] = qr[j]
+        rqd[j] = qdr[j]
+        rqdd[j] = qddr[j]
+    for j in range(2):
+        rq[j] += y[n_p + j]
+        rqd[j] += y[n_p + 2 + j]
+        rqdd[j] += dd[j]
+    ct_command(L, P, i, t, y, n_p, rq, rqd, rqdd, X)  # noqa: F821
+
+
+def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
+    """``(δ̇, δ̈)`` into ``dy[n_p:n_p + 4]``."""
+    dd = L[6]
+    shift(L, P, y, n_p, dd)
+    dy[n_p] = y[n_p + 2]
+    dy[n_p + 1] = y[n_p + 3]
+    dy[n_p + 2] = dd[0]
+    dy[n_p + 3] = dd[1]
 
 
 @register
@@ -41,20 +80,10 @@ class AntiSway(ComputedTorque):
         self.k = 2.0 * zeta * w0 if zeta else 0.0
         self.wc = CENTRING * w0
 
-    def shift_acceleration(self, y, z):
-        """δ̈ ``(2,)`` [m/s²] of the reference shift (zeros with ζ = 0)."""
-        if not self.k:
-            return np.zeros(2)
-        pay = self.plant.model_payload(y)
-        return self.k * pay[:2] - self.wc * self.wc * z[0:2] - 2.0 * self.wc * z[2:4]
+    def params(self) -> tuple:
+        return (self.kp, self.kd, np.zeros(9), float(self.k), float(self.wc), np.zeros(6),
+                np.zeros(2), np.zeros(9), np.zeros(9), np.zeros(9))
 
-    def command(self, i, t, y, z, ref):
-        dd = self.shift_acceleration(y, z)
-        qref, qdref, qddref = ref[0].copy(), ref[1].copy(), ref[2].copy()
-        qref[:2] += z[0:2]
-        qdref[:2] += z[2:4]
-        qddref[:2] += dd
-        return super().command(i, t, y, z, (qref, qdref, qddref))
-
-    def state_rate(self, i, t, y, z, ref, X_cmd, X):
-        return np.concatenate([z[2:4], self.shift_acceleration(y, z)])
+    def templates(self) -> dict:
+        return {"command": command, "law_rate": law_rate, "shift": shift,
+                "ct_command": computed_torque.command}

@@ -6,8 +6,22 @@ coordinate. Gains per coordinate q1..q9: ``kp`` [1/s²], ``kd`` [1/s]."""
 
 from __future__ import annotations
 
+import numpy as np
+
 from offshore_crane.simulation.laws import codes
 from offshore_crane.simulation.laws._registry import Law, register
+
+
+def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
+    """X of the law at ``y`` (``L``: kp, kd, a scratch (9,))."""
+    kp, kd, cmd = L[0], L[1], L[2]
+    for j in range(9):
+        cmd[j] = qddr[j] + kd[j] * (qdr[j] - y[IQD + j]) + kp[j] * (qr[j] - y[IQ + j])  # noqa
+    inverse(P, i, y, cmd, X)  # noqa: F821 (the plant's, in the driver's namespace)
+
+
+def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
+    """No state."""
 
 
 @register
@@ -15,10 +29,8 @@ class ComputedTorque(Law):
     name = "computed-torque"
     code = codes.COMPUTED_TORQUE
 
-    def commanded(self, y, ref):
-        """``q̈_ref + Kd (q̇_ref − q̇) + Kp (q_ref − q)`` ``(9,)``."""
-        p = self.plant
-        return ref[2] + self.kd * (ref[1] - p.qd(y)) + self.kp * (ref[0] - p.q(y))
+    def params(self) -> tuple:
+        return (self.kp, self.kd, np.zeros(9))
 
-    def command(self, i, t, y, z, ref):
-        return self.plant.inverse(i, y, self.commanded(y, ref))
+    def templates(self) -> dict:
+        return {"command": command, "law_rate": law_rate}

@@ -2,10 +2,17 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from offshore_crane.simulation.laws import codes
 from offshore_crane.simulation.laws._registry import Law, register
+
+
+def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
+    for j in range(9):
+        X[j] = 0.0
+
+
+def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
+    """No state."""
 
 
 @register
@@ -13,5 +20,8 @@ class NoControl(Law):
     name = "none"
     code = codes.NONE
 
-    def command(self, i, t, y, z, ref):
-        return np.zeros(9)
+    def params(self) -> tuple:
+        return (0.0,)
+
+    def templates(self) -> dict:
+        return {"command": command, "law_rate": law_rate}

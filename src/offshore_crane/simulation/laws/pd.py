@@ -9,8 +9,29 @@ Gains per actuator: ``kp`` [N·m/rad, N/m], ``kd`` [N·m·s/rad, N·s/m]."""
 
 from __future__ import annotations
 
+import numpy as np
+
 from offshore_crane.simulation.laws import codes
 from offshore_crane.simulation.laws._registry import Law, register
+
+
+def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
+    """X of the law at ``y`` (``L``: kp, kd, with gravity (bool), scratch s, ṡ, s_ref,
+    ṡ_ref, X_g (9,) each)."""
+    kp, kd, grav, s, sd, sr, sdr, Xg = L[0], L[1], L[2], L[3], L[4], L[5], L[6], L[7]
+    coords(P, y[IQ:IQ + 9], y[IQD:IQD + 9], s, sd)  # noqa: F821
+    coords(P, qr, qdr, sr, sdr)  # noqa: F821
+    if grav:
+        gravity(P, i, y, Xg)  # noqa: F821
+    else:
+        for j in range(9):
+            Xg[j] = 0.0
+    for j in range(9):
+        X[j] = Xg[j] + (kp[j] * (sr[j] - s[j]) + kd[j] * (sdr[j] - sd[j]))
+
+
+def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
+    """No state."""
 
 
 @register
@@ -19,17 +40,11 @@ class PDGravity(Law):
     code = codes.PD_GRAVITY
     gravity = True
 
-    def errors(self, y, ref):
-        """``(s_ref − s, ṡ_ref − ṡ)`` ``(9,)`` each [m, rad, /s]."""
-        p = self.plant
-        s, sd = p.actuator_coordinates(p.q(y), p.qd(y))
-        sr, sdr = p.actuator_coordinates(ref[0], ref[1])
-        return sr - s, sdr - sd
+    def params(self) -> tuple:
+        return (self.kp, self.kd, self.gravity, *(np.zeros(9) for _ in range(5)))
 
-    def command(self, i, t, y, z, ref):
-        e, ed = self.errors(y, ref)
-        X = self.plant.gravity(i, y) if self.gravity else 0.0 * e
-        return X + (self.kp * e + self.kd * ed)
+    def templates(self) -> dict:
+        return {"command": command, "law_rate": law_rate}
 
 
 @register

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from offshore_crane.simulation.laws import pd
 from offshore_crane.simulation.laws._registry import register
 from offshore_crane.simulation.laws.pd import PDGravity
 
@@ -31,6 +32,24 @@ def default_ki(kp: np.ndarray, kd: np.ndarray) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         ki = kp * kp / (TI_OVER_TD * kd)
     return np.where(kd > 0.0, ki, 0.0)
+
+
+def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
+    """PD with gravity compensation plus ``Ki z`` (``L``: PD's, then ki, the
+    back-calculation gain 1/(Ki T_t))."""
+    pd_command(L, P, i, t, y, n_p, qr, qdr, qddr, X)  # noqa: F821 (the namespace's)
+    ki = L[8]
+    for j in range(9):
+        X[j] = X[j] + ki[j] * y[n_p + j]
+
+
+def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
+    """``ż = e + (X − X_cmd) / (Ki T_t)`` into ``dy[n_p:n_p + 9]``."""
+    s, sd, sr, sdr, back = L[3], L[4], L[5], L[6], L[9]
+    coords(P, y[IQ:IQ + 9], y[IQD:IQD + 9], s, sd)  # noqa: F821
+    coords(P, qr, qdr, sr, sdr)  # noqa: F821
+    for j in range(9):
+        dy[n_p + j] = (sr[j] - s[j]) + back[j] * (X[j] - Xc[j])
 
 
 @register
@@ -50,9 +69,8 @@ class PID(PDGravity):
                                                                             controller.windup)
             self.back = np.where((self.ki > 0.0) & (tt > 0.0), 1.0 / (self.ki * tt), 0.0)
 
-    def command(self, i, t, y, z, ref):
-        return super().command(i, t, y, z, ref) + self.ki * z
+    def params(self) -> tuple:
+        return (*super().params(), self.ki, self.back)
 
-    def state_rate(self, i, t, y, z, ref, X_cmd, X):
-        e, _ = self.errors(y, ref)
-        return e + self.back * (X - X_cmd)
+    def templates(self) -> dict:
+        return {"command": command, "law_rate": law_rate, "pd_command": pd.command}

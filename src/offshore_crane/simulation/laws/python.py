@@ -18,17 +18,34 @@ from offshore_crane.errors import InputError
 from offshore_crane.simulation.laws._registry import Law, register
 
 
+def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
+    """The user's law, called from the driver's loop run as Python (``L``: the law)."""
+    X[:] = L.evaluate(i, t, y[:n_p], qr, qdr, qddr)
+
+
+def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
+    """No state."""
+
+
 @register
 class PythonLaw(Law):
     name = "python"
     selectable = False
+    compiled = False
 
     def __init__(self, controller, plant, function):
         super().__init__(controller, plant)
         self.function = function
         self.wants = _keywords(function)
 
-    def command(self, i, t, y, z, ref):
+    def params(self):
+        return self
+
+    def templates(self) -> dict:
+        return {"command": command, "law_rate": law_rate}
+
+    def evaluate(self, i, t, y, qr, qdr, qddr):
+        """X (9,) of the user's law at the measured plant state ``y``."""
         from offshore_crane.validation import as_samples
 
         p = self.plant
@@ -37,7 +54,8 @@ class PythonLaw(Law):
             extra = p.channels(i, y)
             if self.wants is not True:
                 extra = {k: v for k, v in extra.items() if k in self.wants}
-        X = self.function(t, p.q(y).copy(), p.qd(y).copy(), ref[0], ref[1], ref[2], **extra)
+        X = self.function(t, p.q(y).copy(), p.qd(y).copy(), qr.copy(), qdr.copy(),
+                          qddr.copy(), **extra)
         try:
             return as_samples("X returned by the controller", X)[0][0]
         except InputError:

@@ -31,8 +31,38 @@ class Plant:
     #: Arrays the plant records beside the driver's, ``{name: width}`` (0: a scalar).
     RECORDED: ClassVar[dict] = {}
 
+    #: The plant's compiled kernels for the driver (a module of
+    #: :mod:`offshore_crane.simulation.plants`: ``rhs``, ``check``, ``keep``, ``inverse``,
+    #: ``gravity``, ``coords``, ``payload`` and ``params(plant)``).
+    KERNELS: ClassVar[str] = ""
+
     def __init__(self, robot, model, gravity):
         self.robot, self.model, self.g = robot, model, gravity
+        self._P = None
+
+    def kernels(self):
+        """The compiled kernels' module (imports Numba)."""
+        import importlib
+
+        return importlib.import_module(self.KERNELS)
+
+    def params(self) -> tuple:
+        """``P``: the arrays the kernels read (made once)."""
+        if self._P is None:
+            self._P = self.kernels().params(self)
+        return self._P
+
+    def extra_width(self) -> int:
+        """Columns of the plant's own record (:attr:`RECORDED`)."""
+        return sum(max(w, 1) for w in self.RECORDED.values())
+
+    def recorded(self, EXTRA) -> dict:
+        """The plant's own record by name (:attr:`RECORDED`), from its columns."""
+        out, c = {}, 0
+        for name, w in self.RECORDED.items():
+            out[name] = EXTRA[:, c] if w == 0 else EXTRA[:, c:c + w]
+            c += max(w, 1)
+        return out
 
     # ----------------------------------------------------------- the state
     def q(self, y: np.ndarray) -> np.ndarray:
@@ -55,13 +85,10 @@ class Plant:
         stage (and ``aux["ok"]``: False for a singular mass matrix)."""
         raise NotImplementedError
 
-    def check(self, y: np.ndarray, aux) -> tuple[StopCause, str] | None:
-        """``(StopCause, words)``: why the run stops at this recorded sample (beyond a
-        non-finite state, which the driver checks), or None."""
-        return None
-
-    def record(self, rec: dict, k: int, y: np.ndarray, dy: np.ndarray, aux) -> None:
-        """Write the plant's own arrays (:attr:`RECORDED`) of output sample ``k``."""
+    def words(self, cause: StopCause, res) -> str:
+        """A stop's cause in words, from the samples kept (``res``)."""
+        q5 = f", q5 = {res.q[-1, 4]:.4g} rad" if len(res) else ""
+        return f"the mass matrix became singular (attitude singularity{q5})"
 
     def finish(self, res, rec: dict, limits: bool):
         """Complete the result from the recorded samples (tension, power, ...) and

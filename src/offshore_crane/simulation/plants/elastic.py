@@ -32,6 +32,7 @@ class ElasticPlant(Plant):
     Q = slice(0, 9)
     QD = slice(12, 21)
     RECORDED = {"payload": 3, "payload_velocity": 3, "tension": 0, "length": 0}
+    KERNELS = "offshore_crane.simulation.plants._elastic_kernels"
 
     def __init__(self, robot, model, gravity, *, ea, damping, lengths):
         """``lengths`` ``(n_stages, 3)``: the winch's L [m], L̇, L̈ at every stage time."""
@@ -90,10 +91,16 @@ class ElasticPlant(Plant):
         return out
 
     def channels(self, i, y):
-        pull, at, T, _ = self.cable(i, y)
+        """The payload, the tension, the length and the load cell (the compiled
+        kernel's measure)."""
+        from offshore_crane.dynamics.cable import elastic_plant as ep
+
+        P, cell = self.params(), np.zeros(ep.CELL)
+        T = ep.measure(P[0], P[1], P[2], P[6], P[7][i, 0], P[7][i, 1],
+                       np.ascontiguousarray(y, dtype=float), cell, np.zeros(ep.WORK))
         return {"payload": y[9:12].copy(), "payload_velocity": y[21:24].copy(),
-                "tension": T, "length": float(self.Lg[i, 0]), "pull": pull.copy(),
-                "pull_at": at.copy()}
+                "tension": T, "length": float(self.Lg[i, 0]), "pull": cell[0:3].copy(),
+                "pull_at": cell[3:6].copy()}
 
     def derivative(self, i, y, X):
         from offshore_crane.dynamics.forward import forward_dynamics
@@ -106,10 +113,6 @@ class ElasticPlant(Plant):
         a_p = self.g + force / self.m
         return np.concatenate([y[12:21], y[21:24], a, a_p]), {"ok": True, "tension": T,
                                                                "length": self.Lg[i, 0]}
-
-    def record(self, rec, k, y, dy, aux):
-        rec["payload"][k], rec["payload_velocity"][k] = y[9:12], y[21:24]
-        rec["tension"][k], rec["length"][k] = aux["tension"], aux["length"]
 
     def finish(self, res, rec, limits):
         from offshore_crane.simulation.record import actuator_power, workspace_stop

@@ -22,6 +22,7 @@ class HangingPlant(Plant):
     Q = slice(0, 9)
     QD = slice(11, 20)
     RECORDED = {"sway": 2, "sway_rate": 2, "sway_acc": 2, "energy": 0}
+    KERNELS = "offshore_crane.simulation.plants._hanging_kernels"
 
     def __init__(self, robot, model, gravity):
         from offshore_crane.dynamics.cable import cable_robot
@@ -61,19 +62,9 @@ class HangingPlant(Plant):
                               y[:11], y[11:22], X, self.g, self._a, self._en)
         return np.concatenate([y[11:22], self._a]), {"ok": ok, "energy": self._en.sum()}
 
-    def check(self, y, aux):
-        from offshore_crane.simulation.record import DIVERGED_STATE
-
-        if (np.abs(y[:11]) > DIVERGED_STATE).any():
-            return StopCause.DIVERGED, ""
-        if not aux["ok"]:
-            return StopCause.SINGULAR, ("the mass matrix became singular (the attitude "
-                                        "coordinates at q5 = ±π/2, or the sway at cos φ2 = 0)")
-        return None
-
-    def record(self, rec, k, y, dy, aux):
-        rec["sway"][k], rec["sway_rate"][k], rec["sway_acc"][k] = y[9:11], y[20:22], dy[20:22]
-        rec["energy"][k] = aux["energy"]
+    def words(self, cause, res):
+        return ("the mass matrix became singular (the attitude coordinates at q5 = ±π/2, "
+                "or the sway at cos φ2 = 0)")
 
     def finish(self, res, rec, limits):
         n = len(res)

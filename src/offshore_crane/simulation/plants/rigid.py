@@ -15,6 +15,7 @@ from offshore_crane.stops import StopCause
 class RigidPlant(Plant):
     name = "rigid"
     size = 18
+    KERNELS = "offshore_crane.simulation.plants._rigid_kernels"
 
     def __init__(self, robot, model, gravity):
         from offshore_crane.dynamics.constants import robot_arrays
@@ -44,12 +45,6 @@ class RigidPlant(Plant):
         except SingularConfigurationError:
             return np.concatenate([qd, np.full(9, np.nan)]), {"ok": False}
         return np.concatenate([qd, qdd]), {"ok": True}
-
-    def check(self, y, aux):
-        if not aux["ok"]:
-            return StopCause.SINGULAR, ("the mass matrix became singular (attitude "
-                                        f"singularity, q5 = {y[4]:.4g} rad)")
-        return None
 
     def finish(self, res, rec, limits):
         from offshore_crane.simulation.record import actuator_power, workspace_stop

@@ -1,0 +1,215 @@
+"""The RK4 driver's text: one loop for every plant and law, compiled where the law is
+built in and run as it is written where the law is Python (:func:`instantiate`).
+
+:func:`loop` and :func:`evaluate` are templates: the names they call but do not define
+(``rhs``, ``check``, ``keep`` of the plant; ``command``, ``law_rate`` of the law;
+``IQ``, ``IQD`` where q and q̇ sit in the plant's state) are looked up in the namespace
+they are instantiated in (:func:`instantiate`): a plant's compiled kernels
+(:mod:`offshore_crane.simulation.plants`) and a law's templates
+(:mod:`offshore_crane.simulation.laws`), compiled together by Numba; or the same with a
+user's Python law, the loop then run by Python. Each compiled instance is cached on disk
+under the checksum of its parts' texts (:data:`offshore_crane.kernel_cache.PROGRAM_DIGEST`),
+so that two instances of one text never share an entry.
+
+The integrated state is ``y = (plant state (n_p), law state (n_z), actuator lag (9 or
+0))``; the reference is given at every stage time (2 per step); the semantics are the
+module docstring's of :mod:`offshore_crane.simulation.driver`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import inspect
+import types
+
+import numpy as np
+
+from offshore_crane.stops import CODES
+
+OK, _WORKSPACE, _SINGULAR, DIVERGED, STOPPED, _SLACK = CODES
+
+
+def quantised(x, r):
+    """``x`` rounded to the resolution ``r`` (> 0), else ``x``."""
+    if r > 0.0:
+        return np.rint(x / r) * r
+    return x
+
+
+def evaluate(P, L, i, t, y, dy, qr, qdr, qddr, lo, hi, held, Xh, Xhin, dzh, lag, n_p, n_z,
+             Xc, X, aux):
+    """One stage at grid point ``i`` (time ``t`` [s]) and state ``y``: the law's command
+    ``Xc`` (or the held one), the actuators (the lag's output or the command, clipped to
+    ``[lo, hi]``) into ``X``, the plant's rates and the law's and the lag's into ``dy``;
+    returns the plant's ``ok`` (False: a singular mass matrix)."""
+    n_pz = n_p + n_z
+    nl = lag.shape[0]
+    if held:
+        for j in range(9):
+            Xc[j] = Xh[j]
+    else:
+        command(L, P, i, t, y, n_p, qr, qdr, qddr, Xc)  # noqa: F821 (the namespace's)
+    for j in range(9):
+        src = y[n_pz + j] if nl > 0 else (Xhin[j] if held else Xc[j])
+        X[j] = min(max(src, lo[j]), hi[j])
+    ok = rhs(P, i, y, X, dy, aux)  # noqa: F821
+    if n_z > 0:
+        if held:
+            for j in range(n_z):
+                dy[n_p + j] = dzh[j]
+        else:
+            law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy)  # noqa: F821
+    for j in range(nl):
+        dy[n_pz + j] = ((Xhin[j] if held else Xc[j]) - y[n_pz + j]) / lag[j]
+    return ok
+
+
+def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, rlim, delay,
+         nq, nqd, resq, resqd, sens, n_p, n_z, RQ, RQD, RQDD, RQR, RQDR, RXC, RX, SAT, EXTRA,
+         status, halt):
+    """RK4 from ``y`` (modified in place) for ``n_steps`` steps of ``h`` [s]; every
+    ``out_every``-th step recorded (``RQ`` ... ``RX`` ``(n_out, 9)``, ``SAT`` bool, the
+    plant's ``EXTRA``); ``hold`` steps a control period (0: the law at every stage); the
+    sensors (``sens``: ``delay`` steps, noise rows ``nq``, ``nqd`` per control instant,
+    resolutions ``resq``, ``resqd``), the rate limit ``rlim`` and lag ``lag`` (empty:
+    none). ``status``: (stop code, its output sample, samples recorded, control
+    instants); ends before a step when ``halt[0]`` is not zero (STOPPED)."""
+    n = y.shape[0]
+    n_pz = n_p + n_z
+    k1 = np.zeros(n)
+    k2 = np.zeros(n)
+    k3 = np.zeros(n)
+    k4 = np.zeros(n)
+    st = np.zeros(n)
+    ym = np.zeros(n)
+    dzb = np.zeros(n)
+    Xc = np.zeros(9)
+    X = np.zeros(9)
+    Xh = np.zeros(9)
+    Xhin = np.zeros(9)
+    last = np.zeros(9)
+    dzh = np.zeros(max(n_z, 1))
+    aux = np.zeros(4)
+    hist = np.zeros((delay + 1, n_p))
+    first = y[:n_p].copy()
+    held = hold > 0
+    period = h * hold
+    ctrl = 0
+    for s in range(n_steps + 1):
+        if halt[0] != 0:
+            status[0] = STOPPED
+            status[1] = s
+            return
+        i0 = 2 * s
+        if sens:
+            for j in range(n_p):
+                hist[s % (delay + 1), j] = y[j]
+        if held and s % hold == 0:
+            for j in range(n):
+                ym[j] = y[j]
+            if sens:
+                r = (s - delay) % (delay + 1)
+                for j in range(n_p):
+                    ym[j] = hist[r, j] if s >= delay else first[j]
+                for j in range(9):
+                    ym[IQ + j] = quantised(ym[IQ + j] + nq[ctrl, j], resq[j])  # noqa: F821
+                    ym[IQD + j] = quantised(ym[IQD + j] + nqd[ctrl, j],  # noqa: F821
+                                            resqd[j])
+            command(L, P, i0, tt[i0], ym, n_p, qr[i0], qdr[i0], qddr[i0], Xh)  # noqa: F821
+            for j in range(9):
+                if rlim.shape[0] > 0 and ctrl > 0:
+                    step = rlim[j] * period
+                    Xhin[j] = last[j] + min(max(Xh[j] - last[j], -step), step)
+                else:
+                    Xhin[j] = Xh[j]
+                last[j] = Xhin[j]
+            if n_z > 0:
+                for j in range(9):
+                    X[j] = min(max(Xhin[j], lo[j]), hi[j])
+                law_rate(L, P, i0, tt[i0], ym, n_p, qr[i0], qdr[i0], qddr[i0], Xh, X,  # noqa
+                         dzb)
+                for j in range(n_z):
+                    dzh[j] = dzb[n_p + j]
+            ctrl += 1
+            status[3] = ctrl
+        if s == 0 and lag.shape[0] > 0:
+            if not held:
+                command(L, P, i0, tt[i0], y, n_p, qr[i0], qdr[i0], qddr[i0], Xhin)  # noqa
+            for j in range(9):
+                y[n_pz + j] = Xhin[j]
+        ok = evaluate(P, L, i0, tt[i0], y, k1, qr[i0], qdr[i0], qddr[i0], lo, hi, held, Xh,
+                      Xhin, dzh, lag, n_p, n_z, Xc, X, aux)
+        if s % out_every == 0:
+            k = s // out_every
+            for j in range(9):
+                RQ[k, j] = y[IQ + j]  # noqa: F821
+                RQD[k, j] = y[IQD + j]  # noqa: F821
+                RQDD[k, j] = k1[IQD + j]  # noqa: F821
+                RQR[k, j] = qr[i0, j]
+                RQDR[k, j] = qdr[i0, j]
+                RXC[k, j] = Xc[j]
+                RX[k, j] = X[j]
+                SAT[k, j] = Xc[j] < lo[j] or Xc[j] > hi[j]
+            keep(P, EXTRA, k, y, k1, aux)  # noqa: F821
+            status[2] = k + 1
+            code = check(P, y, aux, ok)  # noqa: F821
+            if code == OK:
+                for j in range(n):
+                    if not (np.isfinite(y[j]) and np.isfinite(k1[j])):
+                        code = DIVERGED
+            if code != OK:
+                status[0] = code
+                status[1] = k
+                return
+        if s == n_steps:
+            break
+        rk4_stage(y, k1, 0.5 * h, st)  # noqa: F821
+        evaluate(P, L, i0 + 1, tt[i0 + 1], st, k2, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], lo,
+                 hi, held, Xh, Xhin, dzh, lag, n_p, n_z, Xc, X, aux)
+        rk4_stage(y, k2, 0.5 * h, st)  # noqa: F821
+        evaluate(P, L, i0 + 1, tt[i0 + 1], st, k3, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], lo,
+                 hi, held, Xh, Xhin, dzh, lag, n_p, n_z, Xc, X, aux)
+        rk4_stage(y, k3, h, st)  # noqa: F821
+        evaluate(P, L, i0 + 2, tt[i0 + 2], st, k4, qr[i0 + 2], qdr[i0 + 2], qddr[i0 + 2], lo,
+                 hi, held, Xh, Xhin, dzh, lag, n_p, n_z, Xc, X, aux)
+        rk4_combine(y, h, k1, k2, k3, k4)  # noqa: F821
+
+
+#: The driver's own templates, instantiated in every namespace.
+TEMPLATES = (quantised, evaluate, loop)
+
+
+def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: str):
+    """The driver's :func:`loop` in a namespace of its own.
+
+    Args:
+        kernels: The plant's kernel module (``rhs``, ``check``, ``keep``, ``inverse``,
+            ``gravity``, ``coords``, ``payload``: compiled functions).
+        law_templates: ``{name: function}``: the law's templates (``command``,
+            ``law_rate`` and what they call), instantiated here.
+        names: Constants of the namespace (``IQ``, ``IQD``).
+        compiled: Compile the loop (Numba) or run it as Python.
+        key: What tells this instance apart (the plant's and the law's names).
+
+    Returns:
+        The namespace: ``ns["loop"]`` the loop, ``ns["command"]``, ``ns["law_rate"]`` the
+        law's (compiled, or Python functions).
+    """
+    from offshore_crane.dynamics import compiled as c
+    from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
+    from offshore_crane.kernel_cache import PROGRAM_DIGEST, njit
+
+    ns: dict = {"__name__": __name__, "np": np, "OK": OK, "DIVERGED": DIVERGED, "STOPPED": STOPPED,
+                "rk4_stage": rk4_stage, "rk4_combine": rk4_combine, **names}
+    for name in ("rhs", "check", "keep", "inverse", "gravity", "coords", "payload"):
+        ns[name] = getattr(kernels, name)
+    templates = {f.__name__: f for f in TEMPLATES} | dict(law_templates)
+    text = "\n".join(inspect.getsource(inspect.getmodule(f)) for f in
+                     {id(f): f for f in [*templates.values(), kernels.rhs.py_func]
+                      }.values())
+    ns[PROGRAM_DIGEST] = hashlib.sha256(f"{key}\n{c.STAMP}\n{text}".encode()).hexdigest()
+    jit = njit(**c.JIT)
+    for name, f in templates.items():
+        fn = types.FunctionType(f.__code__, ns, name, f.__defaults__)
+        ns[name] = jit(fn) if compiled else fn
+    return ns

@@ -1,0 +1,106 @@
+"""Compiled kernels of the elastic plant (:mod:`.elastic`) for the RK4 driver
+(:mod:`offshore_crane.simulation.loop`; imports Numba), over the plant's one-sample
+kernels (:mod:`offshore_crane.dynamics.cable.elastic_plant`). ``P`` (:func:`params`): the
+robot's arrays with and without its payload, the kernels' parameters, the winch's length
+at every stage, the load cells and scratch of the plant and of the law."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from offshore_crane.dynamics import compiled as c
+from offshore_crane.dynamics.cable import elastic_plant as ep
+from offshore_crane.kernel_cache import njit
+from offshore_crane.stops import CODES
+
+OK, _, SINGULAR, _, _, _ = CODES
+jit = njit(**c.JIT)
+derivative, measure, computed_torque = ep.derivative, ep.measure, ep.computed_torque
+actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
+_OK = ep.OK
+
+
+def _make(stamp):
+
+    @jit
+    def rhs(P, i, y, X, dy, aux):
+        """ẏ (24,) into ``dy[:24]``; ``aux[0]`` ok, ``aux[1]`` the tension [N], ``aux[2]``
+        the cable's length [m]."""
+        if len(stamp) == 0:
+            return False
+        Lg, status = P[7], P[10]
+        T = derivative(P[0], P[1], P[2], P[3], P[4], P[5], P[6], Lg[i, 0], Lg[i, 1], y, X,
+                       dy, P[8], P[9], status)
+        ok = status[0] == _OK
+        aux[0] = 1.0 if ok else 0.0
+        aux[1] = T
+        aux[2] = Lg[i, 0]
+        return ok
+
+    @jit
+    def check(P, y, aux, ok):
+        if len(stamp) == 0:
+            return OK
+        return OK if ok else SINGULAR
+
+    @jit
+    def keep(P, EXTRA, k, y, dy, aux):
+        """The payload's position and velocity (3 each), the tension, the length."""
+        if len(stamp) == 0:
+            return
+        for j in range(3):
+            EXTRA[k, j] = y[9 + j]
+            EXTRA[k, 3 + j] = y[21 + j]
+        EXTRA[k, 6] = aux[1]
+        EXTRA[k, 7] = aux[2]
+
+    @jit
+    def inverse(P, i, y, qdd, X):
+        """The Kane pass with the load cell's pull at ``qdd`` (the law's side)."""
+        if len(stamp) == 0:
+            return
+        Lg, cell, work = P[7], P[11], P[12]
+        measure(P[0], P[1], P[2], P[6], Lg[i, 0], Lg[i, 1], y, cell, work)
+        computed_torque(P[0], P[1], P[2], P[6], y, qdd, cell, X, work)
+
+    @jit
+    def gravity(P, i, y, X):
+        """The static forces with the measured pull (rates of the robot zero)."""
+        if len(stamp) == 0:
+            return
+        Lg, cell, work, still = P[7], P[11], P[12], P[13]
+        measure(P[0], P[1], P[2], P[6], Lg[i, 0], Lg[i, 1], y, cell, work)
+        for j in range(24):
+            still[j] = y[j] if (j < 12 or j >= 21) else 0.0
+        computed_torque(P[0], P[1], P[2], P[6], still, P[14], cell, X, work)
+
+    @jit
+    def coords(P, q, qd, s, sd):
+        if len(stamp) == 0:
+            return
+        actuator_coordinates(unpack(P[3], P[4], P[5])[0], q, qd, s, sd)
+
+    @jit
+    def payload(P, y, pay):
+        if len(stamp) == 0:
+            return
+        for j in range(6):
+            pay[j] = np.nan
+
+    return rhs, check, keep, inverse, gravity, coords, payload
+
+
+rhs, check, keep, inverse, gravity, coords, payload = _make(c.STAMP)
+
+
+def params(plant) -> tuple:
+    """``P`` of an :class:`~offshore_crane.simulation.plants.ElasticPlant`."""
+    from offshore_crane.dynamics.constants import cable_arrays, robot_arrays
+
+    a, e = cable_arrays(plant.robot), robot_arrays(plant.empty)
+    par = ep.parameters(plant.g, plant.ea, plant.damping, plant.robot.hybrid.sway_damping,
+                        float(plant.robot.hybrid.drag))
+    return (a.flat, a.layout, a.prismatic, e.flat, e.layout, e.prismatic, par,
+            np.ascontiguousarray(plant.Lg), np.zeros(ep.CELL), np.zeros(ep.WORK),
+            np.zeros(1, dtype=np.int64), np.zeros(ep.CELL), np.zeros(ep.WORK), np.zeros(24),
+            np.zeros(9))

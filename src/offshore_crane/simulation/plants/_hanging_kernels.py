@@ -1,0 +1,107 @@
+"""Compiled kernels of the hanging plant (:mod:`.hanging`) for the RK4 driver
+(:mod:`offshore_crane.simulation.loop`; imports Numba). ``P`` (:func:`params`): the
+plant's and the model's packed arrays with the cable (their sway damping and drag), the
+legs' arrays, gravity and scratch. Closed over the formulas' hash (a formula edited
+rebuilds them)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from offshore_crane.dynamics import compiled as c
+from offshore_crane.dynamics.cable import kernels as ck
+from offshore_crane.kernel_cache import njit
+from offshore_crane.stops import CODES
+
+OK, _, SINGULAR, DIVERGED, _, _ = CODES
+jit = njit(**c.JIT)
+accelerations, computed_torque, pay_kernel = ck.accelerations, ck.computed_torque, ck.payload
+actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
+#: A coordinate beyond this has diverged (record.DIVERGED_STATE).
+LIMIT = 1e6
+
+
+def _make(stamp):
+
+    @jit
+    def rhs(P, i, y, X, dy, aux):
+        """The 11 coordinates' rates and accelerations into ``dy[:22]``; ``aux[0]`` ok,
+        ``aux[1]`` the energy T + V [J]."""
+        if len(stamp) == 0:
+            return False
+        a, en = P[6], P[7]
+        ok = accelerations(P[0], P[1], P[2], P[3], P[4], y[:11], y[11:22], X, P[5], a, en)
+        for j in range(11):
+            dy[j] = y[11 + j]
+            dy[11 + j] = a[j]
+        aux[0] = 1.0 if ok else 0.0
+        aux[1] = en[0] + en[1]
+        return ok
+
+    @jit
+    def check(P, y, aux, ok):
+        """A runaway coordinate (DIVERGED), a singular mass matrix (SINGULAR), or OK."""
+        if len(stamp) == 0:
+            return OK
+        for j in range(11):
+            if abs(y[j]) > LIMIT:
+                return DIVERGED
+        return OK if ok else SINGULAR
+
+    @jit
+    def keep(P, EXTRA, k, y, dy, aux):
+        """The sway, its rate and acceleration (2 each) and the energy into ``EXTRA[k]``."""
+        if len(stamp) == 0:
+            return
+        for j in range(2):
+            EXTRA[k, j] = y[9 + j]
+            EXTRA[k, 2 + j] = y[20 + j]
+            EXTRA[k, 4 + j] = dy[20 + j]
+        EXTRA[k, 6] = aux[1]
+
+    @jit
+    def inverse(P, i, y, qdd, X):
+        """X for ``qdd`` (9,) at the measured ``y`` on the model (the sway read)."""
+        if len(stamp) == 0:
+            return
+        computed_torque(P[8], P[9], P[10], P[11], P[12], y[:11], y[11:22], qdd, P[5], X)
+
+    @jit
+    def gravity(P, i, y, X):
+        """X holding the model still at the measured positions."""
+        if len(stamp) == 0:
+            return
+        zero = P[16]
+        computed_torque(P[8], P[9], P[10], P[11], P[12], y[:11], zero[:11], zero[:9], P[5],
+                        X)
+
+    @jit
+    def coords(P, q, qd, s, sd):
+        """The actuated joints' positions and rates (legs' arrays)."""
+        if len(stamp) == 0:
+            return
+        actuator_coordinates(unpack(P[13], P[14], P[15])[0], q, qd, s, sd)
+
+    @jit
+    def payload(P, y, pay):
+        """The payload relative to the tip, position and velocity (6,), on the model."""
+        if len(stamp) == 0:
+            return
+        pay_kernel(P[8], P[9], P[10], y[:11], y[11:22], pay)
+
+    return rhs, check, keep, inverse, gravity, coords, payload
+
+
+rhs, check, keep, inverse, gravity, coords, payload = _make(c.STAMP)
+
+
+def params(plant) -> tuple:
+    """``P`` of a :class:`~offshore_crane.simulation.plants.HangingPlant`."""
+    from offshore_crane.dynamics.constants import robot_arrays
+
+    a, m = plant.plant_arrays, plant.model_arrays
+    legs = robot_arrays(plant.model.without_hanging_payload())
+    return (a.flat, a.layout, a.prismatic, np.asarray(plant.damp_p, float), plant.drag_p,
+            np.asarray(plant.g, float), np.zeros(11), np.zeros(2), m.flat, m.layout,
+            m.prismatic, np.asarray(plant.damp_c, float), plant.drag_c, legs.flat,
+            legs.layout, legs.prismatic, np.zeros(11))
