@@ -10,12 +10,14 @@ import numpy as np
 
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.cable import elastic_plant as ep
+from offshore_crane.dynamics.linear import kinetic_energy
 from offshore_crane.kernel_cache import njit
 from offshore_crane.stops import CODES
 
 OK, _, SINGULAR, _, _, _ = CODES
 jit = njit(**c.JIT)
 derivative, measure, computed_torque = ep.derivative, ep.measure, ep.computed_torque
+carve = ep._carve
 actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
 _OK = ep.OK
 
@@ -45,7 +47,11 @@ def _make(stamp):
 
     @jit
     def keep(P, EXTRA, k, y, dy, aux):
-        """The payload's position and velocity (3 each), the tension, the length."""
+        """The payload's position and velocity (3 each), the tension, the length and the
+        mechanical energy [J]: the robot's ``T − g · Σ m c`` (the mass matrix and mass
+        moments its equations of motion just formed at ``y``), the payload's
+        ``½ m |v|² − m g · p`` and the cable's strain energy ``½ EA s² / L`` while taut
+        (``s = |ρ| − L``; the load cell's ρ)."""
         if len(stamp) == 0:
             return
         for j in range(3):
@@ -53,6 +59,18 @@ def _make(stamp):
             EXTRA[k, 3 + j] = y[21 + j]
         EXTRA[k, 6] = aux[1]
         EXTRA[k, 7] = aux[2]
+        par, cell, views = P[6], P[8], carve(P[9])
+        Mm, mc = views[15], views[20]
+        n = 6 + unpack(P[3], P[4], P[5])[0].n_arm
+        E = kinetic_energy(Mm, y[12:21], n)
+        C = unpack(P[0], P[1], P[2])[0]
+        m = C.arm_m[C.n_arm - 1]                     # the payload, the chain's last body
+        for j in range(3):
+            E += -par[j] * mc[0, j] + 0.5 * m * y[21 + j] * y[21 + j] - m * par[j] * y[9 + j]
+        stretch = np.sqrt(cell[3] ** 2 + cell[4] ** 2 + cell[5] ** 2) - aux[2]
+        if stretch > 0.0:
+            E += 0.5 * par[3] * stretch * stretch / aux[2]
+        EXTRA[k, 8] = E
 
     @jit
     def inverse(P, i, y, qdd, X):

@@ -31,7 +31,7 @@ class ElasticPlant(Plant):
     size = 24
     Q = slice(0, 9)
     QD = slice(12, 21)
-    RECORDED = {"payload": 3, "payload_velocity": 3, "tension": 0, "length": 0}
+    RECORDED = {"payload": 3, "payload_velocity": 3, "tension": 0, "length": 0, "energy": 0}
     KERNELS = "offshore_crane.simulation.plants._elastic_kernels"
 
     def __init__(self, robot, model, gravity, *, ea, damping, lengths):
@@ -118,7 +118,7 @@ class ElasticPlant(Plant):
         from offshore_crane.simulation.record import actuator_power, workspace_stop
 
         n = len(res)
-        res.tension = rec["tension"][:n]
+        res.tension, res.energy = rec["tension"][:n], rec["energy"][:n]
         res.info.update(payload=rec["payload"][:n], payload_velocity=rec[
             "payload_velocity"][:n], length=rec["length"][:n])
         res.power = actuator_power(self.robot, res.q, res.qd, res.X)
