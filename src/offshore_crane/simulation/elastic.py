@@ -101,3 +101,25 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
             else np.asarray(initial, dtype=float).reshape(3))
     v0 = np.asarray(initial_velocity, dtype=float).reshape(3)
     return run.drive(np.concatenate([run.q0, p_tip + rho0, run.qd0, v_tip + v0]), limits)
+
+
+def warm_up(robot=None) -> list[tuple[str, float]]:
+    """Compile (or load from the cache) the elastic plant's kernels and the driver's loop
+    on it under computed torque: ``[(name, seconds)]``."""
+    import time
+
+    from offshore_crane.dynamics.cable.grid import cable_robot
+    from offshore_crane.robot import load_robot
+
+    t0 = time.perf_counter()
+    robot = robot or load_robot()
+    if robot.hybrid.cable is None:
+        robot = cable_robot(robot, length=1.0, mass=1.0)
+    home = robot.home_pose()
+
+    def rest(tt):
+        q = np.repeat(home[None, :], len(tt), axis=0)
+        return q, 0 * q, 0 * q
+
+    simulate_elastic(robot, 2e-3, rest, ea=1e4, step=1e-3, limits=False)
+    return [("elastic-cable simulation loop", time.perf_counter() - t0)]

@@ -55,8 +55,8 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
 
 
 def warm_up(robot=None) -> list[tuple[str, float]]:
-    """Compile (or load from the cache) the simulation loop with a hanging load (the
-    anti-sway law included): ``[(name, seconds)]``."""
+    """Compile (or load from the cache) the driver's loops with a hanging load under
+    computed torque and the anti-sway law: ``[(name, seconds)]``."""
     import time
 
     from offshore_crane.dynamics.cable import cable_robot
@@ -72,6 +72,6 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
         q = np.repeat(home[None, :], len(tt), axis=0)
         return q, 0 * q, 0 * q
 
-    simulate_swing(robot, 2e-3, rest, controller=Controller(anti_sway=0.1), step=1e-3,
-                   limits=False)
+    for law in (Controller(anti_sway=0.1), Controller()):
+        simulate_swing(robot, 2e-3, rest, controller=law, step=1e-3, limits=False)
     return [("hanging-load simulation loop", time.perf_counter() - t0)]
