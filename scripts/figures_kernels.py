@@ -214,8 +214,20 @@ def simulation_rows(r: dict) -> dict:
                     "`lcaba` (mu = 1e-6).")
     text.append(f"`benchmarks/simulation.py`, {r['date']}, median of {r['repeats']}, on "
                 f"{r['cores']} cores with other processes using up to {others:.1f} of them.")
-    return {("docs/simulation.md", "figure simulation"):
-            "\n\n" + "\n".join(lines) + "\n\n" + " ".join(text) + "\n\n"}
+    out = {("docs/simulation.md", "figure simulation"):
+           "\n\n" + "\n".join(lines) + "\n\n" + " ".join(text) + "\n\n"}
+    pid = r.get("pid")
+    if pid:
+        pd_, pid_ = pid["pd-gravity"], pid["pid"]
+        out[("docs/simulation.md", "figure simulation-pid")] = (
+            f"with the controller's model {pid['model_payload_kg']:g} kg in its payload "
+            f"for the plant's {pid['payload_kg']:g} kg, over the second half of "
+            f"{pid['seconds']:g} s of Table 1, the legs' RMS tracking error is "
+            f"{pd_['legs_rms_m']:.2g} m under PD with gravity compensation and "
+            f"{pid_['legs_rms_m']:.2g} m under PID ({pd_['legs_rms_m'] / pid_['legs_rms_m']:.2g}"
+            f"× smaller), the arm joints' {pd_['arm_rms']:.2g} and {pid_['arm_rms']:.2g} "
+            f"(`benchmarks/simulation.py`, {r['date']})")
+    return out
 
 
 def roofline_rows(r: dict) -> dict:

@@ -135,8 +135,8 @@ def _slack_or_workspace(robot, res, limits):
     first = None
     if slack.any():
         k = int(np.argmax(slack))
-        first = (k, StopCause.SLACK, f"the cable went slack (tension {res.tension[k]:.4g} N: a cable cannot "
-                    "push, the pendulum model no longer holds)")
+        first = (k, StopCause.SLACK, f"the cable went slack (tension {res.tension[k]:.4g} "
+                 "N: a cable cannot push, the pendulum model no longer holds)")
     outside = workspace_stop(robot, res, limits)
     if outside is not None and (first is None or outside[0] < first[0]):
         first = (outside[0], StopCause.WORKSPACE, outside[1])
