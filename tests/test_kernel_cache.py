@@ -166,8 +166,9 @@ def test_compile_runs_its_groups_and_refuses_no_workers(capsys):
     assert "compiled kernels ready in" in out
     lines = out.splitlines()
     assert all(sum(line.startswith(f"{name}:") for line in lines) == 1 for name in
-               ("kane kernels", "rnea kernels", "simulation loop", "hanging-load kernels"))
-    assert len(PARTS) == 6
+               ("kane kernels", "rnea kernels", "simulation loop", "hanging-load kernels",
+                "elastic-cable simulation loop"))
+    assert len(PARTS) == 7
     assert main(["compile", "--jobs", "0"]) == 2
     err = capsys.readouterr().err
     assert "--jobs 0: give at least 1" in err and err.count("\n") == 1

@@ -306,7 +306,5 @@ def warm_up(robot=None, swing: bool = True) -> list[tuple[str, float]]:
     robot = robot or load_robot()
     t0 = time.perf_counter()
     simulate(robot.without_hanging_payload(), 2e-3, table1, step=1e-3)
-    simulate(robot.without_hanging_payload(), 2e-3, table1, step=1e-3,
-             controller=Controller(law="pid"))         # the driver's loop, rigid plant
     return [("simulation loop", time.perf_counter() - t0)] + (
         warm_up_swing(robot) if swing else [])

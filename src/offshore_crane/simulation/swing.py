@@ -55,8 +55,9 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
 
 
 def warm_up(robot=None) -> list[tuple[str, float]]:
-    """Compile (or load from the cache) the driver's loops with a hanging load under
-    computed torque and the anti-sway law: ``[(name, seconds)]``."""
+    """Compile (or load from the cache) the driver's loop with a hanging load under
+    computed torque (``simulate --scene`` of a hanging load; another law's loop compiles
+    on its first use, some 7 s): ``[(name, seconds)]``."""
     import time
 
     from offshore_crane.dynamics.cable import cable_robot
@@ -72,6 +73,5 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
         q = np.repeat(home[None, :], len(tt), axis=0)
         return q, 0 * q, 0 * q
 
-    for law in (Controller(anti_sway=0.1), Controller()):
-        simulate_swing(robot, 2e-3, rest, controller=law, step=1e-3, limits=False)
+    simulate_swing(robot, 2e-3, rest, controller=Controller(), step=1e-3, limits=False)
     return [("hanging-load simulation loop", time.perf_counter() - t0)]
