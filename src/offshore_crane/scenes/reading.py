@@ -20,7 +20,7 @@ from offshore_crane.scenes.keys import (ACTUATOR_MODEL_KEYS, SENSOR_KEYS, CABLE_
                                         SUBSYSTEM_KEYS, TOP_KEYS, TRAJECTORY_KEYS, normalised,
                                         same_value, scene_field)
 from offshore_crane.scenes.scene import Scene
-from offshore_crane.scenes.tables import _Reader, _section
+from offshore_crane.scenes.tables import TableReader, section
 
 
 # --------------------------------------------------------------------------- reading
@@ -47,16 +47,16 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
                              path=where, name="robot.description")
         description = str(p)
     overrides = normalised(where, robot, "[robot]", flatten=True)
-    r = _section(where, data, "payload", PAYLOAD_KEYS)
+    r = section(where, data, "payload", PAYLOAD_KEYS)
     payload = {}
     if "inertia" in r.table and not isinstance(r.get("inertia"), dict):
         r.fail("inertia", f"must be a table of {', '.join(INERTIA_KEYS)} [kg·m²]")
     if "inertia" in r.table:
-        _Reader(where, "payload.inertia", r.get("inertia"), INERTIA_KEYS)  # known keys
+        TableReader(where, "payload.inertia", r.get("inertia"), INERTIA_KEYS)  # known keys
     if "limits" in r.table:
         if not isinstance(r.get("limits"), dict):
             r.fail("limits", f"must be a table of {', '.join(LOAD_LIMIT_KEYS)}")
-        limits = _Reader(where, "payload.limits", r.get("limits"), LOAD_LIMIT_KEYS)
+        limits = TableReader(where, "payload.limits", r.get("limits"), LOAD_LIMIT_KEYS)
         for key in LOAD_LIMIT_KEYS:
             if key in limits.table:
                 payload[f"payload.limits.{key}"] = limits.get(key)
@@ -86,7 +86,7 @@ def _robot(where: str, data: dict, base: Path | None) -> dict:
 
 
 def _trajectory(where: str, data: dict, base: Path | None) -> dict:
-    r = _section(where, data, "trajectory", TRAJECTORY_KEYS)
+    r = section(where, data, "trajectory", TRAJECTORY_KEYS)
     source = r.string("source", "table1")
     out = dict(trajectory=source)
     if source == "sea":
@@ -123,7 +123,7 @@ def _trajectory(where: str, data: dict, base: Path | None) -> dict:
 def _sea(where: str, data: dict, base: Path | None) -> dict:
     """``[sea]`` and ``[operation]``: types here; values by the sea module's own checks
     (:func:`_check_sea`, when the Scene is made)."""
-    r = _section(where, data, "sea", SEA_KEYS)
+    r = section(where, data, "sea", SEA_KEYS)
     sea = {}
     for key in ("hs", "tp", "heading", "scale", "gamma", "spreading", "highpass"):
         if key in r.table:
@@ -146,7 +146,7 @@ def _sea(where: str, data: dict, base: Path | None) -> dict:
 
             r.fail("vessel", f"neither a shipped vessel ({', '.join(vessel_names())}) nor "
                    f"a file {vessel} (relative paths start at the scene file's folder)")
-    o = _section(where, data, "operation", OPERATION_KEYS)
+    o = section(where, data, "operation", OPERATION_KEYS)
     operation = None
     if "waypoints" in o.table:
         w = o.get("waypoints")
@@ -165,7 +165,7 @@ def _lift(where: str, data: dict, base: Path | None) -> dict:
     (model scale, base frame: the deck's mean height under the load; required), ``deck`` (a point
     on a second vessel heaving in the scene's sea, as ``[control] target``; none: a still
     deck)."""
-    r = _section(where, data, "lift", LIFT_KEYS)
+    r = section(where, data, "lift", LIFT_KEYS)
     if not r.table:
         return {}
     out = {"event": r.string("event", None, LIFT_EVENTS)}
@@ -238,7 +238,7 @@ def _control(where: str, data: dict, base: Path | None = None) -> dict:
     from offshore_crane.errors import InputError
     from offshore_crane.simulation.rigid import INTEGRATORS
 
-    r = _section(where, data, "control", CONTROL_KEYS)
+    r = section(where, data, "control", CONTROL_KEYS)
     out: dict = {}
     if "law" in r.table:
         out["law"] = r.string("law")          # a law of the registry: checked below
@@ -303,7 +303,7 @@ def _instruments(where: str, data: dict) -> dict:
     from offshore_crane.errors import InputError
     from offshore_crane.simulation.instruments import Actuators, Sensors
 
-    r = _section(where, data, "sensors", SENSOR_KEYS)
+    r = section(where, data, "sensors", SENSOR_KEYS)
     sensors: dict = {}
     for key, unit in (("noise_q", "m, rad"), ("noise_qd", "m/s, rad/s"),
                       ("resolution_q", "m, rad"), ("resolution_qd", "m/s, rad/s")):
@@ -317,16 +317,15 @@ def _instruments(where: str, data: dict) -> dict:
         sensors["seed"] = r.integer("seed", 0)
     table = data.get("actuators", {})
     actuators: dict = {}
-    for key, unit in (("rate_limit", "N·m/s, N/s"), ("lag", "s")):
+    for key in ("rate_limit", "lag"):
         if isinstance(table, dict) and key in table:
             actuators[key] = table[key]
-    for section, cls, values in (("sensors", Sensors, sensors),
-                                 ("actuators", Actuators, actuators)):
+    for name, cls, values in (("sensors", Sensors, sensors),
+                              ("actuators", Actuators, actuators)):
         try:
             cls(**values)
         except (InputError, TypeError) as exc:
-            raise SceneError(f"{where}: [{section}] {exc}", path=where,
-                             name=section) from None
+            raise SceneError(f"{where}: [{name}] {exc}", path=where, name=name) from None
     return {"sensors": sensors, "actuator_models": actuators}
 
 
@@ -337,7 +336,7 @@ def _cable(where: str, data: dict) -> dict:
     checked."""
     from offshore_crane.dynamics.cable import SLACK
 
-    r = _section(where, data, "cable", CABLE_KEYS)
+    r = section(where, data, "cable", CABLE_KEYS)
     out: dict = {}
     if "initial" in r.table:
         out["initial"] = r.vector("initial", 2, unit="rad")
@@ -361,7 +360,7 @@ def _extremes(where: str, data: dict) -> dict:
     [h], ``record``, ``seeds``, ``spin_up`` [s], checked."""
     from offshore_crane.scenes.keys import EXTREMES_KEYS, EXTREMES_RECORDS
 
-    r = _section(where, data, "extremes", EXTREMES_KEYS)
+    r = section(where, data, "extremes", EXTREMES_KEYS)
     out: dict = {}
     if "exposure" in r.table:
         out["exposure"] = r.number("exposure", None, "h", positive=True)
@@ -389,9 +388,9 @@ def scene_from_dict(data: dict, where: str = "scene", base: Path | None = None) 
         if isinstance(value, dict) and key not in SECTIONS:
             raise SceneError(f"{where}: unknown section [{key}]: known sections are "
                              f"{', '.join(f'[{s}]' for s in SECTIONS)}", path=where, name=key)
-    top = _Reader(where, None, {k: v for k, v in data.items() if k not in SECTIONS},
+    top = TableReader(where, None, {k: v for k, v in data.items() if k not in SECTIONS},
                   TOP_KEYS)
-    sub = _section(where, data, "subsystems", SUBSYSTEM_KEYS)
+    sub = section(where, data, "subsystems", SUBSYSTEM_KEYS)
     control = _control(where, data, base)
     cable = _cable(where, data)
     return Scene(                       # Scene checks how the parts fit (check_scene)

@@ -1,6 +1,6 @@
-"""Reading one table of a scene file: :class:`_Reader` checks its keys and values
+"""Reading one table of a scene file: :class:`TableReader` checks its keys and values
 (numbers with their units and bounds, vectors, names, booleans), naming the file, the
-section and the key in every message; :func:`_section` opens a section."""
+section and the key in every message; :func:`section` opens a section."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from offshore_crane.io import toml_value
 from offshore_crane.validation import not_a_number
 
 
-class _Reader:
+class TableReader:
     """Checks the values of one scene table; errors name ``where`` and the key."""
 
     def __init__(self, where: str, section: str | None, table: dict, known: tuple):
@@ -103,9 +103,9 @@ class _Reader:
         return tuple(v)
 
 
-def _section(where: str, data: dict, name: str, known: tuple) -> _Reader:
+def section(where: str, data: dict, name: str, known: tuple) -> TableReader:
     table = data.get(name, {})
     if not isinstance(table, dict):
         raise SceneError(f"{where}: {name} = {toml_value(table)}: must be a table [{name}]",
                          path=where, name=name)
-    return _Reader(where, name, table, known)
+    return TableReader(where, name, table, known)

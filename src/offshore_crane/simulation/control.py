@@ -1,7 +1,7 @@
 """A controller: a law of the registry by name (:mod:`offshore_crane.simulation.laws`)
 and its options.
 
-The laws (``docs/simulation.md``; with a hanging load, ``docs/cable.md``):
+The laws (``docs/simulation.md``; with a hanging load ``docs/cable.md``):
 
 - ``"computed-torque"``: ``X = ID_model(q, q̇, q̈_ref + Kd (q̇_ref − q̇) + Kp (q_ref − q))``
   at the *measured* state, with the controller's own robot model. With an exact model the

@@ -20,7 +20,7 @@ one text of the tableau), the reference evaluated at every stage time.
 At every output sample it records q, q̇, q̈, the reference, the commanded and applied
 forces (saturation flagged) and the plant's own arrays, and checks the stops: a
 non-finite state (:attr:`~offshore_crane.stops.StopCause.DIVERGED`) and the plant's own
-(:meth:`~offshore_crane.simulation.plants.Plant.check`); the plant's ``finish`` finds
+(the plant's compiled ``check``); the plant's ``finish`` finds
 those seen on the record (a workspace violation, a slack cable). A stop raises
 :class:`~offshore_crane.errors.SimulationError` carrying every sample before it.
 """

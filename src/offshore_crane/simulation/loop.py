@@ -20,11 +20,15 @@ from __future__ import annotations
 
 import hashlib
 import inspect
+import os
 import types
 
 import numpy as np
 
+from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 from offshore_crane.stops import CODES
+from offshore_crane.simulation.templates import (IQ, IQD, check, command, keep,
+                                                law_rate, rhs)
 
 OK, _WORKSPACE, _SINGULAR, DIVERGED, STOPPED, _SLACK = CODES
 
@@ -48,17 +52,17 @@ def evaluate(P, L, i, t, y, dy, qr, qdr, qddr, lo, hi, held, Xh, Xhin, dzh, lag,
         for j in range(9):
             Xc[j] = Xh[j]
     else:
-        command(L, P, i, t, y, n_p, qr, qdr, qddr, Xc)  # noqa: F821 (the namespace's)
+        command(L, P, i, t, y, n_p, qr, qdr, qddr, Xc)
     for j in range(9):
         src = y[n_pz + j] if nl > 0 else (Xhin[j] if held else Xc[j])
         X[j] = min(max(src, lo[j]), hi[j])
-    ok = rhs(P, i, y, X, dy, aux)  # noqa: F821
+    ok = rhs(P, i, y, X, dy, aux)
     if n_z > 0:
         if held:
             for j in range(n_z):
                 dy[n_p + j] = dzh[j]
         else:
-            law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy)  # noqa: F821
+            law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy)
     for j in range(nl):
         dy[n_pz + j] = ((Xhin[j] if held else Xc[j]) - y[n_pz + j]) / lag[j]
     return ok
@@ -112,10 +116,10 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
                 for j in range(n_p):
                     ym[j] = hist[r, j] if s >= delay else first[j]
                 for j in range(9):
-                    ym[IQ + j] = quantised(ym[IQ + j] + nq[ctrl, j], resq[j])  # noqa: F821
-                    ym[IQD + j] = quantised(ym[IQD + j] + nqd[ctrl, j],  # noqa: F821
+                    ym[IQ + j] = quantised(ym[IQ + j] + nq[ctrl, j], resq[j])
+                    ym[IQD + j] = quantised(ym[IQD + j] + nqd[ctrl, j],
                                             resqd[j])
-            command(L, P, i0, tt[i0], ym, n_p, qr[i0], qdr[i0], qddr[i0], Xh)  # noqa: F821
+            command(L, P, i0, tt[i0], ym, n_p, qr[i0], qdr[i0], qddr[i0], Xh)
             for j in range(9):
                 if rlim.shape[0] > 0 and ctrl > 0:
                     step = rlim[j] * period
@@ -126,7 +130,7 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
             if n_z > 0:
                 for j in range(9):
                     X[j] = min(max(Xhin[j], lo[j]), hi[j])
-                law_rate(L, P, i0, tt[i0], ym, n_p, qr[i0], qdr[i0], qddr[i0], Xh, X,  # noqa
+                law_rate(L, P, i0, tt[i0], ym, n_p, qr[i0], qdr[i0], qddr[i0], Xh, X,
                          dzb)
                 for j in range(n_z):
                     dzh[j] = dzb[n_p + j]
@@ -134,7 +138,7 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
             status[3] = ctrl
         if s == 0 and lag.shape[0] > 0:
             if not held:
-                command(L, P, i0, tt[i0], y, n_p, qr[i0], qdr[i0], qddr[i0], Xhin)  # noqa
+                command(L, P, i0, tt[i0], y, n_p, qr[i0], qdr[i0], qddr[i0], Xhin)
             for j in range(9):
                 y[n_pz + j] = Xhin[j]
         ok = evaluate(P, L, i0, tt[i0], y, k1, qr[i0], qdr[i0], qddr[i0], lo, hi, held, Xh,
@@ -142,17 +146,17 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
         if s % out_every == 0:
             k = s // out_every
             for j in range(9):
-                RQ[k, j] = y[IQ + j]  # noqa: F821
-                RQD[k, j] = y[IQD + j]  # noqa: F821
-                RQDD[k, j] = k1[IQD + j]  # noqa: F821
+                RQ[k, j] = y[IQ + j]
+                RQD[k, j] = y[IQD + j]
+                RQDD[k, j] = k1[IQD + j]
                 RQR[k, j] = qr[i0, j]
                 RQDR[k, j] = qdr[i0, j]
                 RXC[k, j] = Xc[j]
                 RX[k, j] = X[j]
                 SAT[k, j] = Xc[j] < lo[j] or Xc[j] > hi[j]
-            keep(P, EXTRA, k, y, k1, aux)  # noqa: F821
+            keep(P, EXTRA, k, y, k1, aux)
             status[2] = k + 1
-            code = check(P, y, aux, ok)  # noqa: F821
+            code = check(P, y, aux, ok)
             if code == OK:
                 for j in range(n):
                     if not (np.isfinite(y[j]) and np.isfinite(k1[j])):
@@ -163,20 +167,29 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
                 return
         if s == n_steps:
             break
-        rk4_stage(y, k1, 0.5 * h, st)  # noqa: F821
+        rk4_stage(y, k1, 0.5 * h, st)
         evaluate(P, L, i0 + 1, tt[i0 + 1], st, k2, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], lo,
                  hi, held, Xh, Xhin, dzh, lag, n_p, n_z, Xc, X, aux)
-        rk4_stage(y, k2, 0.5 * h, st)  # noqa: F821
+        rk4_stage(y, k2, 0.5 * h, st)
         evaluate(P, L, i0 + 1, tt[i0 + 1], st, k3, qr[i0 + 1], qdr[i0 + 1], qddr[i0 + 1], lo,
                  hi, held, Xh, Xhin, dzh, lag, n_p, n_z, Xc, X, aux)
-        rk4_stage(y, k3, h, st)  # noqa: F821
+        rk4_stage(y, k3, h, st)
         evaluate(P, L, i0 + 2, tt[i0 + 2], st, k4, qr[i0 + 2], qdr[i0 + 2], qddr[i0 + 2], lo,
                  hi, held, Xh, Xhin, dzh, lag, n_p, n_z, Xc, X, aux)
-        rk4_combine(y, h, k1, k2, k3, k4)  # noqa: F821
+        rk4_combine(y, h, k1, k2, k3, k4)
 
 
 #: The driver's own templates, instantiated in every namespace.
 TEMPLATES = (quantised, evaluate, loop)
+
+
+def _text(f) -> str:
+    """The source of the module that defines ``f`` (its code's bytes and constants where
+    there is no source file)."""
+    try:
+        return inspect.getsource(inspect.getmodule(f))
+    except (OSError, TypeError):
+        return repr((f.__code__.co_code, f.__code__.co_consts, f.__code__.co_names))
 
 
 def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: str):
@@ -196,7 +209,6 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
         law's (compiled, or Python functions).
     """
     from offshore_crane.dynamics import compiled as c
-    from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
     from offshore_crane.kernel_cache import PROGRAM_DIGEST, njit
 
     ns: dict = {"__name__": __name__, "np": np, "OK": OK, "DIVERGED": DIVERGED, "STOPPED": STOPPED,
@@ -204,11 +216,13 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
     for name in ("rhs", "check", "keep", "inverse", "gravity", "coords", "payload"):
         ns[name] = getattr(kernels, name)
     templates = {f.__name__: f for f in TEMPLATES} | dict(law_templates)
-    text = "\n".join(inspect.getsource(inspect.getmodule(f)) for f in
-                     {id(f): f for f in [*templates.values(), kernels.rhs.py_func]
-                      }.values())
-    ns[PROGRAM_DIGEST] = hashlib.sha256(f"{key}\n{c.STAMP}\n{text}".encode()).hexdigest()
-    jit = njit(**c.JIT)
+    parts = {id(f): f for f in [*templates.values(), kernels.rhs.py_func]}.values()
+    ns[PROGRAM_DIGEST] = hashlib.sha256(
+        f"{key}\n{c.STAMP}\n{''.join(_text(f) for f in parts)}".encode()).hexdigest()
+    # a template from a file Numba cannot cache beside (a notebook, a snippet): not cached
+    cache = all(f.__code__.co_filename.endswith(".py") and
+                os.path.isfile(f.__code__.co_filename) for f in templates.values())
+    jit = njit(**{**c.JIT, "cache": cache and c.JIT.get("cache", False)})
     for name, f in templates.items():
         fn = types.FunctionType(f.__code__, ns, name, f.__defaults__)
         ns[name] = jit(fn) if compiled else fn

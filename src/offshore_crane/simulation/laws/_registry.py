@@ -22,9 +22,10 @@ class Law:
     A subclass sets :attr:`name` (its registry key), :attr:`plants` (where it makes
     sense; :attr:`refusal` says in one line why not elsewhere), :attr:`state_size` (its
     own slot in the integrated state, e.g. an integral term; 0: none) and implements
-    :meth:`command` (and :meth:`state_rate` when it has a state). :attr:`code` is the law's
-    code in the compiled rigid-robot loop (:mod:`offshore_crane.simulation.laws.codes`), or
-    None: it then runs on the RK4 driver (:mod:`offshore_crane.simulation.driver`).
+    :meth:`params` and :meth:`templates` (functions written for Numba). :attr:`code` is
+    the law's code in the rigid robot's own compiled loop
+    (:mod:`offshore_crane.simulation.laws.codes`), or None; every law runs on the RK4
+    driver (:mod:`offshore_crane.simulation.loop`) with every plant it names.
 
     Attributes (of a bound law):
         controller: The :class:`~offshore_crane.simulation.control.Controller`.

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from offshore_crane.simulation.templates import ct_command, payload
 from offshore_crane.simulation.laws import computed_torque
 from offshore_crane.simulation.laws._registry import register
 from offshore_crane.simulation.laws.computed_torque import ComputedTorque
@@ -33,7 +34,7 @@ def shift(L, P, y, n_p, dd):
         dd[0] = 0.0
         dd[1] = 0.0
         return
-    payload(P, y, pay)  # noqa: F821 (the plant's, in the driver's namespace)
+    payload(P, y, pay)
     for j in range(2):
         dd[j] = k * pay[j] - wc * wc * y[n_p + j] - 2.0 * wc * y[n_p + 2 + j]
 
@@ -51,7 +52,7 @@ def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
         rq[j] += y[n_p + j]
         rqd[j] += y[n_p + 2 + j]
         rqdd[j] += dd[j]
-    ct_command(L, P, i, t, y, n_p, rq, rqd, rqdd, X)  # noqa: F821
+    ct_command(L, P, i, t, y, n_p, rq, rqd, rqdd, X)
 
 
 def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):

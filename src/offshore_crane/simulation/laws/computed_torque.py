@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from offshore_crane.simulation.templates import IQ, IQD, inverse
 from offshore_crane.simulation.laws import codes
 from offshore_crane.simulation.laws._registry import Law, register
 
@@ -16,8 +17,8 @@ def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
     """X of the law at ``y`` (``L``: kp, kd, a scratch (9,))."""
     kp, kd, cmd = L[0], L[1], L[2]
     for j in range(9):
-        cmd[j] = qddr[j] + kd[j] * (qdr[j] - y[IQD + j]) + kp[j] * (qr[j] - y[IQ + j])  # noqa
-    inverse(P, i, y, cmd, X)  # noqa: F821 (the plant's, in the driver's namespace)
+        cmd[j] = qddr[j] + kd[j] * (qdr[j] - y[IQD + j]) + kp[j] * (qr[j] - y[IQ + j])
+    inverse(P, i, y, cmd, X)
 
 
 def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from offshore_crane.simulation.templates import IQ, IQD, coords, gravity
 from offshore_crane.simulation.laws import codes
 from offshore_crane.simulation.laws._registry import Law, register
 
@@ -19,10 +20,10 @@ def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
     """X of the law at ``y`` (``L``: kp, kd, with gravity (bool), scratch s, ṡ, s_ref,
     ṡ_ref, X_g (9,) each)."""
     kp, kd, grav, s, sd, sr, sdr, Xg = L[0], L[1], L[2], L[3], L[4], L[5], L[6], L[7]
-    coords(P, y[IQ:IQ + 9], y[IQD:IQD + 9], s, sd)  # noqa: F821
-    coords(P, qr, qdr, sr, sdr)  # noqa: F821
+    coords(P, y[IQ:IQ + 9], y[IQD:IQD + 9], s, sd)
+    coords(P, qr, qdr, sr, sdr)
     if grav:
-        gravity(P, i, y, Xg)  # noqa: F821
+        gravity(P, i, y, Xg)
     else:
         for j in range(9):
             Xg[j] = 0.0

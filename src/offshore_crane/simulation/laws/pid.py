@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from offshore_crane.simulation.templates import IQ, IQD, coords, pd_command
 from offshore_crane.simulation.laws import pd
 from offshore_crane.simulation.laws._registry import register
 from offshore_crane.simulation.laws.pd import PDGravity
@@ -37,7 +38,7 @@ def default_ki(kp: np.ndarray, kd: np.ndarray) -> np.ndarray:
 def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
     """PD with gravity compensation plus ``Ki z`` (``L``: PD's, then ki, the
     back-calculation gain 1/(Ki T_t))."""
-    pd_command(L, P, i, t, y, n_p, qr, qdr, qddr, X)  # noqa: F821 (the namespace's)
+    pd_command(L, P, i, t, y, n_p, qr, qdr, qddr, X)
     ki = L[8]
     for j in range(9):
         X[j] = X[j] + ki[j] * y[n_p + j]
@@ -46,8 +47,8 @@ def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
 def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
     """``ż = e + (X − X_cmd) / (Ki T_t)`` into ``dy[n_p:n_p + 9]``."""
     s, sd, sr, sdr, back = L[3], L[4], L[5], L[6], L[9]
-    coords(P, y[IQ:IQ + 9], y[IQD:IQD + 9], s, sd)  # noqa: F821
-    coords(P, qr, qdr, sr, sdr)  # noqa: F821
+    coords(P, y[IQ:IQ + 9], y[IQD:IQD + 9], s, sd)
+    coords(P, qr, qdr, sr, sdr)
     for j in range(9):
         dy[n_p + j] = (sr[j] - s[j]) + back[j] * (X[j] - Xc[j])
 
