@@ -48,20 +48,24 @@ class Timing:
     t0: float = 0.0
 
 
-#: Compiled (or Python) loops made in this process: ``{(plant, law, compiled): loop}``.
+#: Compiled (or Python) loops made in this process: ``{(plant, templates, compiled): loop}``.
 _LOOPS: dict = {}
 
 
 def loop_for(plant, law):
     """The driver's loop for ``plant`` under ``law`` (made once per process; a compiled
     one is cached on disk)."""
-    key = (plant.name, law.name, law.compiled)
+    templates = law.templates()
+    # laws that share their templates (pd and pd-gravity: a flag in L) share a loop
+    parts = " ".join(f"{name}={f.__module__}.{f.__qualname__}"
+                     for name, f in sorted(templates.items()))
+    key = (plant.name, parts, law.compiled)
     if key not in _LOOPS:
         from offshore_crane.simulation.loop import instantiate
 
-        _LOOPS[key] = instantiate(plant.kernels(), law.templates(),
+        _LOOPS[key] = instantiate(plant.kernels(), templates,
                                   {"IQ": plant.Q.start, "IQD": plant.QD.start},
-                                  law.compiled, f"{plant.name} {law.name}")["loop"]
+                                  law.compiled, f"{plant.name} {parts}")["loop"]
     return _LOOPS[key]
 
 
