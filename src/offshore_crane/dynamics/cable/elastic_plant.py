@@ -10,8 +10,8 @@ the pull ``P = T ρ̂ − F_s`` on the robot at the payload's place (``F_s``:
 :func:`~offshore_crane.dynamics.sway.sway_damping_force` while the cable pulls); the
 robot's accelerations from its equations of motion (the explicit Kane pass,
 ``formulas.explicit_sample``, solved by Cholesky) under ``X − ΔX(P)``, with ``ΔX(P)`` the
-Kane pass with the pull alone (``formulas.kane_sample_pull`` at rest and without gravity:
-the pull enters the pass linearly, so this is the pass with it less the same without it); the payload's acceleration ``g + (F_d − P) / m`` (``F_d``:
+Kane pass with the pull at rest (``formulas.kane_sample_pull`` at ``q̈ = 0``) less the same
+without it; the payload's acceleration ``g + (F_d − P) / m`` (``F_d``:
 :func:`~offshore_crane.dynamics.sway.drag_force`). :func:`computed_torque` is the built-in
 law's X: the Kane pass with the measured pull at the commanded accelerations, and
 :func:`measure` the pull (the load cell) it reads.
@@ -220,12 +220,11 @@ def _make(stamp):
         g = (par[0], par[1], par[2])
         pull = (cell[0], cell[1], cell[2])
         at = (cell[3], cell[4], cell[5])
-        # ΔX(P): the pull enters the Kane pass linearly, so it is the pass with the pull
-        # alone (at rest, without gravity: qdd holds zeros, for q̇ and q̈ both)
-        pulled(C, q, qdd, qdd, (0.0, 0.0, 0.0), pull, at, Xp, rows, A, rhs6, diag, store,
-               x6, M13)
+        pulled(C, q, qd, qdd, g, pull, at, Xp, rows, A, rhs6, diag, store, x6, M13)
+        pulled(C, q, qd, qdd, g, (0.0 * pull[0], 0.0 * pull[1], 0.0 * pull[2]), at, X0,
+               rows, A, rhs6, diag, store, x6, M13)
         for j in range(9):
-            Xs[j] = X[j] - Xp[j]
+            Xs[j] = X[j] - (Xp[j] - X0[j])
         ok = accelerate(E, q, qd, Xs, g, a, B, J, Mm, Lc, store, Vw, Ww, Vs, diag, mc, rhs,
                         qdd)
         m = C.arm_m[na - 1]
