@@ -217,8 +217,11 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
         ns[name] = getattr(kernels, name)
     templates = {f.__name__: f for f in TEMPLATES} | dict(law_templates)
     parts = {id(f): f for f in [*templates.values(), kernels.rhs.py_func]}.values()
+    from offshore_crane.dynamics import integrator
+
+    stamp = f"{c.STAMP}{kernels.STAMP}{inspect.getsource(integrator)}"   # what it links
     ns[PROGRAM_DIGEST] = hashlib.sha256(
-        f"{key}\n{c.STAMP}\n{''.join(_text(f) for f in parts)}".encode()).hexdigest()
+        f"{key}\n{stamp}\n{''.join(_text(f) for f in parts)}".encode()).hexdigest()
     # a template from a file Numba cannot cache beside (a notebook, a snippet): not cached
     cache = all(f.__code__.co_filename.endswith(".py") and
                 os.path.isfile(f.__code__.co_filename) for f in templates.values())

@@ -6,6 +6,9 @@ rebuilds them)."""
 
 from __future__ import annotations
 
+import hashlib
+import inspect
+
 import numpy as np
 
 from offshore_crane.dynamics import compiled as c
@@ -92,7 +95,11 @@ def _make(stamp):
     return rhs, check, keep, inverse, gravity, coords, payload
 
 
-rhs, check, keep, inverse, gravity, coords, payload = _make(c.STAMP)
+#: What these kernels' disk cache is keyed by: the formulas' hash and the text of
+#: the cable's kernels they call (Numba's cache checks only a function's own file, so a callee
+#: edited elsewhere would otherwise be linked stale).
+STAMP = c.STAMP + hashlib.sha256(inspect.getsource(ck).encode()).hexdigest()
+rhs, check, keep, inverse, gravity, coords, payload = _make(STAMP)
 
 
 def params(plant) -> tuple:

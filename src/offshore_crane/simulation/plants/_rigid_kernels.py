@@ -6,6 +6,9 @@ the law's workspaces."""
 
 from __future__ import annotations
 
+import hashlib
+import inspect
+
 import numpy as np
 
 from offshore_crane.dynamics import compiled as c
@@ -82,7 +85,11 @@ def _make(stamp):
     return rhs, check, keep, inverse, gravity, coords, payload
 
 
-rhs, check, keep, inverse, gravity, coords, payload = _make(c.STAMP)
+#: What these kernels' disk cache is keyed by: the formulas' hash and the text of
+#: the rigid loop's kernels they call (Numba's cache checks only a function's own file, so a callee
+#: edited elsewhere would otherwise be linked stale).
+STAMP = c.STAMP + hashlib.sha256(inspect.getsource(rk4).encode()).hexdigest()
+rhs, check, keep, inverse, gravity, coords, payload = _make(STAMP)
 
 
 def _workspaces(na: int):
