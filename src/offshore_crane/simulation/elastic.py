@@ -13,8 +13,6 @@ The step must resolve the cable's axial period ``2π √(m L / EA)``: at least
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from offshore_crane.conventions import GRAVITY
@@ -65,7 +63,6 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     from offshore_crane.dynamics.cable.tip import tip_positions
     from offshore_crane.simulation.control import Controller
     from offshore_crane.simulation.plants import ElasticPlant
-    from offshore_crane.simulation.record import steps
     from offshore_crane.simulation.runs import prepare
 
     controller = Controller() if controller is None else controller
@@ -79,23 +76,27 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     check_cable(ea, damping, m)
     g = as_gravity(gravity)
     gn = float(np.linalg.norm(g))
-    n_steps = steps(duration, step, rate, None)[0]
-    tt = t0 + np.arange(2 * n_steps + 1) * (0.5 * step)
     L0 = float(robot.hybrid.cable_length)
-    Lg = (np.column_stack([np.full(len(tt), L0), np.zeros(len(tt)), np.zeros(len(tt))])
-          if hoist is None else np.column_stack([np.asarray(x, float).reshape(len(tt))
-                                                 for x in hoist(tt)]))
-    period = 2.0 * math.pi * math.sqrt(m * float(Lg[:, 0].min()) / ea)
-    if step > period / STEPS_PER_PERIOD:
-        raise InputError(f"step = {step:g} s is too long for the cable's axial period "
-                         f"{period * 1e3:.3g} ms: give step <= "
-                         f"{period / STEPS_PER_PERIOD:.3g} s ({STEPS_PER_PERIOD} steps a "
-                         "period)", name="step")
+
+    def plant(model, g, tt):
+        """The elastic plant with the winch's length at every stage time ``tt``; refused
+        when the step cannot resolve the cable's shortest axial period."""
+        Lg = (np.column_stack([np.full(len(tt), L0), np.zeros(len(tt)), np.zeros(len(tt))])
+              if hoist is None else np.column_stack([np.asarray(x, float).reshape(len(tt))
+                                                     for x in hoist(tt)]))
+        p = ElasticPlant(robot, model, g, ea=ea, damping=damping, lengths=Lg)
+        if step > p.axial_period / STEPS_PER_PERIOD:
+            raise InputError(f"step = {step:g} s is too long for the cable's axial period "
+                             f"{p.axial_period * 1e3:.3g} ms: give step <= "
+                             f"{p.axial_period / STEPS_PER_PERIOD:.3g} s ({STEPS_PER_PERIOD} "
+                             "steps a period)", name="step")
+        return p
+
     run = prepare(robot, duration, reference, q0, qd0, controller, gravity=gravity,
                   step=step, rate=rate, t0=t0, sensors=sensors, actuators=actuators,
-                  plant=lambda model, g: ElasticPlant(robot, model, g, ea=ea,
-                                                      damping=damping, lengths=Lg),
-                  info={"axial_period": period})
+                  plant=plant)
+    Lg = run.plant.Lg
+    run.info["axial_period"] = run.plant.axial_period
     p_tip, v_tip = (x[0] for x in tip_positions(robot, run.q0[None], run.qd0[None]))
     rho0 = (g / gn * Lg[0, 0] * (1.0 + m * gn / ea) if initial is None
             else np.asarray(initial, dtype=float).reshape(3))
@@ -115,11 +116,8 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     robot = robot or load_robot()
     if robot.hybrid.cable is None:
         robot = cable_robot(robot, length=1.0, mass=1.0)
-    home = robot.home_pose()
+    from offshore_crane.simulation.record import held
 
-    def rest(tt):
-        q = np.repeat(home[None, :], len(tt), axis=0)
-        return q, 0 * q, 0 * q
-
+    rest = held(robot.home_pose())
     simulate_elastic(robot, 2e-3, rest, ea=1e4, step=1e-3, limits=False)
     return [("elastic-cable simulation loop", time.perf_counter() - t0)]

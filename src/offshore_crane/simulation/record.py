@@ -72,13 +72,30 @@ class SimulationResult:
                                 stop=self.stop, info=self.info, **cable)
 
 
+def stage_times(t0: float, h: float, n_steps: int) -> np.ndarray:
+    """Every RK4 stage time ``(2 n_steps + 1,)`` = t0 + k·h/2 [s]."""
+    return t0 + np.arange(2 * n_steps + 1) * (0.5 * h)
+
+
 def reference_grid(reference, t0: float, h: float, n_steps: int):
-    """The reference at every RK4 stage time: ``(tt, q, qd, qdd)``, ``tt (2 n_steps + 1,)``
-    = t0 + k·h/2 [s] and ``(2 n_steps + 1, 9)`` C-contiguous arrays from
+    """The reference at every RK4 stage time: ``(tt, q, qd, qdd)``, ``tt``
+    (:func:`stage_times`) and ``(2 n_steps + 1, 9)`` C-contiguous arrays from
     ``reference(tt)`` [m, rad, /s, /s²]."""
-    tt = t0 + np.arange(2 * n_steps + 1) * (0.5 * h)
+    tt = stage_times(t0, h, n_steps)
     q, qd, qdd = reference(tt)
     return tt, np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd)
+
+
+def held(q: np.ndarray):
+    """A reference that holds the pose ``q`` ``(9,)`` [m, rad]: ``reference(t) -> (q, 0, 0)``
+    each ``(n, 9)`` (the warm-ups' motion)."""
+    q = np.asarray(q, dtype=float)
+
+    def reference(t):
+        n = len(np.atleast_1d(t))
+        return np.tile(q, (n, 1)), np.zeros((n, 9)), np.zeros((n, 9))
+
+    return reference
 
 
 def steps(duration, step, rate, control_rate) -> tuple[int, int, int]:

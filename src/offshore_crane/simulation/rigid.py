@@ -224,7 +224,7 @@ def _driven(robot, duration, reference, q0, qd0, controller, gravity, step, rate
                          name="anti_sway")
     run = prepare(robot, duration, reference, q0, qd0, controller, gravity=gravity,
                   step=step, rate=rate, t0=t0, sensors=sensors, actuators=actuators,
-                  plant=lambda model, g: RigidPlant(robot, model, g))
+                  plant=lambda model, g, tt: RigidPlant(robot, model, g))
     return run.drive(np.concatenate([run.q0, run.qd0]), limits)
 
 
@@ -245,15 +245,9 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
     kp, kd = controller.gains
     lo, hi = controller.bounds(robot)
     n = 6 + C.n_arm
-    ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
-          np.empty((max(C.n_arm, 1), 27)), np.empty((9, 3)), np.empty((9, 3)),
-          np.empty((9, 3)), np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9),
-          np.zeros(9))
-    na = C.n_arm
-    wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
-          np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
-          np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
-          np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
+    from offshore_crane.simulation.rk4 import workspaces
+
+    ws, wl = workspaces(max(C.n_arm, Cc.n_arm))
     gt = tuple(float(x) for x in g)
     X = np.empty(9)
     qdd = np.empty(9)

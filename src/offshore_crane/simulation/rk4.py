@@ -316,3 +316,17 @@ def _runner(stamp):
 
 
 run = _runner(STAMP)
+
+
+def workspaces(na: int):
+    """The equations' (``ws``) and the law's (``wl``) work tuples of :func:`accel`,
+    :func:`law` (what :func:`run` makes for itself) for an arm of ``na`` joints, for calls
+    from Python (the DOP853 path) and the rigid plant's kernels."""
+    ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
+          np.empty((max(na, 1), 27)), np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)),
+          np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9), np.zeros(9))
+    wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
+          np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
+          np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
+          np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
+    return ws, wl

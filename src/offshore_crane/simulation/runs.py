@@ -89,8 +89,8 @@ def sensors_of(controller, sensors):
 def prepare(robot, duration, reference, q0, qd0, controller, *, gravity=GRAVITY,
             step: float = 1e-3, rate=None, t0: float = 0.0, sensors=None, actuators=None,
             plant=None, info=None) -> Run:
-    """Check and set up a run of ``plant(model, g)`` (a factory: the controller's model
-    and the gravity) under ``controller`` (arguments as
+    """Check and set up a run of ``plant(model, g, tt)`` (a factory: the controller's
+    model, the gravity and every stage time [s]) under ``controller`` (arguments as
     :func:`offshore_crane.simulation.rigid.simulate`).
 
     Raises:
@@ -99,7 +99,8 @@ def prepare(robot, duration, reference, q0, qd0, controller, *, gravity=GRAVITY,
     """
     from offshore_crane.simulation.control import Controller
     from offshore_crane.simulation.driver import Timing
-    from offshore_crane.simulation.record import initial_state, reference_grid, steps
+    from offshore_crane.simulation.record import (initial_state, reference_grid, stage_times,
+                                                  steps)
     from offshore_crane.validation import as_gravity
 
     controller = Controller() if controller is None else controller
@@ -107,7 +108,8 @@ def prepare(robot, duration, reference, q0, qd0, controller, *, gravity=GRAVITY,
     n_steps, out_every, hold = steps(duration, step, rate,
                                      controller.rate if is_controller else None)
     g = as_gravity(gravity)
-    p = plant((controller.model if is_controller else None) or robot, g)
+    p = plant((controller.model if is_controller else None) or robot, g,
+              stage_times(t0, step, n_steps))
     law = bind_law(controller, p)
     sensors = sensors_of(controller, sensors)
     if sensors is not None and sensors.active:

@@ -49,7 +49,7 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
                                                             "rad/s")
     run = prepare(robot, duration, reference, q0, qd0, controller, gravity=gravity,
                   step=step, rate=rate, t0=t0, sensors=sensors,
-                  plant=lambda model, g: HangingPlant(robot, model, g))
+                  plant=lambda model, g, tt: HangingPlant(robot, model, g))
     y0 = np.concatenate([run.q0, sway0, run.qd0, rate0])
     return run.drive(y0, limits)
 
@@ -67,11 +67,8 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
     robot = robot or load_robot()
     if robot.hybrid.cable is None:
         robot = cable_robot(robot, length=1.0, mass=1.0)
-    home = robot.home_pose()
+    from offshore_crane.simulation.record import held
 
-    def rest(tt):
-        q = np.repeat(home[None, :], len(tt), axis=0)
-        return q, 0 * q, 0 * q
-
+    rest = held(robot.home_pose())
     simulate_swing(robot, 2e-3, rest, controller=Controller(), step=1e-3, limits=False)
     return [("hanging-load simulation loop", time.perf_counter() - t0)]

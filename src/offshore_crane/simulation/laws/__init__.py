@@ -11,7 +11,7 @@ Built in: ``computed-torque`` (:mod:`.computed_torque`), ``pd-gravity`` and ``pd
 from __future__ import annotations
 
 from offshore_crane.simulation.laws._registry import (PLANTS, Law, check_plant, law_class,
-                                                      names, register)
+                                                      names, no_state, register)
 from offshore_crane.simulation.laws import computed_torque, pd, none  # noqa: F401 (register)
 
 
@@ -28,4 +28,4 @@ def _discover() -> None:
 
 _discover()
 
-__all__ = ["Law", "PLANTS", "check_plant", "law_class", "names", "register"]
+__all__ = ["Law", "PLANTS", "check_plant", "law_class", "names", "no_state", "register"]

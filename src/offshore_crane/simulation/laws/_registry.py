@@ -71,6 +71,10 @@ class Law:
         raise NotImplementedError
 
 
+def no_state(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
+    """The ``law_rate`` template of a law without a state (nothing to write)."""
+
+
 def register(cls: type[Law]) -> type[Law]:
     """Register a law class under ``cls.name`` (a class decorator); a name taken twice
     is an error, never a silent replacement."""

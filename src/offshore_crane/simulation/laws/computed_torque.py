@@ -10,7 +10,7 @@ import numpy as np
 
 from offshore_crane.simulation.templates import IQ, IQD, inverse
 from offshore_crane.simulation.laws import codes
-from offshore_crane.simulation.laws._registry import Law, register
+from offshore_crane.simulation.laws._registry import Law, no_state, register
 
 
 def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
@@ -20,9 +20,6 @@ def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
         cmd[j] = qddr[j] + kd[j] * (qdr[j] - y[IQD + j]) + kp[j] * (qr[j] - y[IQ + j])
     inverse(P, i, y, cmd, X)
 
-
-def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
-    """No state."""
 
 
 @register
@@ -34,4 +31,4 @@ class ComputedTorque(Law):
         return (self.kp, self.kd, np.zeros(9))
 
     def templates(self) -> dict:
-        return {"command": command, "law_rate": law_rate}
+        return {"command": command, "law_rate": no_state}

@@ -3,16 +3,13 @@
 from __future__ import annotations
 
 from offshore_crane.simulation.laws import codes
-from offshore_crane.simulation.laws._registry import Law, register
+from offshore_crane.simulation.laws._registry import Law, no_state, register
 
 
 def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
     for j in range(9):
         X[j] = 0.0
 
-
-def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
-    """No state."""
 
 
 @register
@@ -24,4 +21,4 @@ class NoControl(Law):
         return (0.0,)
 
     def templates(self) -> dict:
-        return {"command": command, "law_rate": law_rate}
+        return {"command": command, "law_rate": no_state}

@@ -13,7 +13,7 @@ import numpy as np
 
 from offshore_crane.simulation.templates import IQ, IQD, coords, gravity
 from offshore_crane.simulation.laws import codes
-from offshore_crane.simulation.laws._registry import Law, register
+from offshore_crane.simulation.laws._registry import Law, no_state, register
 
 
 def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
@@ -31,9 +31,6 @@ def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
         X[j] = Xg[j] + (kp[j] * (sr[j] - s[j]) + kd[j] * (sdr[j] - sd[j]))
 
 
-def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
-    """No state."""
-
 
 @register
 class PDGravity(Law):
@@ -45,7 +42,7 @@ class PDGravity(Law):
         return (self.kp, self.kd, self.gravity, *(np.zeros(9) for _ in range(5)))
 
     def templates(self) -> dict:
-        return {"command": command, "law_rate": law_rate}
+        return {"command": command, "law_rate": no_state}
 
 
 @register

@@ -15,16 +15,13 @@ import inspect
 import numpy as np
 
 from offshore_crane.errors import InputError
-from offshore_crane.simulation.laws._registry import Law, register
+from offshore_crane.simulation.laws._registry import Law, no_state, register
 
 
 def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
     """The user's law, called from the driver's loop run as Python (``L``: the law)."""
     X[:] = L.evaluate(i, t, y[:n_p], qr, qdr, qddr)
 
-
-def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
-    """No state."""
 
 
 @register
@@ -42,7 +39,7 @@ class PythonLaw(Law):
         return self
 
     def templates(self) -> dict:
-        return {"command": command, "law_rate": law_rate}
+        return {"command": command, "law_rate": no_state}
 
     def evaluate(self, i, t, y, qr, qdr, qddr):
         """X (9,) of the user's law at the measured plant state ``y``."""

@@ -14,9 +14,10 @@ from offshore_crane.stops import StopCause
 class Plant:
     """A plant: the robot and whatever moves with it, in one state vector ``y``.
 
-    A subclass sets :attr:`name`, :attr:`size` and the slices :attr:`Q`, :attr:`QD` of
-    the robot's coordinates and rates in ``y``, and implements :meth:`derivative`,
-    :meth:`inverse` and :meth:`gravity` (the law's side, on the controller's model).
+    A subclass sets :attr:`name`, :attr:`size`, the slices :attr:`Q`, :attr:`QD` of the
+    robot's coordinates and rates in ``y``, :attr:`RECORDED` and :attr:`KERNELS` (its
+    compiled right-hand side, checks, record and, on the controller's model, the law's
+    side) and implements :meth:`finish`.
 
     Attributes:
         robot: The simulated robot (the plant).
@@ -78,13 +79,6 @@ class Plant:
         keyword arguments)."""
         return {}
 
-    # ----------------------------------------------------------- the physics
-    def derivative(self, i: int, y: np.ndarray, X: np.ndarray):
-        """``(ẏ (size,), aux)`` under the applied forces ``X (9,)`` [N·m, N] at stage
-        point ``i`` of the reference grid; ``aux`` is what :meth:`record` keeps of the
-        stage (and ``aux["ok"]``: False for a singular mass matrix)."""
-        raise NotImplementedError
-
     def words(self, cause: StopCause, res) -> str:
         """A stop's cause in words, from the samples kept (``res``)."""
         q5 = f", q5 = {res.q[-1, 4]:.4g} rad" if len(res) else ""
@@ -97,16 +91,6 @@ class Plant:
         return None
 
     # ----------------------------------------------------------- the law's side
-    def inverse(self, i: int, y: np.ndarray, qdd: np.ndarray) -> np.ndarray:
-        """X ``(9,)`` that gives the accelerations ``qdd (9,)`` at the measured ``y``, on
-        the controller's model (computed torque's inverse dynamics)."""
-        raise NotImplementedError
-
-    def gravity(self, i: int, y: np.ndarray) -> np.ndarray:
-        """X ``(9,)`` that holds the model still at the measured positions (gravity
-        compensation)."""
-        raise NotImplementedError
-
     def actuator_coordinates(self, q: np.ndarray, qd: np.ndarray):
         """The actuated joints' positions and rates ``(9,)`` each (arm joints, leg
         lengths, in the order of X) [rad, m, /s], on the model."""

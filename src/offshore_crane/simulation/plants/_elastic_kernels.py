@@ -15,13 +15,12 @@ from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.cable import elastic_plant as ep
 from offshore_crane.dynamics.linear import kinetic_energy
 from offshore_crane.kernel_cache import njit
-from offshore_crane.stops import CODES
+from offshore_crane.simulation.plants import shared_kernels as shared
 
-OK, _, SINGULAR, _, _, _ = CODES
 jit = njit(**c.JIT)
 derivative, measure, computed_torque = ep.derivative, ep.measure, ep.computed_torque
 carve = ep._carve
-actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
+unpack = c.unpack
 _OK = ep.OK
 
 
@@ -41,12 +40,6 @@ def _make(stamp):
         aux[1] = T
         aux[2] = Lg[i, 0]
         return ok
-
-    @jit
-    def check(P, y, aux, ok):
-        if len(stamp) == 0:
-            return OK
-        return OK if ok else SINGULAR
 
     @jit
     def keep(P, EXTRA, k, y, dy, aux):
@@ -95,27 +88,16 @@ def _make(stamp):
             still[j] = y[j] if (j < 12 or j >= 21) else 0.0
         computed_torque(P[0], P[1], P[2], P[6], still, P[14], cell, X, work)
 
-    @jit
-    def coords(P, q, qd, s, sd):
-        if len(stamp) == 0:
-            return
-        actuator_coordinates(unpack(P[3], P[4], P[5])[0], q, qd, s, sd)
-
-    @jit
-    def payload(P, y, pay):
-        if len(stamp) == 0:
-            return
-        for j in range(6):
-            pay[j] = np.nan
-
-    return rhs, check, keep, inverse, gravity, coords, payload
+    return rhs, keep, inverse, gravity
 
 
-#: What these kernels' disk cache is keyed by: the formulas' hash and the text of
-#: the elastic plant's kernels they call (Numba's cache checks only a function's own file, so a callee
-#: edited elsewhere would otherwise be linked stale).
-STAMP = c.STAMP + hashlib.sha256(inspect.getsource(ep).encode()).hexdigest()
-rhs, check, keep, inverse, gravity, coords, payload = _make(STAMP)
+#: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
+#: elastic plant's kernels they call (Numba's cache checks only a function's own file, so
+#: a callee edited elsewhere would otherwise be linked stale).
+STAMP = c.STAMP + hashlib.sha256((inspect.getsource(ep) + inspect.getsource(shared)
+                                  ).encode()).hexdigest()
+rhs, keep, inverse, gravity = _make(STAMP)
+check, coords, payload = shared.check, shared.coords, shared.payload
 
 
 def params(plant) -> tuple:

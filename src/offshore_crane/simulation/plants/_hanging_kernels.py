@@ -95,9 +95,9 @@ def _make(stamp):
     return rhs, check, keep, inverse, gravity, coords, payload
 
 
-#: What these kernels' disk cache is keyed by: the formulas' hash and the text of
-#: the cable's kernels they call (Numba's cache checks only a function's own file, so a callee
-#: edited elsewhere would otherwise be linked stale).
+#: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
+#: cable's kernels they call (Numba's cache checks only a function's own file, so a
+#: callee edited elsewhere would otherwise be linked stale).
 STAMP = c.STAMP + hashlib.sha256(inspect.getsource(ck).encode()).hexdigest()
 rhs, check, keep, inverse, gravity, coords, payload = _make(STAMP)
 

@@ -13,14 +13,13 @@ import numpy as np
 
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.kernel_cache import njit
+from offshore_crane.simulation.plants import shared_kernels as shared
 from offshore_crane.simulation import rk4
 from offshore_crane.simulation.laws import codes
-from offshore_crane.stops import CODES
 
-OK, _, SINGULAR, _, _, _ = CODES
 jit = njit(**c.JIT)
 accel, law = rk4.accel, rk4.law
-actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
+unpack = c.unpack
 CT, PDG = codes.COMPUTED_TORQUE, codes.PD_GRAVITY
 
 
@@ -39,12 +38,6 @@ def _make(stamp):
             dy[9 + j] = qdd[j]
         aux[0] = 1.0 if ok else 0.0
         return ok
-
-    @jit
-    def check(P, y, aux, ok):
-        if len(stamp) == 0:
-            return OK
-        return OK if ok else SINGULAR
 
     @jit
     def keep(P, EXTRA, k, y, dy, aux):
@@ -69,39 +62,16 @@ def _make(stamp):
         zero = P[10]
         law(Cc, P[6], PDG, zero, zero, y[:9], zero, y[:9], zero, zero, X, P[8])
 
-    @jit
-    def coords(P, q, qd, s, sd):
-        if len(stamp) == 0:
-            return
-        actuator_coordinates(unpack(P[3], P[4], P[5])[0], q, qd, s, sd)
-
-    @jit
-    def payload(P, y, pay):
-        if len(stamp) == 0:
-            return
-        for j in range(6):
-            pay[j] = np.nan
-
-    return rhs, check, keep, inverse, gravity, coords, payload
+    return rhs, keep, inverse, gravity
 
 
-#: What these kernels' disk cache is keyed by: the formulas' hash and the text of
-#: the rigid loop's kernels they call (Numba's cache checks only a function's own file, so a callee
-#: edited elsewhere would otherwise be linked stale).
-STAMP = c.STAMP + hashlib.sha256(inspect.getsource(rk4).encode()).hexdigest()
-rhs, check, keep, inverse, gravity, coords, payload = _make(STAMP)
-
-
-def _workspaces(na: int):
-    """The equations' (``ws``) and the law's (``wl``) work tuples of :mod:`.rk4`."""
-    ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
-          np.empty((max(na, 1), 27)), np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)),
-          np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9), np.zeros(9))
-    wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
-          np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
-          np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
-          np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
-    return ws, wl
+#: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
+#: rigid loop's kernels they call (Numba's cache checks only a function's own file, so a
+#: callee edited elsewhere would otherwise be linked stale).
+STAMP = c.STAMP + hashlib.sha256((inspect.getsource(rk4) + inspect.getsource(shared)
+                                  ).encode()).hexdigest()
+rhs, keep, inverse, gravity = _make(STAMP)
+check, coords, payload = shared.check, shared.coords, shared.payload
 
 
 def params(plant) -> tuple:
@@ -109,6 +79,6 @@ def params(plant) -> tuple:
     from offshore_crane.dynamics.constants import robot_arrays
 
     a, m = robot_arrays(plant.robot), robot_arrays(plant.model)
-    ws, wl = _workspaces(max(a.kane.n_arm, m.kane.n_arm))
+    ws, wl = rk4.workspaces(max(a.kane.n_arm, m.kane.n_arm))
     return (a.flat, a.layout, a.prismatic, m.flat, m.layout, m.prismatic,
             tuple(float(x) for x in plant.g), ws, wl, np.zeros(9), np.zeros(9))

@@ -20,6 +20,8 @@ workspace. Checked against the elastic cable's inverse dynamics of the simulated
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from offshore_crane.simulation.plants._base import Plant
@@ -45,6 +47,9 @@ class ElasticPlant(Plant):
         self.empty = robot.without_hanging_payload()
         self.m = float(robot.hybrid.cable.mass[-1])
         self.ea, self.damping, self.Lg = float(ea), float(damping), lengths
+        #: The cable's shortest axial period ``2π √(m L_min / EA)`` [s].
+        self.axial_period = 2.0 * math.pi * math.sqrt(self.m * float(lengths[:, 0].min())
+                                                      / self.ea)
         self._B, self._one = backends.NUMPY, backends.PYTHON
         self._C = cable_arrays(robot).kane
         self._c1, self._c2 = (float(c) for c in robot.hybrid.sway_damping)
@@ -103,6 +108,10 @@ class ElasticPlant(Plant):
                 "pull_at": cell[3:6].copy()}
 
     def derivative(self, i, y, X):
+        """``(ẏ (24,), aux)`` from the vectorised public pieces (the Kane pass with the pull,
+        forward dynamics, the tip's kinematics in NumPy): the reference the compiled
+        kernels (:mod:`offshore_crane.dynamics.cable.elastic_plant`) are tested against
+        (``tests/dynamics/test_elastic_plant.py``); the driver runs the kernels."""
         from offshore_crane.dynamics.forward import forward_dynamics
 
         pull, at, T, force = self.cable(i, y)
@@ -124,11 +133,3 @@ class ElasticPlant(Plant):
         res.power = actuator_power(self.robot, res.q, res.qd, res.X)
         found = workspace_stop(self.robot, res, limits)
         return None if found is None else (found[0], StopCause.WORKSPACE, found[1])
-
-    def inverse(self, i, y, qdd):
-        pull, at = self.cable(i, y)[:2]
-        return self._pulled(y[:9], y[12:21], qdd, pull, at)
-
-    def gravity(self, i, y):
-        pull, at = self.cable(i, y)[:2]
-        return self._pulled(y[:9], np.zeros(9), np.zeros(9), pull, at)

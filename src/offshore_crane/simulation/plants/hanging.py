@@ -36,7 +36,6 @@ class HangingPlant(Plant):
         self.plant_arrays, self.model_arrays = cable_arrays(robot), cable_arrays(model)
         self.damp_p, self.damp_c = robot.hybrid.sway_damping, model.hybrid.sway_damping
         self.drag_p, self.drag_c = float(robot.hybrid.drag), float(model.hybrid.drag)
-        self._a, self._en, self._pay = np.empty(11), np.empty(2), np.empty(6)
 
     def channels(self, i, y):
         return {"sway": y[9:11].copy(), "sway_rate": y[20:22].copy()}
@@ -44,23 +43,6 @@ class HangingPlant(Plant):
     def pendulum_frequency(self) -> float:
         """ω0 = √(|g| / L) [rad/s] of the model's pendulum."""
         return float(np.sqrt(np.linalg.norm(self.g) / self.model.hybrid.cable_length))
-
-    def model_payload(self, y) -> np.ndarray:
-        """The payload's position and velocity relative to the tip ``(6,)`` on the
-        model [m, m/s] (what the anti-sway law reads)."""
-        from offshore_crane.dynamics.cable import kernels as ck
-
-        a = self.model_arrays
-        ck.payload(a.flat, a.layout, a.prismatic, y[:11], y[11:22], self._pay)
-        return self._pay
-
-    def derivative(self, i, y, X):
-        from offshore_crane.dynamics.cable import kernels as ck
-
-        a = self.plant_arrays
-        ok = ck.accelerations(a.flat, a.layout, a.prismatic, self.damp_p, self.drag_p,
-                              y[:11], y[11:22], X, self.g, self._a, self._en)
-        return np.concatenate([y[11:22], self._a]), {"ok": ok, "energy": self._en.sum()}
 
     def words(self, cause, res):
         return ("the mass matrix became singular (the attitude coordinates at q5 = ±π/2, "
@@ -71,17 +53,6 @@ class HangingPlant(Plant):
         res.sway, res.sway_rate = rec["sway"][:n], rec["sway_rate"][:n]
         res.energy = rec["energy"][:n]
         return finish(self.robot, res, rec["sway_acc"][:n], self.g, limits)
-
-    def inverse(self, i, y, qdd):
-        from offshore_crane.dynamics.cable import kernels as ck
-
-        a, X = self.model_arrays, np.empty(9)
-        ck.computed_torque(a.flat, a.layout, a.prismatic, self.damp_c, self.drag_c, y[:11],
-                           y[11:22], qdd, self.g, X)
-        return X
-
-    def gravity(self, i, y):
-        return self.inverse(i, np.concatenate([y[:11], np.zeros(11)]), np.zeros(9))
 
 
 def finish(robot, res, sway_acc, g, limits):

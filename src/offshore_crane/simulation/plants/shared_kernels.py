@@ -1,0 +1,45 @@
+"""Compiled kernels two plants share (:mod:`._rigid_kernels`, :mod:`._elastic_kernels`:
+both keep the legs' packed arrays at ``P[3:6]``, neither has a hanging payload, both stop
+on a singular mass matrix only). Closed over the formulas' hash."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from offshore_crane.dynamics import compiled as c
+from offshore_crane.kernel_cache import njit
+from offshore_crane.stops import CODES
+
+OK, _, SINGULAR, _, _, _ = CODES
+jit = njit(**c.JIT)
+actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
+
+
+def _make(stamp):
+
+    @jit
+    def check(P, y, aux, ok):
+        """SINGULAR for a singular mass matrix, else OK."""
+        if len(stamp) == 0:
+            return OK
+        return OK if ok else SINGULAR
+
+    @jit
+    def coords(P, q, qd, s, sd):
+        """The actuated joints' positions and rates (the legs' arrays at ``P[3:6]``)."""
+        if len(stamp) == 0:
+            return
+        actuator_coordinates(unpack(P[3], P[4], P[5])[0], q, qd, s, sd)
+
+    @jit
+    def payload(P, y, pay):
+        """No hanging payload: NaN (an anti-sway law is refused on these plants)."""
+        if len(stamp) == 0:
+            return
+        for j in range(6):
+            pay[j] = np.nan
+
+    return check, coords, payload
+
+
+check, coords, payload = _make(c.STAMP)
