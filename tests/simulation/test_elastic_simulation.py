@@ -85,17 +85,10 @@ def test_simulate_runs_the_compensated_lift(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("scene, match", [
-    ("winch_rigid", r"simulate runs a winch or a compensation on an elastic cable: set "
-                    r"\[cable\] ea"),
     ("deck_lift.toml", r"\[lift\]: simulate does not model the deck's contact"),
 ])
 def test_simulate_refuses_what_it_does_not_run(tmp_path, capsys, scene, match):
     path = SCENES / scene
-    if scene == "winch_rigid":
-        path = tmp_path / "w.toml"
-        text = (SCENES / "winch_lift.toml").read_text()
-        path.write_text("\n".join(line for line in text.splitlines()
-                                  if not line.startswith(("ea ", "damping "))))
     assert main(["simulate", "--scene", str(path), "--duration", "1"]) == 2
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1

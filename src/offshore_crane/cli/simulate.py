@@ -106,13 +106,15 @@ def run(args) -> int:
         controller = replace(controller, _arrays={}, **flags)
     extras = scenes.instruments(scene)
     c = scene.control
-    elastic = None
-    if scene.varying_cable:             # the elastic cable (a winch, a compensation)
-        traj, elastic = scenes.elastic_simulation(scene, robot, traj)
-        if args.initial_sway is not None:
-            raise InputError("--initial-sway: the sway angles of a rigid cable; on an "
-                             "elastic one the payload starts hanging at its static "
-                             "stretch", name="--initial-sway")
+    elastic = varying = None
+    if scene.varying_cable:             # a winch, a compensation: the cable's length varies
+        traj, varying = scenes.cable_simulation(scene, robot, traj)
+        if "ea" in varying:
+            elastic, varying = varying, None
+            if args.initial_sway is not None:
+                raise InputError("--initial-sway: the sway angles of a rigid cable; on an "
+                                 "elastic one the payload starts hanging at its static "
+                                 "stretch", name="--initial-sway")
     step = args.step if args.step is not None else c.get("step", 1e-3)
     span = float(traj.t[-1] - traj.t[0])
     duration = args.duration if args.duration is not None else span
@@ -128,7 +130,8 @@ def run(args) -> int:
     if elastic is not None:
         pass
     elif robot.hybrid.cable is not None:
-        swing = {k: v for k, v in scene.cable.items() if k in ("initial", "initial_rate")}
+        swing = (varying if varying is not None else
+                 {k: v for k, v in scene.cable.items() if k in ("initial", "initial_rate")})
         if args.initial_sway is not None:
             swing["initial"] = tuple(args.initial_sway)
     elif args.initial_sway is not None:
@@ -171,6 +174,10 @@ def run(args) -> int:
         elif res.sway is None:
             write_csv(outputs["--out"], CSV_HEADER,
                       np.column_stack([res.t, res.q, res.q_ref, res.X]))
+        elif "length" in res.info:                     # a rigid cable on a winch
+            write_csv(outputs["--out"], f"{CSV_HEADER},{CABLE_COLUMNS},L_m",
+                      np.column_stack([res.t, res.q, res.q_ref, res.X, res.sway, res.tension,
+                                       res.info["length"]]))
         else:
             write_csv(outputs["--out"], f"{CSV_HEADER},{CABLE_COLUMNS}",
                       np.column_stack([res.t, res.q, res.q_ref, res.X, res.sway, res.tension]))

@@ -155,16 +155,18 @@ def run_swing(scene: Scene, robot, traj, method: str, limits: bool = True, check
                   backend="numba" if method == "kane" else "pinocchio", cable=res)
 
 
-def elastic_simulation(scene: Scene, robot, traj) -> tuple:
-    """What ``simulate`` runs for a scene whose cable is elastic (``[cable] ea``): the
-    reference (the compensated arm's commands under ``[control] compensation``) and the
-    keyword arguments of :func:`offshore_crane.simulation.elastic.simulate_elastic` (the
-    cable, the winch's profile — the hoist column, or the compensation's —, the payload's
-    start). Returns ``(reference trajectory, options)``.
+def cable_simulation(scene: Scene, robot, traj) -> tuple:
+    """What ``simulate`` runs for a scene whose cable's length varies (a winch, a
+    compensation): the reference (the compensated arm's commands under ``[control]
+    compensation``) and the keyword arguments of the simulation — the cable (on an
+    elastic one, ``[cable] ea``, :func:`offshore_crane.simulation.elastic.simulate_elastic`;
+    else the rigid cable's :func:`offshore_crane.simulation.swing.simulate_swing`), the
+    winch's profile (the hoist column, or the compensation's), the payload's start (the
+    compensation's still start; the scene's ``[cable] initial`` and ``initial_rate`` on a
+    rigid cable). Returns ``(reference trajectory, options)``.
 
     Raises:
-        SceneError: a rigid cable with a winch or a compensation (simulated on an elastic
-            cable only), a ``[lift]`` (the deck's contact is not simulated).
+        SceneError: a ``[lift]`` (the deck's contact is not simulated).
     """
     from offshore_crane.dynamics.cable import hoist_profile
     from offshore_crane.errors import SceneError
@@ -174,17 +176,15 @@ def elastic_simulation(scene: Scene, robot, traj) -> tuple:
         raise SceneError(f"{where}: [lift]: simulate does not model the deck's contact; "
                          "use offshore-crane id for the lift-off or set-down",
                          path=scene.path, name="lift")
-    if "ea" not in scene.cable:
-        raise SceneError(f"{where}: {', '.join(scene.varying_cable)}: simulate runs a winch "
-                         "or a compensation on an elastic cable: set [cable] ea (and "
-                         "damping), or use offshore-crane id / compensate", path=scene.path,
-                         name="cable.ea")
-    options = {"ea": scene.cable["ea"], "damping": scene.cable.get("damping", 0.0)}
+    elastic = "ea" in scene.cable
+    options = ({"ea": scene.cable["ea"], "damping": scene.cable.get("damping", 0.0)}
+               if elastic else {k: v for k, v in scene.cable.items()
+                                if k in ("initial", "initial_rate")})
     waypoints = hoist_waypoints(scene)
     if waypoints is not None:
         options["hoist"] = hoist_profile(waypoints)
     if scene.compensation != "none":
-        traj, extra, _ = _compensated(scene, robot, traj, {})
+        traj, extra, _ = _compensated(scene, robot, traj, options)
         options.update(extra)
     return traj, options
 

@@ -19,7 +19,7 @@ from offshore_crane.conventions import GRAVITY
 def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, controller=None, *,
                    gravity=GRAVITY, step: float = 1e-3, rate: float | None = None,
                    initial=(0.0, 0.0), initial_rate=(0.0, 0.0), limits: bool = True,
-                   t0: float = 0.0, sensors=None, actuators=None):
+                   t0: float = 0.0, sensors=None, actuators=None, hoist=None):
     """Simulate the robot with its payload swinging on its cable (the hanging plant,
     :class:`~offshore_crane.simulation.plants.HangingPlant`, on the RK4 driver).
 
@@ -31,10 +31,15 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
             runs on the hanging plant, ``anti_sway``, a control rate, saturation, a
             model that differs from the plant (with a cable too)), or a Python law.
         initial, initial_rate: ``(2,)`` sway φ1, φ2 [rad] and rates [rad/s] at ``t0``.
+        hoist: A winch ``hoist(t (n,)) -> (L, L̇, L̈)`` [m, m/s, m/s²], each ``(n,)``
+            (:func:`~offshore_crane.dynamics.cable.hoist_profile`, a compensation's
+            ``hoist_function``), read at every stage time: the cable's length follows it
+            (the plant's and the controller's model's); None: the fixed length.
 
     Returns:
         :class:`~offshore_crane.simulation.rigid.SimulationResult` with ``sway``, ``sway_rate``
-        ``(N, 2)`` and ``tension`` ``(N,)`` [N].
+        ``(N, 2)`` and ``tension`` ``(N,)`` [N]; with a winch, ``info["length"]``
+        ``(N,)`` [m].
 
     Raises:
         InputError: bad arguments, a law or option the hanging load does not take.
@@ -48,8 +53,8 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
     sway0, rate0 = as_pair(initial, "initial", "rad"), as_pair(initial_rate, "initial_rate",
                                                             "rad/s")
     run = prepare(robot, duration, reference, q0, qd0, controller, gravity=gravity,
-                  step=step, rate=rate, t0=t0, sensors=sensors,
-                  plant=lambda model, g, tt: HangingPlant(robot, model, g))
+                  step=step, rate=rate, t0=t0, sensors=sensors, actuators=actuators,
+                  plant=lambda model, g, tt: HangingPlant(robot, model, g, hoist, tt))
     y0 = np.concatenate([run.q0, sway0, run.qd0, rate0])
     return run.drive(y0, limits)
 

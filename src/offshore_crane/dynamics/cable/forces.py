@@ -55,7 +55,7 @@ def kane_forces(robot, t, q, qd, qdd, Y, g, limits, checks, thresholds, L=None, 
     if n == 0:
         return X, F, kappa if checks else None
     if L is not None:                # the hoisted pendulum's pull, vectorised
-        P, at, F[:] = _hoisted_pull(robot, arrays.kane, q, qd, qdd, Y, L, g)
+        P, at, F[:] = hoisted_pull(robot, arrays.kane, q, qd, qdd, Y, L, g)
     elif P is not None:              # an elastic cable's: its tension is the pull's part
         P = np.ascontiguousarray(P)  # along the cable (at the tip: all of it)
         F[:, 0:3], F[:, 4:6] = P, 0.0
@@ -146,7 +146,7 @@ def hanging_drag(robot, C, q, qd, qdd, Y, L):
             e2 * length[:, None], e)
 
 
-def _hoisted_pull(robot, C, q, qd, qdd, Y, L, g):
+def hoisted_pull(robot, C, q, qd, qdd, Y, L, g):
     """``(pull (n, 3), at (n, 3), F (n, 6))`` of the hoisted pendulum
     (:func:`~offshore_crane.dynamics.sway.hoisted_pendulum` on NumPy arrays) at the sway
     ``Y`` and the winch's ``L`` ``(n, 3)``: the pull [N] and where it acts (the payload,

@@ -110,10 +110,36 @@ def _helpers(stamp):
         return hanging_velocity(Rt, w, tip_state(C, q, qd)[1], q[na + 4], q[na + 5],
                                 qd[na + 4], qd[na + 5], -C.arm_c[na - 1, 2], 0.0)
 
-    return tip, rhs, velocity
+    @jit
+    def set_length(flat, lay, prism, L):
+        """Put the payload of the arrays ``flat`` at ``L`` [m] below the sway joints (a
+        winch's length: the chain's last centre of mass, ``(0, 0, −L)``; ``flat`` is
+        written, so it must be the caller's own copy)."""
+        if len(stamp) == 0:
+            return
+        C = unpack(flat, lay, prism)[0]
+        C.arm_c[C.n_arm - 1, 2] = -L
+
+    @jit
+    def hoisting(C, q, qd, zero, Ld, Ldd):
+        """``(e, a)``: the cable's direction (base axes) and the payload's acceleration
+        that a winch adds to the fixed-length chain's, ``a = L̈ e + 2 L̇ ė`` [m/s²], at
+        ``q, qd`` (11,) on a cable of the arrays' length paid out at ``Ld`` [m/s],
+        ``Ldd`` [m/s²] (``ė = (v_payload − v_tip) / L`` at the fixed length)."""
+        if len(stamp) == 0:
+            return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+        na = C.n_arm
+        L = -C.arm_c[na - 1, 2]
+        e = mv(tip_motion(C, q, qd, zero)[0], sway_direction(q[na + 4], q[na + 5])[0])
+        v, vt = velocity(C, q, qd, zero), tip_state(C, q, qd)[1]
+        k = 2.0 * Ld / L
+        return e, (Ldd * e[0] + k * (v[0] - vt[0]), Ldd * e[1] + k * (v[1] - vt[1]),
+                   Ldd * e[2] + k * (v[2] - vt[2]))
+
+    return tip, rhs, velocity, set_length, hoisting
 
 
-tip, rhs, velocity = _helpers(c.STAMP)
+tip, rhs, velocity, set_length, hoisting = _helpers(c.STAMP)
 
 
 def _make(stamp):
@@ -268,13 +294,16 @@ def _make(stamp):
                  lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 
     @jit
-    def accelerations(flat, lay, prism, damp, drag, q, qd, X, g, a, energy):
+    def accelerations(flat, lay, prism, damp, drag, q, qd, X, g, Ld, Ldd, a, energy):
         """One state ``q, qd`` (11,) [m, rad, /s] under actuator forces ``X`` (9,):
-        ``a`` (11,) the accelerations of ``M a + h = [A X; −c φ̇] + Jᵀ f`` (Cholesky of the
-        explicit Kane pass's M; NaN when M is singular; ``f`` the payload's drag with
-        ``½ ρ C_d A`` = ``drag`` [kg/m], J its velocity's partials) and ``energy`` (2,):
-        kinetic ``½ q̇ᵀ M q̇`` and gravitational ``−g · Σ m c`` [J]. Returns False when M
-        is not positive definite (the attitude singularity, or the sway's cos φ2 = 0)."""
+        ``a`` (11,) the accelerations of ``M a + h = [A X; −c φ̇] + Jᵀ (f − m a_w)``
+        (Cholesky of the explicit Kane pass's M; NaN when M is singular; ``f`` the
+        payload's drag with ``½ ρ C_d A`` = ``drag`` [kg/m], J its velocity's partials;
+        ``a_w = L̈ e + 2 L̇ ė`` what a winch paying out at ``Ld`` [m/s], ``Ldd`` [m/s²]
+        adds to the payload's acceleration on the arrays' cable length, :func:`hoisting`)
+        and ``energy`` (2,): kinetic ``½ q̇ᵀ M q̇ + m L̇ e·J q̇ + ½ m L̇²`` and
+        gravitational ``−g · Σ m c`` [J]. Returns False when M is not positive definite
+        (the attitude singularity, or the sway's cos φ2 = 0)."""
         if len(stamp) == 0:
             return False
         C = unpack(flat, lay, prism)[0]
@@ -297,8 +326,16 @@ def _make(stamp):
         actuation_minus_bias(B, J, X, na - 2, rhs)
         rhs[n - 2] = -damp[0] * qd[n - 2] - B[n - 2]
         rhs[n - 1] = -damp[1] * qd[n - 1] - B[n - 1]
-        if drag > 0.0:                  # the drag's generalized forces v_i · f
-            f = drag_force(velocity(C, q, qd, zero), drag)
+        hoisted = Ld != 0.0 or Ldd != 0.0
+        m = C.arm_m[na - 1]
+        e, aw = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+        if hoisted:
+            e, aw = hoisting(C, q, qd, zero, Ld, Ldd)
+        if drag > 0.0 or hoisted:       # the generalized forces v_i · (f − m a_w)
+            f = (0.0, 0.0, 0.0)
+            if drag > 0.0:
+                f = drag_force(axpy(Ld, e, velocity(C, q, qd, zero)), drag)
+            f = axpy(-m, aw, f)
             unit = np.zeros(n)
             for i in range(n):
                 unit[i] = 1.0
@@ -307,18 +344,22 @@ def _make(stamp):
                 unit[i] = 0.0
         ok = cholesky_solve(Mm, rhs, n, a, L)
         energy[0] = kinetic_energy(Mm, qd, n)
+        if hoisted:
+            v = velocity(C, q, qd, zero)
+            energy[0] += m * Ld * (e[0] * v[0] + e[1] * v[1] + e[2] * v[2]) + 0.5 * m * Ld * Ld
         energy[1] = -(g[0] * mc[0, 0] + g[1] * mc[0, 1] + g[2] * mc[0, 2])
         return ok
 
     @jit
-    def computed_torque(flat, lay, prism, damp, drag, q, qd, qdd_cmd, g, X):
+    def computed_torque(flat, lay, prism, damp, drag, q, qd, qdd_cmd, g, Ld, Ldd, X):
         """The actuator forces ``X`` (9,) that give the robot the accelerations
-        ``qdd_cmd`` (9,) at the measured state ``q, qd`` (11,) with its payload swinging:
-        the sway's accelerations from the pendulum's equations under that motion (the
-        payload's drag with ``½ ρ C_d A`` = ``drag`` [kg/m]), then Kane's inverse dynamics
-        of the chain with the sway joints (with drag: of the robot pulled at the payload's
-        place, ``kane_sample_pull``). Returns the Stewart system's condition number (inf
-        when singular)."""
+        ``qdd_cmd`` (9,) at the measured state ``q, qd`` (11,) with its payload swinging
+        on the arrays' cable length, paid out at ``Ld`` [m/s], ``Ldd`` [m/s²] (a winch;
+        0, 0: a fixed length): the sway's accelerations from the pendulum's equations
+        under that motion (the payload's drag with ``½ ρ C_d A`` = ``drag`` [kg/m]),
+        then Kane's inverse dynamics of the chain with the sway joints (with drag or a
+        winch: of the robot pulled at the payload's place, ``kane_sample_pull``).
+        Returns the Stewart system's condition number (inf when singular)."""
         if len(stamp) == 0:
             return 0.0
         C = unpack(flat, lay, prism)[0]
@@ -328,11 +369,20 @@ def _make(stamp):
         for j in range(9):
             qdd[j] = qdd_cmd[j]
         Rt, w, al, at = tip_motion(C, q, qd, qdd)
+        hoisted = Ld != 0.0 or Ldd != 0.0
+        L = -C.arm_c[na - 1, 2]
+        p1, p2, r1, r2 = q[6 + na - 2], q[6 + na - 1], qd[6 + na - 2], qd[6 + na - 1]
+        e_t = sway_direction(p1, p2)[0]
+        e = mv(Rt, e_t)
         f = (0.0, 0.0, 0.0)
         if drag > 0.0:
-            f = drag_force(velocity(C, q, qd, np.zeros(6 + na)), drag)
-        p1, p2, r1, r2 = q[6 + na - 2], q[6 + na - 1], qd[6 + na - 2], qd[6 + na - 1]
-        a1, a2, cos2 = pendulum(C, Rt, w, al, at, gt, p1, p2, r1, r2, damp[0], damp[1], f)
+            f = drag_force(axpy(Ld, e, velocity(C, q, qd, np.zeros(6 + na))), drag)
+        if hoisted:
+            a1, a2, cos2, pull, _ = hoisted_pendulum(C, Rt, w, al, at, gt, p1, p2, r1, r2,
+                                                     damp[0], damp[1], f, L, Ld, Ldd)
+        else:
+            a1, a2, cos2 = pendulum(C, Rt, w, al, at, gt, p1, p2, r1, r2, damp[0], damp[1],
+                                    f)
         qdd[6 + na - 2] = a1
         qdd[6 + na - 1] = a2
         rows = np.zeros(na)
@@ -342,12 +392,12 @@ def _make(stamp):
         store = np.empty((na, STORE_WIDTH))
         x = np.empty(6)
         M = np.empty((6, 13))
-        if drag > 0.0:
-            L = -C.arm_c[na - 1, 2]
-            pull = hoisted_pendulum(C, Rt, w, al, at, gt, p1, p2, r1, r2, damp[0], damp[1],
-                                    f, L, 0.0, 0.0)[3]
-            at_p = mv(Rt, scale(sway_direction(p1, p2)[0], L))
-            kane_sample_pull_call(C, q, qd, qdd, gt, pull, at_p, rows, A, rhs6, diag, store)
+        if drag > 0.0 or hoisted:
+            if not hoisted:
+                pull = hoisted_pendulum(C, Rt, w, al, at, gt, p1, p2, r1, r2, damp[0],
+                                        damp[1], f, L, 0.0, 0.0)[3]
+            kane_sample_pull_call(C, q, qd, qdd, gt, pull, mv(Rt, scale(e_t, L)), rows, A,
+                                  rhs6, diag, store)
         else:
             kane_sample_call(C, q, qd, qdd, gt, False, 0, True, rows, A, rhs6, diag, store)
         for b in range(3):
@@ -358,9 +408,10 @@ def _make(stamp):
         return cond
 
     @jit
-    def payload(flat, lay, prism, q, qd, pay):
-        """``pay`` (6,): the payload's velocity relative to the tip [m/s] (the sway rates'
-        part, base axes) and its position from the tip [m], at ``q, qd`` (11,)."""
+    def payload(flat, lay, prism, q, qd, Ld, pay):
+        """``pay`` (6,): the payload's velocity relative to the tip [m/s] (the sway
+        rates' part and the winch's ``Ld`` [m/s] along the cable, base axes) and its
+        position from the tip [m], at ``q, qd`` (11,)."""
         if len(stamp) == 0:
             return
         C = unpack(flat, lay, prism)[0]
@@ -368,7 +419,8 @@ def _make(stamp):
         Rt = tip_motion(C, q, qd, np.zeros(6 + na))[0]
         L = -C.arm_c[na - 1, 2]
         e, e1, e2 = sway_direction(q[6 + na - 2], q[6 + na - 1])
-        rate = mv(Rt, scale(axpy(qd[6 + na - 1], e2, scale(e1, qd[6 + na - 2])), L))
+        rate = mv(Rt, axpy(Ld, e, scale(axpy(qd[6 + na - 1], e2, scale(e1, qd[6 + na - 2])),
+                                        L)))
         rho = mv(Rt, scale(e, L))
         for i in range(3):
             pay[i] = rate[i]

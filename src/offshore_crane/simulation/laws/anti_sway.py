@@ -27,14 +27,15 @@ from offshore_crane.simulation.laws.computed_torque import ComputedTorque
 CENTRING = 0.1
 
 
-def shift(L, P, y, n_p, dd):
-    """δ̈ ``(2,)`` [m/s²] of the reference shift into ``dd`` (zeros with ζ = 0)."""
+def shift(L, P, i, y, n_p, dd):
+    """δ̈ ``(2,)`` [m/s²] of the reference shift into ``dd`` at stage point ``i`` (zeros
+    with ζ = 0)."""
     k, wc, pay = L[3], L[4], L[5]
     if k == 0.0:
         dd[0] = 0.0
         dd[1] = 0.0
         return
-    payload(P, y, pay)
+    payload(P, i, y, pay)
     for j in range(2):
         dd[j] = k * pay[j] - wc * wc * y[n_p + j] - 2.0 * wc * y[n_p + 2 + j]
 
@@ -43,7 +44,7 @@ def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
     """Computed torque on the shifted reference (``L``: kp, kd, scratch (9,), k, ω_c,
     scratch (6,), (2,), (9,) × 3)."""
     dd, rq, rqd, rqdd = L[6], L[7], L[8], L[9]
-    shift(L, P, y, n_p, dd)
+    shift(L, P, i, y, n_p, dd)
     for j in range(9):
         rq[j] = qr[j]
         rqd[j] = qdr[j]
@@ -58,7 +59,7 @@ def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
 def law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, Xc, X, dy):
     """``(δ̇, δ̈)`` into ``dy[n_p:n_p + 4]``."""
     dd = L[6]
-    shift(L, P, y, n_p, dd)
+    shift(L, P, i, y, n_p, dd)
     dy[n_p] = y[n_p + 2]
     dy[n_p + 1] = y[n_p + 3]
     dy[n_p + 2] = dd[0]

@@ -19,6 +19,7 @@ from offshore_crane.stops import CODES
 OK, _, SINGULAR, DIVERGED, _, _ = CODES
 jit = njit(**c.JIT)
 accelerations, computed_torque, pay_kernel = ck.accelerations, ck.computed_torque, ck.payload
+set_length = ck.set_length
 actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
 #: A coordinate beyond this has diverged (record.DIVERGED_STATE).
 LIMIT = 1e6
@@ -27,13 +28,28 @@ LIMIT = 1e6
 def _make(stamp):
 
     @jit
+    def winch(P, flat, lay, prism, i):
+        """``(L̇, L̈)`` of the winch at stage point ``i``, its length written into the
+        arrays ``flat, lay, prism`` (the plant's or the model's own copy); ``(0, 0)``
+        and nothing written for a fixed length (``P[17]`` of one row)."""
+        if len(stamp) == 0:
+            return 0.0, 0.0
+        Lh = P[17]
+        if Lh.shape[0] == 1:
+            return 0.0, 0.0
+        set_length(flat, lay, prism, Lh[i, 0])
+        return Lh[i, 1], Lh[i, 2]
+
+    @jit
     def rhs(P, i, y, X, dy, aux):
         """The 11 coordinates' rates and accelerations into ``dy[:22]``; ``aux[0]`` ok,
         ``aux[1]`` the energy T + V [J]."""
         if len(stamp) == 0:
             return False
         a, en = P[6], P[7]
-        ok = accelerations(P[0], P[1], P[2], P[3], P[4], y[:11], y[11:22], X, P[5], a, en)
+        Ld, Ldd = winch(P, P[0], P[1], P[2], i)
+        ok = accelerations(P[0], P[1], P[2], P[3], P[4], y[:11], y[11:22], X, P[5], Ld, Ldd,
+                           a, en)
         for j in range(11):
             dy[j] = y[11 + j]
             dy[11 + j] = a[j]
@@ -67,16 +83,20 @@ def _make(stamp):
         """X for ``qdd`` (9,) at the measured ``y`` on the model (the sway read)."""
         if len(stamp) == 0:
             return
-        computed_torque(P[8], P[9], P[10], P[11], P[12], y[:11], y[11:22], qdd, P[5], X)
+        Ld, Ldd = winch(P, P[8], P[9], P[10], i)
+        computed_torque(P[8], P[9], P[10], P[11], P[12], y[:11], y[11:22], qdd, P[5], Ld,
+                        Ldd, X)
 
     @jit
     def gravity(P, i, y, X):
-        """X holding the model still at the measured positions."""
+        """X holding the model still at the measured positions (on the winch's length
+        at stage point ``i``, held still too)."""
         if len(stamp) == 0:
             return
         zero = P[16]
+        winch(P, P[8], P[9], P[10], i)
         computed_torque(P[8], P[9], P[10], P[11], P[12], y[:11], zero[:11], zero[:9], P[5],
-                        X)
+                        0.0, 0.0, X)
 
     @jit
     def coords(P, q, qd, s, sd):
@@ -86,11 +106,13 @@ def _make(stamp):
         actuator_coordinates(unpack(P[13], P[14], P[15])[0], q, qd, s, sd)
 
     @jit
-    def payload(P, y, pay):
-        """The payload relative to the tip, position and velocity (6,), on the model."""
+    def payload(P, i, y, pay):
+        """The payload relative to the tip, velocity and position (6,), on the model (the
+        winch's length and rate at stage point ``i``)."""
         if len(stamp) == 0:
             return
-        pay_kernel(P[8], P[9], P[10], y[:11], y[11:22], pay)
+        Ld = winch(P, P[8], P[9], P[10], i)[0]
+        pay_kernel(P[8], P[9], P[10], y[:11], y[11:22], Ld, pay)
 
     return rhs, check, keep, inverse, gravity, coords, payload
 
@@ -108,7 +130,11 @@ def params(plant) -> tuple:
 
     a, m = plant.plant_arrays, plant.model_arrays
     legs = robot_arrays(plant.model.without_hanging_payload())
-    return (a.flat, a.layout, a.prismatic, np.asarray(plant.damp_p, float), plant.drag_p,
-            np.asarray(plant.g, float), np.zeros(11), np.zeros(2), m.flat, m.layout,
-            m.prismatic, np.asarray(plant.damp_c, float), plant.drag_c, legs.flat,
-            legs.layout, legs.prismatic, np.zeros(11))
+    Lh = plant.lengths
+    # a winch writes its length into the arrays: the plant's and the model's own copies
+    own = (lambda x: x.copy()) if len(Lh) > 1 else (lambda x: x)
+    return (own(a.flat), a.layout, a.prismatic, np.asarray(plant.damp_p, float),
+            plant.drag_p, np.asarray(plant.g, float), np.zeros(11), np.zeros(2),
+            own(m.flat), m.layout, m.prismatic, np.asarray(plant.damp_c, float),
+            plant.drag_c, legs.flat, legs.layout, legs.prismatic, np.zeros(11),
+            np.ascontiguousarray(Lh, dtype=float))

@@ -24,8 +24,11 @@ class HangingPlant(Plant):
     RECORDED = {"sway": 2, "sway_rate": 2, "sway_acc": 2, "energy": 0}
     KERNELS = "offshore_crane.simulation.plants._hanging_kernels"
 
-    def __init__(self, robot, model, gravity):
-        from offshore_crane.dynamics.cable import cable_robot
+    def __init__(self, robot, model, gravity, hoist=None, tt=None):
+        """``hoist``: a winch, ``hoist(t (n,)) -> (L, L̇, L̈)`` [m, m/s, m/s²]
+        (:func:`~offshore_crane.dynamics.cable.hoist_profile`), read at the stage times
+        ``tt``; None: the cable's fixed length."""
+        from offshore_crane.dynamics.cable import cable_robot, hoist_grid
         from offshore_crane.dynamics.constants import cable_arrays
         from offshore_crane.dynamics.runtime import compiled_kernels
 
@@ -36,13 +39,21 @@ class HangingPlant(Plant):
         self.plant_arrays, self.model_arrays = cable_arrays(robot), cable_arrays(model)
         self.damp_p, self.damp_c = robot.hybrid.sway_damping, model.hybrid.sway_damping
         self.drag_p, self.drag_c = float(robot.hybrid.drag), float(model.hybrid.drag)
+        self.hoist = hoist
+        #: ``(n_stages, 3)`` the winch's L [m], L̇ [m/s], L̈ [m/s²] at every stage time,
+        #: or ``(1, 3)``: the fixed length (the model's: a winch sets both).
+        self.lengths = (np.array([[model.hybrid.cable_length, 0.0, 0.0]]) if hoist is None
+                        else hoist_grid(hoist, np.asarray(tt, dtype=float)))
 
     def channels(self, i, y):
-        return {"sway": y[9:11].copy(), "sway_rate": y[20:22].copy()}
+        Lh = self.lengths[i if len(self.lengths) > 1 else 0]
+        return {"sway": y[9:11].copy(), "sway_rate": y[20:22].copy(),
+                "length": float(Lh[0]), "length_rate": float(Lh[1])}
 
     def pendulum_frequency(self) -> float:
-        """ω0 = √(|g| / L) [rad/s] of the model's pendulum."""
-        return float(np.sqrt(np.linalg.norm(self.g) / self.model.hybrid.cable_length))
+        """ω0 = √(|g| / L) [rad/s] of the model's pendulum (at the winch's starting
+        length)."""
+        return float(np.sqrt(np.linalg.norm(self.g) / self.lengths[0, 0]))
 
     def words(self, cause, res):
         return ("the mass matrix became singular (the attitude coordinates at q5 = ±π/2, "
@@ -52,22 +63,29 @@ class HangingPlant(Plant):
         n = len(res)
         res.sway, res.sway_rate = rec["sway"][:n], rec["sway_rate"][:n]
         res.energy = rec["energy"][:n]
-        return finish(self.robot, res, rec["sway_acc"][:n], self.g, limits)
+        L = None
+        if self.hoist is not None:
+            from offshore_crane.dynamics.cable import hoist_grid
+
+            L = hoist_grid(self.hoist, res.t)
+            res.info["length"] = L[:, 0]
+        return finish(self.robot, res, rec["sway_acc"][:n], self.g, limits, L)
 
 
-def finish(robot, res, sway_acc, g, limits):
+def finish(robot, res, sway_acc, g, limits, L=None):
     """The hanging plant's record completed (:func:`_finish`) and its first slack-cable
     sample or workspace violation ``(sample, StopCause, words)``, or None."""
     from offshore_crane.simulation.record import finite_rows
 
-    _finish(robot, res, sway_acc, g, limits)
+    _finish(robot, res, sway_acc, g, limits, L)
     return _slack_or_workspace(robot, res.truncated(finite_rows(res)), limits)
 
 
-def _finish(robot, res, sway_acc, g, limits) -> None:
-    """The tension, the actuators' power and the energy's gravitational part are filled in
-    from the recorded samples (one pass of the cable's Kane kernel, on blocks of samples
-    vectorised across them)."""
+def _finish(robot, res, sway_acc, g, limits, L=None) -> None:
+    """The tension and the actuators' power filled in from the recorded samples (one pass
+    of the cable's Kane kernel, on blocks of samples vectorised across them; with a
+    winch's ``L`` ``(n, 3)`` [m, m/s, m/s²], the hoisted pendulum's pull on NumPy
+    arrays)."""
     from offshore_crane.dynamics.cable import kernels as ck
     from offshore_crane.dynamics.constants import cable_arrays
     from offshore_crane.dynamics.lanes import kane_kernel
@@ -77,6 +95,14 @@ def _finish(robot, res, sway_acc, g, limits) -> None:
 
     n = len(res)
     if n == 0:
+        return
+    if L is not None:
+        from offshore_crane.dynamics.cable.forces import hoisted_pull
+
+        Y = np.hstack([res.sway, res.sway_rate, sway_acc])
+        res.tension = hoisted_pull(robot, cable_arrays(robot).kane, res.q, res.qd, res.qdd,
+                                   Y, L, g)[2][:, 3]
+        res.power = actuator_power(robot, res.q, res.qd, res.X)
         return
     arrays = cable_arrays(robot)
     q11 = np.ascontiguousarray(np.concatenate([res.q, res.sway], 1))

@@ -32,7 +32,7 @@ def _make(stamp):
         actuator_coordinates(unpack(P[3], P[4], P[5])[0], q, qd, s, sd)
 
     @jit
-    def payload(P, y, pay):
+    def payload(P, i, y, pay):
         """No hanging payload: NaN (an anti-sway law is refused on these plants)."""
         if len(stamp) == 0:
             return
