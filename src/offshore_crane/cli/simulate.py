@@ -102,6 +102,8 @@ def run(args) -> int:
         flags.update(saturation=False, lower=None, upper=None)
     if args.anti_sway is not None:
         flags["anti_sway"] = args.anti_sway
+    if flags.get("law") == "arm-compensation" and "target" in scene.control:
+        flags["target"] = scenes.target_deck(scene)        # the law's moving aim
     if flags:
         controller = replace(controller, _arrays={}, **flags)
     extras = scenes.instruments(scene)

@@ -17,14 +17,17 @@ from offshore_crane.scenes.scene import Scene, sea_arguments
 
 def controller(scene: Scene, robot=None):
     """The :class:`~offshore_crane.simulation.control.Controller` of the scene's ``[control]``
-    section (its ``model`` table overrides the scene's robot for the controller)."""
+    section (its ``model`` table overrides the scene's robot for the controller; under
+    ``law = "arm-compensation"`` its ``target`` is the law's moving aim)."""
     from offshore_crane.simulation.control import Controller
 
     c = scene.control
     model = None
     if "model" in c:
         model = load_robot(scene, c["model"])
-    return Controller(**{k: v for k, v in c.items() if k in CONTROLLER_KEYS}, model=model)
+    target = target_deck(scene) if c.get("law") == "arm-compensation" else None
+    return Controller(**{k: v for k, v in c.items() if k in CONTROLLER_KEYS}, model=model,
+                      target=target)
 
 
 def instruments(scene: Scene) -> dict:

@@ -96,6 +96,24 @@ class Compensated:
         return lambda x: quintic_hermite(t, H[:, 0:1], H[:, 1:2], H[:, 2:3], x)
 
 
+def still_tip(robot, q, qd, qdd) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Where the tip is on a still ship: its position [m], velocity [m/s] and
+    acceleration [m/s²] ``(N, 3)`` each, base frame, with the platform at home and the
+    arm on ``q, qd, qdd`` ``(N, 9)``'s q7..q9 (the crane operation), by the formulas on
+    NumPy arrays (:func:`~offshore_crane.dynamics.sway.tip_state`, ``tip_motion``)."""
+    from offshore_crane.dynamics import backends
+    from offshore_crane.dynamics.constants import cable_arrays
+
+    still = [np.array(x, dtype=float) for x in (q, qd, qdd)]
+    still[0][:, :6] = robot.home_pose()[:6]
+    still[1][:, :6] = 0.0
+    still[2][:, :6] = 0.0
+    p, v = tip_positions(robot, still[0], still[1])
+    a = backends.NUMPY.tip_motion(cable_arrays(robot).kane, *(x.T for x in still))[3]
+    return p, v, np.stack([np.broadcast_to(np.asarray(x, dtype=float), (len(p),))
+                           for x in a], axis=-1)
+
+
 #: The shortest measurement delay but none [s]: no measurement chain (motion sensor, bus,
 #: controller) answers within a microsecond; shorter, ``t − delay`` is ``t`` to the
 #: times' rounding and the delay means nothing.

@@ -17,6 +17,9 @@ The laws (``docs/simulation.md``; with a hanging load ``docs/cable.md``):
   (:mod:`offshore_crane.simulation.laws.pid`; gains ``ki``, tracking time ``windup``).
 - ``"anti-sway"``: computed torque with a reference shift that damps a hanging load's
   swing (``anti_sway=ζ`` selects it).
+- ``"arm-compensation"``: computed torque whose arm reference is solved on line from the
+  measured platform, holding the tip over its still-ship aim (or a moving ``target``;
+  :mod:`offshore_crane.simulation.laws.arm_compensation`).
 
 Options: actuator saturation (each X_k clipped to ``[lower_k, upper_k]``, push and pull
 apart: the actuators' capacities; the time spent saturated is reported, never silent), a
@@ -93,6 +96,10 @@ class Controller:
         function: A Python law ``function(t, q, qd, q_ref, qd_ref, qdd_ref) -> X``
             (:mod:`offshore_crane.simulation.laws.python`) run with these options (a
             control rate, saturation); ``law`` is then ``"python"``.
+        target: A moving aim for ``"arm-compensation"``: ``target(t (n,)) -> (x, v, a)``
+            each ``(n, 3)``, the displacement of a point on a second vessel's deck [m,
+            m/s, m/s²], base axes (:class:`~offshore_crane.motion.sea.DeckMotion`); None:
+            the still-ship point.
     """
 
     law: str = "computed-torque"
@@ -110,6 +117,7 @@ class Controller:
     ki: object = None
     windup: float | None = None
     function: object = None
+    target: object = None
     _arrays: dict = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self):
@@ -121,7 +129,7 @@ class Controller:
             object.__setattr__(self, "law", "python")
         else:
             law_class(self.law)                # a registered law ("did you mean")
-        ct = self.law in ("computed-torque", "anti-sway")
+        ct = law_class(self.law).ct_gains if self.law != "python" else False
         kp = _gains("kp", self.kp, np.full(9, CT_OMEGA ** 2) if ct else PD_KP)
         kd = _gains("kd", self.kd, np.full(9, 2.0 * CT_OMEGA) if ct else PD_KD)
         if self.rate is not None:
@@ -153,6 +161,11 @@ class Controller:
         elif self.law == "anti-sway":
             raise InputError("law 'anti-sway' needs the damping ratio it adds to the swing: "
                              "give anti_sway = ζ", name="anti_sway")
+        if self.target is not None and (self.law != "arm-compensation"
+                                        or not callable(self.target)):
+            raise InputError(f"target = {self.target!r}: a moving aim is the "
+                             "'arm-compensation' law's, a callable target(t) -> (x, v, a)",
+                             name="target")
         if self.ki is not None and self.law != "pid":
             raise InputError(f"ki: integral gains are the 'pid' law's, not {self.law!r}",
                              name="ki")

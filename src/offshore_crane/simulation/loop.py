@@ -197,7 +197,7 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
 
     Args:
         kernels: The plant's kernel module (``rhs``, ``check``, ``keep``, ``inverse``,
-            ``gravity``, ``coords``, ``payload``: compiled functions).
+            ``gravity``, ``coords``, ``payload``, ``arm_tip``: compiled functions).
         law_templates: ``{name: function}``: the law's templates (``command``,
             ``law_rate`` and what they call), instantiated here.
         names: Constants of the namespace (``IQ``, ``IQD``).
@@ -213,7 +213,8 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
 
     ns: dict = {"__name__": __name__, "np": np, "OK": OK, "DIVERGED": DIVERGED, "STOPPED": STOPPED,
                 "rk4_stage": rk4_stage, "rk4_combine": rk4_combine, **names}
-    for name in ("rhs", "check", "keep", "inverse", "gravity", "coords", "payload"):
+    for name in ("rhs", "check", "keep", "inverse", "gravity", "coords", "payload",
+                 "arm_tip"):
         ns[name] = getattr(kernels, name)
     templates = {f.__name__: f for f in TEMPLATES} | dict(law_templates)
     parts = {id(f): f for f in [*templates.values(), kernels.rhs.py_func]}.values()

@@ -297,8 +297,9 @@ class Recording(NamedTuple):
 def workspace_stop(robot, res, limits: bool):
     """``(sample, cause)`` of a recorded run's first workspace violation (the cause in
     the words of :func:`~offshore_crane.robot.kinematics.check_workspace`), or None;
-    None too without ``limits``."""
-    if not limits:
+    None too without ``limits`` or without a finite sample (the run's own stop says
+    why)."""
+    if not limits or len(res) == 0:
         return None
     from offshore_crane.errors import WorkspaceError
     from offshore_crane.robot.kinematics import check_workspace

@@ -115,6 +115,7 @@ def prepare(robot, duration, reference, q0, qd0, controller, *, gravity=GRAVITY,
     if sensors is not None and sensors.active:
         sensors.delay_steps(step)
     tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
+    law.grid = (tt, qr, qdr, qddr)
     q0, qd0 = initial_state(q0, qd0, qr[0], qdr[0])
     lo, hi = (controller if is_controller else Controller()).bounds(p.robot)
     info = dict(info or {}, **({} if is_controller else {"controller": "python"}))

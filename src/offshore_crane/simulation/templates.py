@@ -25,6 +25,7 @@ def _unbound(name: str):
 rhs, check, keep = _unbound("rhs"), _unbound("check"), _unbound("keep")
 inverse, gravity = _unbound("inverse"), _unbound("gravity")
 coords, payload = _unbound("coords"), _unbound("payload")
+arm_tip = _unbound("arm_tip")
 # the law's templates (offshore_crane.simulation.laws: Law.templates)
 command, law_rate = _unbound("command"), _unbound("law_rate")
 pd_command, ct_command = _unbound("pd_command"), _unbound("ct_command")

@@ -136,10 +136,25 @@ def _helpers(stamp):
         return e, (Ldd * e[0] + k * (v[0] - vt[0]), Ldd * e[1] + k * (v[1] - vt[1]),
                    Ldd * e[2] + k * (v[2] - vt[2]))
 
-    return tip, rhs, velocity, set_length, hoisting
+    @jit
+    def tip_kinematics(flat, lay, prism, q, qd, qdd, out):
+        """``out`` (9,): the tip's (``arm_tip`` origin's) position [m], velocity [m/s]
+        and acceleration [m/s²], base frame, under the robot's ``q, q̇, q̈`` (9,) on the
+        cable chain's arrays."""
+        if len(stamp) == 0:
+            return
+        C = unpack(flat, lay, prism)[0]
+        p, v = tip_state(C, q, qd)
+        a = tip_motion(C, q, qd, qdd)[3]
+        for j in range(3):
+            out[j] = p[j]
+            out[3 + j] = v[j]
+            out[6 + j] = a[j]
+
+    return tip, rhs, velocity, set_length, hoisting, tip_kinematics
 
 
-tip, rhs, velocity, set_length, hoisting = _helpers(c.STAMP)
+tip, rhs, velocity, set_length, hoisting, tip_kinematics = _helpers(c.STAMP)
 
 
 def _make(stamp):

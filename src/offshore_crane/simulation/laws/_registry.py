@@ -48,6 +48,13 @@ class Law:
 
     #: False for a Python law: the driver's loop then runs as Python.
     compiled: ClassVar[bool] = True
+    #: True for a law on computed torque: its default gains are ``Kp = ω²``, ``Kd = 2ω``
+    #: per coordinate (:data:`~offshore_crane.simulation.control.CT_OMEGA`), not a PD's.
+    ct_gains: ClassVar[bool] = False
+    #: The run's reference at every stage time ``(tt, q, qd, qdd)`` (set by
+    #: :func:`offshore_crane.simulation.runs.prepare` before :meth:`params`), for a law
+    #: that forms something from it once (an aim).
+    grid: tuple | None = None
 
     def initial_state(self) -> np.ndarray:
         """The law's state at the start ``(state_size,)``."""
@@ -66,7 +73,8 @@ class Law:
         ``law_rate(L, P, i, t, y, n_p, qr, qdr, qddr, X_cmd, X, dy)`` writes the law's
         state's rate into ``dy[n_p:n_p + state_size]`` from the command and the applied
         forces (what an anti-windup reads); and what they call. They call the plant's
-        ``inverse``, ``gravity``, ``coords``, ``payload`` and read ``IQ``, ``IQD``
+        ``inverse``, ``gravity``, ``coords``, ``payload``, ``arm_tip`` and read ``IQ``,
+        ``IQD``
         (:class:`~offshore_crane.simulation.plants.Plant`)."""
         raise NotImplementedError
 

@@ -26,6 +26,7 @@ def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
 class ComputedTorque(Law):
     name = "computed-torque"
     code = codes.COMPUTED_TORQUE
+    ct_gains = True
 
     def params(self) -> tuple:
         return (self.kp, self.kd, np.zeros(9))

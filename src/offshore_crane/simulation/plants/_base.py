@@ -34,7 +34,7 @@ class Plant:
 
     #: The plant's compiled kernels for the driver (a module of
     #: :mod:`offshore_crane.simulation.plants`: ``rhs``, ``check``, ``keep``, ``inverse``,
-    #: ``gravity``, ``coords``, ``payload`` and ``params(plant)``).
+    #: ``gravity``, ``coords``, ``payload``, ``arm_tip`` and ``params(plant)``).
     KERNELS: ClassVar[str] = ""
 
     def __init__(self, robot, model, gravity):

@@ -13,6 +13,7 @@ import numpy as np
 
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.cable import elastic_plant as ep
+from offshore_crane.dynamics.cable import kernels as ck
 from offshore_crane.dynamics.linear import kinetic_energy
 from offshore_crane.kernel_cache import njit
 from offshore_crane.simulation.plants import shared_kernels as shared
@@ -21,6 +22,7 @@ jit = njit(**c.JIT)
 derivative, measure, computed_torque = ep.derivative, ep.measure, ep.computed_torque
 carve = ep._carve
 unpack = c.unpack
+tip_kinematics = ck.tip_kinematics
 _OK = ep.OK
 
 
@@ -88,15 +90,22 @@ def _make(stamp):
             still[j] = y[j] if (j < 12 or j >= 21) else 0.0
         computed_torque(P[0], P[1], P[2], P[6], still, P[14], cell, X, work)
 
-    return rhs, keep, inverse, gravity
+    @jit
+    def arm_tip(P, q, qd, qdd, out):
+        """The tip's position, velocity, acceleration (9,) under ``q, q̇, q̈`` (9,)."""
+        if len(stamp) == 0:
+            return
+        tip_kinematics(P[0], P[1], P[2], q, qd, qdd, out)
+
+    return rhs, keep, inverse, gravity, arm_tip
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
 #: elastic plant's kernels they call (Numba's cache checks only a function's own file, so
 #: a callee edited elsewhere would otherwise be linked stale).
 STAMP = c.STAMP + hashlib.sha256((inspect.getsource(ep) + inspect.getsource(shared)
-                                  ).encode()).hexdigest()
-rhs, keep, inverse, gravity = _make(STAMP)
+                                  + inspect.getsource(ck)).encode()).hexdigest()
+rhs, keep, inverse, gravity, arm_tip = _make(STAMP)
 check, coords, payload = shared.check, shared.coords, shared.payload
 
 

@@ -19,7 +19,7 @@ from offshore_crane.stops import CODES
 OK, _, SINGULAR, DIVERGED, _, _ = CODES
 jit = njit(**c.JIT)
 accelerations, computed_torque, pay_kernel = ck.accelerations, ck.computed_torque, ck.payload
-set_length = ck.set_length
+set_length, tip_kinematics = ck.set_length, ck.tip_kinematics
 actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
 #: A coordinate beyond this has diverged (record.DIVERGED_STATE).
 LIMIT = 1e6
@@ -114,14 +114,22 @@ def _make(stamp):
         Ld = winch(P, P[8], P[9], P[10], i)[0]
         pay_kernel(P[8], P[9], P[10], y[:11], y[11:22], Ld, pay)
 
-    return rhs, check, keep, inverse, gravity, coords, payload
+    @jit
+    def arm_tip(P, q, qd, qdd, out):
+        """The tip's position, velocity, acceleration (9,) under ``q, q̇, q̈`` (9,), on
+        the model."""
+        if len(stamp) == 0:
+            return
+        tip_kinematics(P[8], P[9], P[10], q, qd, qdd, out)
+
+    return rhs, check, keep, inverse, gravity, coords, payload, arm_tip
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
 #: cable's kernels they call (Numba's cache checks only a function's own file, so a
 #: callee edited elsewhere would otherwise be linked stale).
 STAMP = c.STAMP + hashlib.sha256(inspect.getsource(ck).encode()).hexdigest()
-rhs, check, keep, inverse, gravity, coords, payload = _make(STAMP)
+rhs, check, keep, inverse, gravity, coords, payload, arm_tip = _make(STAMP)
 
 
 def params(plant) -> tuple:

@@ -71,7 +71,7 @@ def _make(stamp):
 STAMP = c.STAMP + hashlib.sha256((inspect.getsource(rk4) + inspect.getsource(shared)
                                   ).encode()).hexdigest()
 rhs, keep, inverse, gravity = _make(STAMP)
-check, coords, payload = shared.check, shared.coords, shared.payload
+check, coords, payload, arm_tip = shared.check, shared.coords, shared.payload, shared.arm_tip
 
 
 def params(plant) -> tuple:

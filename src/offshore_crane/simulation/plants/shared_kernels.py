@@ -39,7 +39,15 @@ def _make(stamp):
         for j in range(6):
             pay[j] = np.nan
 
-    return check, coords, payload
+    @jit
+    def arm_tip(P, q, qd, qdd, out):
+        """No hanging payload: NaN (a compensation law is refused on the rigid plant)."""
+        if len(stamp) == 0:
+            return
+        for j in range(9):
+            out[j] = np.nan
+
+    return check, coords, payload, arm_tip
 
 
-check, coords, payload = _make(c.STAMP)
+check, coords, payload, arm_tip = _make(c.STAMP)
