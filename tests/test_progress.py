@@ -136,6 +136,54 @@ def test_the_first_compile_is_said_before_it_starts_and_counted(tmp_path):
     assert warm.stdout.splitlines() == ["6.0 0"]
 
 
+def test_a_cold_compile_is_timed_and_the_next_one_says_how_long(tmp_path):
+    """A cold compile records how long its outermost kernel took in this machine's
+    record (``$XDG_CACHE_HOME``); with the cache emptied again, the notice says that
+    wait before compiling."""
+    import json
+    import shutil
+
+    (tmp_path / "mod.py").write_text(MODULE)
+    env = {**os.environ, "PYTHONPATH": f"{SRC}{os.pathsep}{tmp_path}",
+           "XDG_CACHE_HOME": str(tmp_path / "xdg")}
+    env.pop("NUMBA_CACHE_DIR", None)
+    first = subprocess.run([sys.executable, "-c", RUN], cwd=tmp_path, env=env,
+                           capture_output=True, text=True, timeout=120)
+    assert first.returncode == 0, first.stderr
+    assert "as long as" not in first.stdout
+    record = json.loads((tmp_path / "xdg" / "offshore-crane" / "compile_times.json")
+                        .read_text())["kernels"]
+    assert list(record) == ["mod.kernel"] and record["mod.kernel"] >= 0.0
+    shutil.rmtree(tmp_path / "__pycache__")
+    again = subprocess.run([sys.executable, "-c", RUN], cwd=tmp_path, env=env,
+                           capture_output=True, text=True, timeout=120)
+    line = again.stdout.splitlines()[0]
+    assert line.startswith("NOTICE compiling the Numba kernels this run needs, once, ")
+    assert "as long as its last compile on this machine" in line
+
+
+def test_the_wait_comes_from_this_machine_then_the_package_table(tmp_path, monkeypatch):
+    """:func:`compile_times.estimate`: this machine's record first, the package's table
+    (benchmarks/compile.py's) else, nothing when neither knows the kernel; a damaged
+    record is no record."""
+    import json
+
+    from offshore_crane import compile_times as ct
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    table = tmp_path / "table.json"
+    table.write_text(json.dumps({"date": "2026-11-27", "machine": "a 2-core machine",
+                                 "kernels": {"a.run": 25.7, "b.run": 3.0}}))
+    monkeypatch.setattr(ct, "SHIPPED", table)
+    ct.remember("b.run", 12.4, ct.record_path())
+    assert ct.estimate("a.run") == ("about 26 s on a 2-core machine (benchmarks/compile.py, "
+                                    "2026-11-27)")
+    assert ct.estimate("b.run") == "about 12 s, as long as its last compile on this machine"
+    assert ct.estimate("c.run") is None
+    ct.record_path().write_text("{not json")
+    assert ct.estimate("b.run").startswith("about 3 s on a 2-core machine")
+
+
 def test_the_compile_notice_types_no_time():
     """The notice names the way to compile up front and states no duration: a typed
     time went stale (it said 65 s where a busy 2-core machine took 207 s); the measured

@@ -26,13 +26,15 @@ import contextlib
 import os
 import warnings
 
+from offshore_crane import compile_times
 from offshore_crane.progress import first_time, notice
 
 #: Kernels compiled (not found in the cache) by this process so far.
 COMPILED = [0]
 #: Said once per process before the first kernel compiles (:func:`offshore_crane.
-#: progress.notice`). It gives no time: the cold compile's depends on the machine's cores
-#: and load (``benchmarks/compile.py`` measures it; the README says what it measured).
+#: progress.notice`), with the wait it expects when a record knows it (this machine's
+#: last compile of that kernel, else the package's table of ``benchmarks/compile.py``:
+#: :mod:`offshore_crane.compile_times`).
 COMPILE_NOTICE = ("compiling the Numba kernels this run needs, once (they are cached "
                   "afterwards; the whole set takes minutes, 'offshore-crane compile' does "
                   "it up front in parallel processes)")
@@ -102,6 +104,19 @@ def _recovering(dispatcher):
 _CLASS: list = []
 
 
+#: The name, in an instantiated template's namespace, of what tells its instance apart
+#: (:func:`offshore_crane.simulation.loop.instantiate`: the plant and the law): one text,
+#: many compiled loops, each with a compile time of its own.
+INSTANCE = "__kernel_instance__"
+
+
+def _name(f) -> str:
+    """A kernel's name in the compile-time record: its module and qualified name, and
+    the instance of a template (:data:`INSTANCE`)."""
+    instance = f.__globals__.get(INSTANCE)
+    return f"{f.__module__}.{f.__qualname__}" + (f" [{instance}]" if instance else "")
+
+
 def _cache_class():
     """:class:`RecoveringCache`, defined on first use (it subclasses a Numba class)."""
     if not _CLASS:
@@ -126,12 +141,15 @@ def _cache_class():
                     found = None
                 if found is None:               # Numba compiles it now
                     COMPILED[0] += 1
-                    notice("compile", COMPILE_NOTICE)
+                    wait = compile_times.started(_name(self._py_func))
+                    notice("compile", COMPILE_NOTICE if wait is None else
+                           COMPILE_NOTICE.replace("once (", f"once, {wait} (", 1))
                 return found
 
             def save_overload(self, sig, data):
                 with locked(self._cache_file, shared=False):
                     super().save_overload(sig, data)
+                compile_times.saved(_name(self._py_func))
 
             def _index_key(self, sig, codegen):
                 # Numba's key hashes the byte code, which holds no constant's value: a

@@ -209,10 +209,10 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
         law's (compiled, or Python functions).
     """
     from offshore_crane.dynamics import compiled as c
-    from offshore_crane.kernel_cache import PROGRAM_DIGEST, njit
+    from offshore_crane.kernel_cache import INSTANCE, PROGRAM_DIGEST, njit
 
     ns: dict = {"__name__": __name__, "np": np, "OK": OK, "DIVERGED": DIVERGED, "STOPPED": STOPPED,
-                "rk4_stage": rk4_stage, "rk4_combine": rk4_combine, **names}
+                "rk4_stage": rk4_stage, "rk4_combine": rk4_combine, INSTANCE: key, **names}
     for name in ("rhs", "check", "keep", "inverse", "gravity", "coords", "payload",
                  "arm_tip"):
         ns[name] = getattr(kernels, name)

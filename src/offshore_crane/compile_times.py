@@ -1,0 +1,104 @@
+"""How long a cold compile of a kernel took, so that the next wait for it can be told
+ahead (:mod:`offshore_crane.kernel_cache` says it before the first kernel of a process
+compiles).
+
+Each compile that starts in a process from nothing cached is timed from the first
+kernel that misses the cache to the moment that kernel (the outermost one: it links what
+it calls) is saved, and kept under its name in this machine's record,
+``$XDG_CACHE_HOME/offshore-crane/compile_times.json`` (``~/.cache`` by default). A
+machine without a record of a kernel falls back to the package's own table,
+``compile_times.json`` beside this module, which ``benchmarks/compile.py --save`` writes
+from its cold compiles on a fresh copy (the machine and date it was measured on come
+with it). Neither is needed: without them the notice gives no time. A record that cannot
+be read or written is ignored (it only ever shortens a message).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import threading
+import time
+from pathlib import Path
+
+#: The package's table (written by ``benchmarks/compile.py --save``).
+SHIPPED = Path(__file__).resolve().parent / "compile_times.json"
+#: Compiles in progress: ``{thread id: (kernel name, start [s])}``.
+_OPEN: dict = {}
+_lock = threading.Lock()
+
+
+def record_path() -> Path:
+    """This machine's record (``$XDG_CACHE_HOME/offshore-crane/compile_times.json``)."""
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "offshore-crane" / "compile_times.json"
+
+
+def _read(path: Path) -> dict:
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+        return data if isinstance(data, dict) else {}
+    except (OSError, ValueError):
+        return {}
+
+
+def _wait(seconds) -> str | None:
+    """``seconds`` [s] of a record in words, or None when it is not a duration."""
+    if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or \
+            not seconds >= 0.0:
+        return None
+    return f"about {seconds:.0f} s" if seconds >= 1.0 else "under a second"
+
+
+def estimate(name: str) -> str | None:
+    """How long the cold compile of kernel ``name`` is expected to take, in words
+    (``"about 26 s, as long as its last compile on this machine"``), or None when
+    neither this machine's record nor the package's table knows it."""
+    mine = _wait(_read(record_path()).get("kernels", {}).get(name))
+    if mine is not None:
+        return f"{mine}, as long as its last compile on this machine"
+    table = _read(SHIPPED)
+    theirs = _wait(table.get("kernels", {}).get(name))
+    if theirs is not None:
+        where = table.get("machine", "the benchmark's machine")
+        return f"{theirs} on {where} (benchmarks/compile.py, {table.get('date', '?')})"
+    return None
+
+
+def started(name: str) -> str | None:
+    """A kernel missed the cache: if no compile is open in this thread, open one under
+    ``name`` (the outermost kernel) and return its :func:`estimate`; else None."""
+    key = threading.get_ident()
+    with _lock:
+        if key in _OPEN:
+            return None
+        _OPEN[key] = (name, time.perf_counter())
+    return estimate(name)
+
+
+def saved(name: str) -> None:
+    """Kernel ``name`` was compiled and saved: if it is the one that opened this thread's
+    compile, record how long the compile took in this machine's record."""
+    key = threading.get_ident()
+    with _lock:
+        opened = _OPEN.get(key)
+        if opened is None or opened[0] != name:
+            return
+        del _OPEN[key]
+    remember(name, time.perf_counter() - opened[1], record_path())
+
+
+def remember(name: str, seconds: float, path: Path) -> None:
+    """Write ``name``'s compile time [s] into the record at ``path`` (the output module's
+    atomic write; a failure is ignored: the record only shortens a message)."""
+    from offshore_crane.errors import OffshoreCraneError
+    from offshore_crane.io import write_text
+
+    data = _read(path)
+    data.setdefault("kernels", {})[name] = round(float(seconds), 1)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        write_text(str(path), json.dumps(data, indent=1, sort_keys=True))
+    except (OSError, OffshoreCraneError):
+        pass
