@@ -123,10 +123,12 @@ def run(args) -> int:
     if duration > span + 1e-9:
         raise InputError(f"--duration {duration:g} s is longer than the trajectory "
                          f"({span:g} s)", name="--duration")
-    q0, qd0, _ = (x[0] for x in traj.reference(traj.t[:1]))
-    q0 = q0.copy()
+    # the reference's state at the start, which the run takes by itself (and a law may
+    # move: arm-compensation starts the arm on its aim) unless an initial error shifts it
+    q0 = qd0 = None
     error = args.initial_error if args.initial_error is not None else c.get("initial_error")
     if error is not None:
+        q0, qd0, _ = (x[0].copy() for x in traj.reference(traj.t[:1]))
         q0 += np.asarray(error, dtype=float)
     swing = {}
     if elastic is not None:

@@ -263,7 +263,7 @@ def compensated_motion(robot, trajectory, mode: str = "arm+winch",
     L = np.full(len(t), length)
     for _ in range(AIM_PASSES if mode == "arm+winch" and deck is not None else 1):
         target = seen_aim + L[:, None] * up
-        solved, stuck = _solve_arm(robot, seen, still[:, 6:9], target[:, :2], limits)
+        solved, stuck = solve_arm(robot, seen, still[:, 6:9], target[:, :2], limits)
         if mode == "arm+winch":                     # the tip's height sets the length
             L = (tip_positions(robot, solved)[0][:, 2] - seen_aim[:, 2]) / up[:, 2]
     q[:, 6:9] = solved[:, 6:9]
@@ -322,7 +322,7 @@ def _delayed(trajectory, delay: float) -> np.ndarray:
     return q
 
 
-def _solve_arm(robot, q, q_op, xy, limits) -> tuple[np.ndarray, np.ndarray]:
+def solve_arm(robot, q, q_op, xy, limits) -> tuple[np.ndarray, np.ndarray]:
     """Newton on q7..q9 of every sample: the tip's horizontal position at ``xy``
     ``(N, 2)``, the redundant direction towards ``q_op``; joints held inside ``limits``
     ``(3, 2)``. Returns ``(q, held (N, 3) bool)``; in blocks of :data:`BLOCK` samples."""
@@ -334,7 +334,7 @@ def _solve_arm(robot, q, q_op, xy, limits) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _solve_block(robot, q, q_op, xy, limits, first: int) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_solve_arm` on one block whose first sample is ``first``."""
+    """:func:`solve_arm` on one block whose first sample is ``first``."""
     from offshore_crane.dynamics import backends
     from offshore_crane.dynamics.constants import cable_arrays
 

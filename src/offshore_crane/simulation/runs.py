@@ -116,7 +116,10 @@ def prepare(robot, duration, reference, q0, qd0, controller, *, gravity=GRAVITY,
         sensors.delay_steps(step)
     tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
     law.grid = (tt, qr, qdr, qddr)
+    given = q0 is not None
     q0, qd0 = initial_state(q0, qd0, qr[0], qdr[0])
+    if not given:
+        q0, qd0 = law.start(q0, qd0)
     lo, hi = (controller if is_controller else Controller()).bounds(p.robot)
     info = dict(info or {}, **({} if is_controller else {"controller": "python"}))
     return Run(p, law, (tt, qr, qdr, qddr), Timing(step, n_steps, out_every, hold, t0),

@@ -60,6 +60,12 @@ class Law:
         """The law's state at the start ``(state_size,)``."""
         return np.zeros(self.state_size)
 
+    def start(self, q0: np.ndarray, qd0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The robot's state ``(q0, q̇0)`` ``(9,)`` each at the start when the caller
+        gave none (the reference's at ``t0`` by default; a law may start the robot where
+        it would put it, not where the reference is)."""
+        return q0, qd0
+
     def params(self) -> tuple:
         """``L``: what the law's templates read (gains, scratch arrays)."""
         raise NotImplementedError

@@ -139,7 +139,34 @@ class ArmCompensation(ComputedTorque):
         super().__init__(controller, plant)
         check_compensable(plant.model)
 
-    def params(self) -> tuple:
+    def start(self, q0, qd0):
+        """The arm where the law puts it at ``t0`` (the offline solver on the platform's
+        start; its rates the operation's plus the least change that gives the tip the
+        aim's velocity): the run starts on the aim, without a transient."""
+        from offshore_crane.dynamics import backends
+        from offshore_crane.dynamics.constants import cable_arrays
+        from offshore_crane.dynamics.cable.tip import tip_positions
+        from offshore_crane.robot.kinematics.workspace import limits_of
+        from offshore_crane.simulation.compensation import solve_arm
+
+        model, aim = self.plant.model, self._aim()
+        q = np.array(q0, dtype=float)
+        limits = limits_of(model.hybrid).arm[:3]
+        q[6:9] = solve_arm(model, q[None], q[None, 6:9], aim[:1, :2], limits)[0][0, 6:9]
+        cols = backends.NUMPY.tip_jacobian(cable_arrays(model).kane, q[:, None])[1]
+        J = np.array([[float(np.asarray(c[r]).reshape(-1)[0]) for c in cols]
+                      for r in range(2)])
+        qd = np.array(qd0, dtype=float)
+        v = tip_positions(model, q[None], qd[None])[1][0]
+        qd[6:9] += J.T @ np.linalg.solve(J @ J.T, aim[0, 2:4] - v[:2])
+        return q, qd
+
+    def _aim(self) -> np.ndarray:
+        """``(n_stages, 6)``: the aim's horizontal position, velocity and acceleration at
+        every stage time [m, m/s, m/s²] (the still-ship tip, moved with the target),
+        formed once."""
+        if getattr(self, "_aim_grid", None) is not None:
+            return self._aim_grid
         if self.grid is None:
             raise RuntimeError("the arm compensation's aim needs the run's stage grid "
                                "(offshore_crane.simulation.runs.prepare sets it)")
@@ -159,7 +186,13 @@ class ArmCompensation(ComputedTorque):
                                  "for t (n,), the deck's displacement [m, m/s, m/s²]",
                                  name="target")
             p, v, a = p + x, v + xd, a + xdd
-        aim = np.ascontiguousarray(np.column_stack([p[:, :2], v[:, :2], a[:, :2]]))
+        self._aim_grid = np.ascontiguousarray(np.column_stack([p[:, :2], v[:, :2],
+                                                               a[:, :2]]))
+        return self._aim_grid
+
+    def params(self) -> tuple:
+        aim = self._aim()
+        qr = self.grid[1]
         return (self.kp, self.kd, np.zeros(9), aim, np.zeros(9), np.zeros(9), np.zeros(9),
                 np.zeros(9), np.zeros((2, 3)), np.array(qr[0, 6:9], dtype=float),
                 np.zeros(9), np.zeros(9), np.zeros(9), np.zeros(9), np.zeros(9),
