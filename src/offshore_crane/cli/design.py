@@ -34,7 +34,7 @@ def add_parser(sub) -> None:
     p.add_argument("--seed", type=int, default=0, metavar="K",
                    help="the optimiser's seed (default 0): the same seed, the same front")
     p.add_argument("--population", type=int, metavar="N",
-                   help="candidates per generation (default 10, or 5 per variable)")
+                   help="candidates per generation (default 20, or 5 per variable)")
     add_parallel_options(p)
     p.add_argument("--out", metavar="DIR",
                    help="write DIR/pareto.csv and store every candidate's cases in "

@@ -21,9 +21,10 @@ from offshore_crane.errors import InputError, NoFeasibleDesignError
 from offshore_crane.studies.design._evaluate import Candidate, Evaluator
 from offshore_crane.studies.design._space import Space, check_space, load_space
 
-#: Candidates per generation unless given: 10, or 5 per variable when there are more
-#: than 2 (NSGA-II's population; the first generation samples the box at random).
-MIN_POPULATION, PER_VARIABLE = 10, 5
+#: Candidates per generation unless given: 20, or 5 per variable when there are more
+#: than 4 (NSGA-II's population). On the two-variable test problem, budgets of 60 reached
+#: 0.99 or more of a 5 x 5 grid's hypervolume for seeds 0-4 with 20, down to 0.96 with 10.
+MIN_POPULATION, PER_VARIABLE = 20, 5
 
 
 def pymoo():
@@ -154,7 +155,7 @@ def _generations(mo, space: Space, size: int, budget: int, seed: int, evaluate):
     bounds = np.array([v.bounds for v in space.variables], dtype=float)
     problem = Problem(n_var=len(space.variables), n_obj=len(space.objectives),
                       n_ieq_constr=len(space.constraints), xl=bounds[:, 0], xu=bounds[:, 1])
-    algorithm = NSGA2(pop_size=size)
+    algorithm = NSGA2(pop_size=size, sampling=_start())
     algorithm.setup(problem, termination=NoTermination(), seed=int(seed), verbose=False)
     done = 0
     while done < budget:
@@ -168,6 +169,31 @@ def _generations(mo, space: Space, size: int, budget: int, seed: int, evaluate):
         algorithm.tell(infills=pop)
         done += len(batch)
         yield batch
+
+
+def _start():
+    """The first generation's sampling: the box's corners when they fill at most half of
+    it (a design often lies on its bounds: reach grows with every length, a utilisation
+    too; a random start seldom draws them, and the search then spends generations
+    creeping towards them), the rest a Latin hypercube (pymoo's, drawn from the
+    algorithm's seeded generator)."""
+    import importlib
+    import itertools
+
+    Sampling = importlib.import_module("pymoo.core.sampling").Sampling
+    LHS = importlib.import_module("pymoo.operators.sampling.lhs").LatinHypercubeSampling
+
+    class Start(Sampling):
+        def _do(self, problem, n_samples, *args, random_state=None, **kwargs):
+            corners = np.array(list(itertools.product(*zip(problem.xl, problem.xu))))
+            if len(corners) > n_samples // 2:
+                corners = corners[:0]
+            rest = n_samples - len(corners)
+            drawn = (LHS()._do(problem, rest, random_state=random_state) if rest else
+                     np.empty((0, problem.n_var)))
+            return np.vstack([corners, drawn])
+
+    return Start()
 
 
 #: What the optimiser sees of a candidate that failed or that the description refuses:

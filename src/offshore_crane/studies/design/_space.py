@@ -312,11 +312,16 @@ def _objectives(table, known: dict, fail) -> tuple:
 
 def _constraints(table, known: dict, fail) -> tuple:
     out = []
-    for key, rule in _flat(table, lambda v: set(v) <= set(OPERATORS)).items():
+    def rule_table(v: dict) -> bool:            # a bound's table, not a dotted name's
+        return any(not (k.isidentifier() or k.isdigit()) for k in v) or not v
+
+    for key, rule in _flat(table, rule_table).items():
         shown = f"[constraints] {key} = {toml_value(rule)}"
         if not isinstance(rule, dict) or not rule:
             fail(f"{shown}: give a bound as {{ \"<=\" = x }} or {{ \">=\" = x }}", key)
         q = quantity(key, known, "[constraints]", fail)
+        if set(rule) - set(OPERATORS):
+            fail(f"{shown}: give a bound as {{ \"<=\" = x }} or {{ \">=\" = x }}", key)
         for op, bound in rule.items():
             problem = not_a_number(bound)
             if problem:
