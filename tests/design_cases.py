@@ -10,26 +10,14 @@ from pathlib import Path
 
 SCENE = """
 name = "design test"
-[payload]
-mass = 2.0
-offset = [0.0, 0.0, -0.05]
-[trajectory]
-source = "sea"
-duration = 4.0
-rate = 25.0
-[sea]
-hs = 2.5
-tp = 8.0
-heading = 90.0
-scale = 20.0
-seed = 1
-highpass = 0.2
-[extremes]
-record = "scene"      # each case the scene's own short record
-seeds = 2             # a candidate's cases: seeds 1 and 2 (as size runs them)
-[operation]
-waypoints = [[0, 0.0, 0.0, 0.0], [2, 1.2, -0.6, 0.0], [3.5, 0.0, 0.0, 0.0],
-             [4, 0.0, 0.0, 0.0]]
+payload = { mass = 2.0, offset = [0.0, 0.0, -0.05] }
+trajectory = { source = "sea", duration = 4.0, rate = 25.0 }
+sea = { hs = 2.5, tp = 8.0, heading = 90.0, scale = 20.0, seed = 1, highpass = 0.2 }
+# each case the scene's own short record; a candidate's cases: seeds 1 and 2 (as size
+# runs them)
+extremes = { record = "scene", seeds = 2 }
+operation = { waypoints = [[0, 0.0, 0.0, 0.0], [2, 1.2, -0.6, 0.0], [3.5, 0.0, 0.0, 0.0],
+                           [4, 0.0, 0.0, 0.0]] }
 """
 
 L1, L2 = "arm.link1.shape.size.x", "arm.link2.shape.size.x"
