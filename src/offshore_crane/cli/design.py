@@ -80,7 +80,7 @@ def run(args) -> int:
     if made:
         os.makedirs(args.out)                   # the checks passed: pareto.csv's home
     try:
-        result = design.run(scene, space, args.budget, args.seed, args.workers or 1,
+        result = design.run(scene, space, args.budget, args.seed, args.workers,
                             args.scheduler, store, progress=progress,
                             population=args.population)
     except NoFeasibleDesignError as exc:

@@ -27,6 +27,8 @@ class Candidate:
             ``"invalid"`` (the description refuses the combination).
         error: Why it failed, or ``""``.
         index: Its position in the order the optimiser asked (0-based).
+        governing: What governs its worst utilisation over its sea states (``"Fl6
+            speed"``: the actuator and the capacity), or ``""``.
     """
 
     values: dict
@@ -36,6 +38,7 @@ class Candidate:
     status: str = "ok"
     error: str = ""
     index: int = 0
+    governing: str = ""
 
     @property
     def feasible(self) -> bool:
@@ -130,8 +133,11 @@ class Evaluator:
         objectives = tuple(value(o.quantity) for o in self.space.objectives)
         constraints = tuple(value(c.quantity) for c in self.space.constraints)
         violation = sum(c.violation(x) for c, x in zip(self.space.constraints, constraints))
+        worst = v.loc[v["worst_util"].idxmax()] if v["worst_util"].notna().any() else None
+        governing = ("" if worst is None or not worst["governing"] else
+                     f"{worst['governing']} {worst['governing_capacity']}")
         return Candidate(dict(values), objectives, constraints, float(violation),
-                         "ok", "", index)
+                         "ok", "", index, governing)
 
     def quantity(self, q, values: dict, verdicts) -> float:
         """A quantity of a candidate: a verdict column's worst over its sea states, or an

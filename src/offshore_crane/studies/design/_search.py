@@ -244,6 +244,9 @@ def _infeasible(design: Design) -> str:
     worst = max(zip(design.space.constraints, c.constraints),
                 key=lambda p: p[0].violation(p[1]))
     k, x = worst
+    why = (f" ({c.governing})" if c.governing and k.quantity.text in ("worst_util",
+                                                                       "overall_util")
+           else "")
     return (f"{head}: the least violating, {c.describe()}, has {k.quantity.text} = "
-            f"{x:.6g} against {k.describe()} (total violation {c.violation:.6g}): relax "
-            "the constraint, widen the variables' bounds or raise --budget")
+            f"{x:.6g}{why} against {k.describe()} (total violation {c.violation:.6g}): "
+            "relax the constraint, widen the variables' bounds or raise --budget")

@@ -162,8 +162,9 @@ def check_space(scene, data: dict, where: str = "space") -> Space:
             table or key, a variable that is not a description field or that the scene
             sets itself, bounds that are not two increasing finite numbers or that the
             description refuses (each bound and each choice resolved alone), a
-            quantity naming no verdict column and no description field, a constraint
-            that is not ``{ "<=" = x }`` or ``{ ">=" = x }``.
+            quantity naming no verdict column and no description field (a constraint's
+            pattern matching none), a constraint that is not ``{ "<=" = x }`` or
+            ``{ ">=" = x }``.
         GridError: a ``[sea]`` list the scene's own checks refuse.
     """
     def fail(message: str, key: str | None = None):
@@ -319,19 +320,34 @@ def _constraints(table, known: dict, fail) -> tuple:
         shown = f"[constraints] {key} = {toml_value(rule)}"
         if not isinstance(rule, dict) or not rule:
             fail(f"{shown}: give a bound as {{ \"<=\" = x }} or {{ \">=\" = x }}", key)
-        q = quantity(key, known, "[constraints]", fail)
         if set(rule) - set(OPERATORS):
             fail(f"{shown}: give a bound as {{ \"<=\" = x }} or {{ \">=\" = x }}", key)
         for op, bound in rule.items():
             problem = not_a_number(bound)
             if problem:
                 fail(f"{shown}: the bound {toml_value(bound)} {problem}", key)
-            out.append(Constraint(q, op, float(bound)))
+            out += [Constraint(q, op, float(bound)) for q in _matching(key, known, fail)]
     if not any(c.quantity.text in ("worst_util", "overall_util") and c.op == "<="
                for c in out):
         name, op, bound = DEFAULT_CONSTRAINT
         out.append(Constraint(Quantity(name, "column"), op, bound))
     return tuple(out)
+
+
+def _matching(key: str, known: dict, fail) -> list:
+    """The quantities a constraint's key names: one, or with ``*``, ``?`` or ``[...]``
+    every verdict column it matches (``"Fl?_util_pu*"``: each leg's push and pull)."""
+    import fnmatch
+
+    from offshore_crane.studies.sweep import verdict_quantities
+
+    if not any(c in key for c in "*?["):
+        return [quantity(key, known, "[constraints]", fail)]
+    names = fnmatch.filter(verdict_quantities(), key)
+    if not names:
+        fail(f"[constraints] {key!r} matches no verdict column (e.g. \"Fl?_util_pu*\": "
+             "each leg's push and pull utilisations)", key)
+    return [Quantity(n, "column") for n in names]
 
 
 def _sea(scene, table, where: str) -> tuple:
