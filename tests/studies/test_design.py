@@ -137,6 +137,9 @@ BAD = [
     ({"variables": {dc.L1: [0.3, 0.7]}, "objectives": {"minimise": ["worst_util"]},
       "constraints": {"worst_util": {"<": 0.8}}}, SpaceError,
      r"\[constraints\] worst_util = \{ < = 0\.8 \}: give a bound as"),
+    ({"variables": {dc.L1: [0.3, 0.7]}, "objectives": {"minimise": ["worst_util"]},
+      "constraints": {"Fl?_util_shove": {"<=": 0.8}}}, SpaceError,
+     r"\[constraints\] 'Fl\?_util_shove' matches no verdict column"),
     ({"variables": {"payload.mass": [1.0, 3.0]}, "objectives": {"minimise": [
         "worst_util"]}}, SpaceError, r"the scene sets payload\.mass itself"),
     ({"variables": {dc.L1: [0.3, 0.7]}, "objectives": {"minimise": ["worst_util"]},
@@ -173,3 +176,13 @@ def test_a_constraint_no_design_meets_names_the_least_violating_candidate(proble
     # the shortest link turns T1 least: the first generation's lower bound (a corner)
     assert caught.value.candidate.values == {dc.L1: 0.3}
     assert caught.value.evaluated == 6
+
+
+def test_a_constraint_pattern_constrains_every_column_it_matches(problem):
+    _, scene, _ = problem
+    space = design.check_space(scenes.load_scene(scene), {
+        "variables": {dc.L1: [0.3, 0.7]}, "objectives": {"minimise": ["worst_util"]},
+        "constraints": {"Fl?_util_pu*": {"<=": 0.8}}})
+    assert [c.describe() for c in space.constraints] == [
+        f"Fl{i}_util_{k} <= 0.8" for i in range(1, 7) for k in ("push", "pull")] + [
+        "worst_util <= 1"]

@@ -13,6 +13,7 @@ Written through :mod:`offshore_crane.io` (atomic; the format from the suffix).
 from __future__ import annotations
 
 import itertools
+import textwrap
 
 import numpy as np
 
@@ -26,7 +27,8 @@ def front_figure(target, design, title: str = "") -> None:
 
     plt = pyplot()
     space = design.space
-    names = [f"{o.sense[:3]}. {o.quantity.text}" for o in space.objectives]
+    names = [textwrap.fill(f"{o.sense[:3]}. {o.quantity.text}", 48)
+             for o in space.objectives]
     ok = [c for c in design.candidates if c.status == "ok"]
     values = np.array([c.objectives for c in ok], dtype=float).reshape(len(ok), -1)
     feasible = np.array([c.feasible for c in ok], dtype=bool)
