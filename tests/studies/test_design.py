@@ -186,3 +186,14 @@ def test_a_constraint_pattern_constrains_every_column_it_matches(problem):
     assert [c.describe() for c in space.constraints] == [
         f"Fl{i}_util_{k} <= 0.8" for i in range(1, 7) for k in ("push", "pull")] + [
         "worst_util <= 1"]
+
+
+def test_a_list_of_choices_takes_only_its_values(problem):
+    _, scene, _ = problem
+    choices = [0.15, 0.2, 0.25]
+    d = design.run(scene, {"variables": {dc.L1: [0.3, 0.7], "arm.slider.max": {
+        "choices": choices}}, "objectives": {"maximise": [dc.REACH],
+                                             "minimise": ["T1_util_push"]}}, 8,
+                   population=8)
+    taken = {c.values["arm.slider.max"] for c in d.candidates}
+    assert taken <= set(choices) and len(taken) > 1
