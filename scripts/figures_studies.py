@@ -244,3 +244,25 @@ def operability_rows(r: dict) -> dict:
         f"{r['wall_s']:.0f} s on {r['workers']} workers of {r['cores']} cores; over the "
         f"illustrative scatter diagram: {headings}, {by['overall']:.1f} % overall "
         f"({r['date']})")}
+
+
+def design_rows(r: dict) -> dict:
+    """benchmarks/design.py's figures: the worked question of docs/design.md."""
+    def ran(x: dict) -> str:
+        return (f"{x['budget']} candidates, each 5 stationary 3-hour records, in "
+                f"{x['wall_s']:.0f} s on {x['workers']} workers of {r['cores']} cores, "
+                f"{r['date']}")
+
+    every, forces = r["every actuator"], r["arm and leg forces"]
+    best = forces.get("best", {})
+    reach = best.get(forces.get("reach_column"), float("nan"))
+    return {
+        ("docs/design.md", "figure design-every"): (
+            f"exit status {every['status']}: {every['message'] or 'a feasible front'} "
+            f"({ran(every)})"),
+        ("docs/design.md", "figure design-forces"): (
+            f"a front of {forces.get('front', 0)} designs ({ran(forces)}); the longest "
+            f"reach, {reach:.3f} m: link 1 {best.get('arm.link1.shape.size.x', 0):.3f} m, "
+            f"link 2 {best.get('arm.link2.shape.size.x', 0):.3f} m, slider stroke "
+            f"{best.get('arm.slider.max', 0):.3f} m, T1 push "
+            f"{100 * best.get('T1_util_push', 0):.1f} % of its capacity")}

@@ -26,7 +26,7 @@ WRITTEN = {"bench.csv", "results.csv", "envelope.csv", "run.csv", "_manifest.jso
            "forces.csv", "forces.png", "sway.png", "scene.toml", "my_platform.toml",
            "lab.mjcf", "my_scene.toml", "my_grid.toml", "grid.toml", "motion.csv",
            "utilisation-worst-case.png", "_lock.json", "operability-no-slack.png",
-           "operability-load.png", "operability-all.png"}
+           "operability-load.png", "operability-all.png", "pareto.csv", "front.png"}
 
 
 def _repository_files() -> list[str]:

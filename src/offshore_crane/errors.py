@@ -344,6 +344,41 @@ class GridError(InputError):
         self.key = key
 
 
+class SpaceError(InputError):
+    """A design's space file (``offshore-crane design --space``) cannot be used: unreadable,
+    empty, a variable that is not a description field or that the scene itself sets,
+    bounds reversed or outside what the description validates, an objective or a
+    constraint naming no verdict column and no description field. The message starts
+    with the space file and names the table and the key.
+
+    Attributes:
+        path: The space file as given, or None for a space given as a dict.
+        key: The offending key (a variable's dotted name, a quantity), or None.
+    """
+
+    def __init__(self, message: str, path: str | None = None, key: str | None = None):
+        super().__init__(message, name=key)
+        self.path = path
+        self.key = key
+
+
+class NoFeasibleDesignError(OffshoreCraneError):
+    """A design search evaluated its budget and no candidate met every constraint. The
+    message names the least-violating candidate (its variables, the constraint it
+    breaks most and by how much); its evaluations stay in the results directory.
+
+    Attributes:
+        candidate: The least-violating candidate
+            (:class:`offshore_crane.studies.design.Candidate`), or None.
+        evaluated: How many candidates were evaluated.
+    """
+
+    def __init__(self, message: str, candidate=None, evaluated: int = 0):
+        super().__init__(message)
+        self.candidate = candidate
+        self.evaluated = evaluated
+
+
 class ResultsDirectoryError(OutputError):
     """A sweep's results directory cannot be used: it exists but is not a results
     directory of the same scene (no manifest, another scene's manifest, a file), or its

@@ -5,6 +5,7 @@ same), output planning, comma-separated numbers."""
 from __future__ import annotations
 
 import math
+import os
 import sys
 
 from offshore_crane.conventions import ACTUATORS
@@ -38,6 +39,19 @@ def add_robot_options(p) -> None:
                    help="override a robot field by its dotted name or alias, e.g. "
                    "legs.lower.mass=3.1, payload.com=[0,0,-0.05], with_arm=0; repeatable; "
                    "an override that contradicts the scene is an error")
+
+
+def add_parallel_options(p) -> None:
+    """``--workers N`` and ``--scheduler local|tcp://HOST:PORT``: where a command's sweep
+    cases run (:func:`offshore_crane.studies.sweep.run`)."""
+    options = {"--workers": dict(type=int, metavar="N", help=(
+                   "parallel worker processes (default 1: serially; with --scheduler local "
+                   "the cluster's size, default 2)")),
+               "--scheduler": dict(metavar="ADDRESS|local", help=(
+                   "run the cases on Dask: 'local' starts a LocalCluster, tcp://HOST:PORT "
+                   "connects to a running scheduler"))}
+    for flag, how in options.items():
+        p.add_argument(flag, **how)
 
 
 def robot_scene(args, scene):
@@ -168,3 +182,22 @@ def id_scene(args):
         raise InputError("--fd-order applies to a CSV trajectory only (table1 has analytic "
                          "derivatives): leave it out", name="--fd-order")
     return scene                    # a CSV with --duration/--rate: trajectories.load says
+
+
+def plot_dir(given: str | None) -> str | None:
+    """``--plot DIR`` of a command that writes several figures: an existing directory,
+    or a new one whose parent exists (made after the checks, before the run)."""
+    from offshore_crane.errors import OutputError
+    from offshore_crane.special_files import what_is
+
+    if given is None:
+        return None
+    if os.path.exists(given) and not os.path.isdir(given):
+        raise OutputError(f"--plot {given}: exists and is not a directory "
+                          f"({what_is(given)}): give a directory for the figures",
+                          path=given, reason="not a directory")
+    parent = os.path.dirname(os.path.abspath(given))
+    if not os.path.isdir(parent):
+        raise OutputError(f"--plot {given}: directory {os.path.dirname(given) or '.'} does "
+                          "not exist: create it first", path=given, reason="no parent")
+    return given

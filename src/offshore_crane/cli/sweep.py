@@ -17,7 +17,8 @@ from offshore_crane.errors import InputError
 
 
 def add_parser(sub) -> None:
-    from offshore_crane.cli.common import add_extremes_options, add_robot_options
+    from offshore_crane.cli.common import (add_extremes_options, add_parallel_options,
+                                           add_robot_options)
 
     doc = __doc__.splitlines()
     p = sub.add_parser("sweep", help="sizing over a grid of sea states and parameters",
@@ -31,12 +32,7 @@ def add_parser(sub) -> None:
                    "their dotted names (see scenes/grids/sweep_grid.toml)")
     p.add_argument("--max-cases", type=int, metavar="N",
                    help="the most cases the grid may make (default 1000000)")
-    p.add_argument("--workers", type=int, metavar="N",
-                   help="parallel worker processes (default 1: serially; with --scheduler "
-                   "local the cluster's size, default 2)")
-    p.add_argument("--scheduler", metavar="ADDRESS|local",
-                   help="run the cases on Dask: 'local' starts a LocalCluster, "
-                   "tcp://HOST:PORT connects to a running scheduler")
+    add_parallel_options(p)
     p.add_argument("--out", metavar="RESULTS_DIR",
                    help="store one Parquet row per case as it finishes; rerun with the same "
                    "directory to resume (finished cases are skipped)")
@@ -53,25 +49,6 @@ def add_parser(sub) -> None:
     p.set_defaults(run=run)
 
 
-def _plot_dir(given: str | None) -> str | None:
-    """``--plot DIR``: an existing directory, or a new one whose parent exists (made
-    after the checks, before the sweep)."""
-    from offshore_crane.errors import OutputError
-    from offshore_crane.special_files import what_is
-
-    if given is None:
-        return None
-    if os.path.exists(given) and not os.path.isdir(given):
-        raise OutputError(f"--plot {given}: exists and is not a directory "
-                          f"({what_is(given)}): give a directory for the figures",
-                          path=given, reason="not a directory")
-    parent = os.path.dirname(os.path.abspath(given))
-    if not os.path.isdir(parent):
-        raise OutputError(f"--plot {given}: directory {os.path.dirname(given) or '.'} does "
-                          "not exist: create it first", path=given, reason="no parent")
-    return given
-
-
 def _label(values: dict) -> str:
     return ", ".join(f"{k} = {v:g}" for k, v in values.items())
 
@@ -84,6 +61,7 @@ def run(args) -> int:
     from offshore_crane.io import plan_outputs, refuse_inside
     from offshore_crane.studies.sizing import CAPACITIES
     from offshore_crane.cli.common import extremes_scene, robot_scene
+    from offshore_crane.cli.common import plot_dir as checked_plot_dir
 
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers {args.workers}: must be ≥ 1", name="--workers")
@@ -94,7 +72,7 @@ def run(args) -> int:
     refuse_inside({"--csv": args.csv, "--plot": args.plot}, args.out, "--out")
     planned = plan_outputs({"--csv": args.csv}, [args.scene, args.grid, args.scatter,
                                                  *scene.inputs()])
-    plot_dir = _plot_dir(args.plot)
+    plot_dir = checked_plot_dir(args.plot)
     if args.out is not None:
         sweep.ResultsStore.open(args.out, scene)            # refuse before running
     progress = not args.no_progress and sys.stderr.isatty()

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from offshore_crane.lazy import submodule_getattr
 
-__all__ = ["identification", "sizing", "sweep"]
+__all__ = ["design", "identification", "sizing", "sweep"]
 
 
 #: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`).

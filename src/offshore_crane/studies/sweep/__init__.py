@@ -51,6 +51,7 @@ from offshore_crane.studies.sweep.backends import LOCAL_WORKERS, connect
 from offshore_crane.studies.sweep.scheduler import CONNECT_TIMEOUT, MAX_HANDSHAKE
 from offshore_crane.studies.sweep.running import run
 from offshore_crane.studies.sweep.assessment import (VERDICT_COLUMNS, CRITERIA, group_keys, verdicts,
+                                                      verdict_quantities,
                                                       Scatter, load_scatter, limiting_hs,
                                                       operability)
 

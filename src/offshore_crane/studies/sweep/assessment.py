@@ -23,6 +23,22 @@ CRITERIA = {"actuators": "worst_util", "no slack": "slack_util", "load": "load_u
 
 
 # =========================================================================== verdicts
+def verdict_quantities() -> tuple:
+    """The numeric columns of :func:`verdicts` that judge a case (what a design's
+    objectives and constraints may name): each actuator's ``{actuator}_util`` and
+    ``{actuator}_util_{capacity}``, ``worst_util``, the hanging load's criteria
+    (``sway_util``, ``slack_util``, ...), ``tension_ratio_min``, ``load_util`` and
+    ``overall_util``."""
+    from offshore_crane.conventions import ACTUATORS
+    from offshore_crane.studies.sizing import CAPACITIES, LOAD_CRITERIA
+    from offshore_crane.studies.sizing.loads import util_column
+
+    return (tuple(f"{a}_util" for a in ACTUATORS)
+            + tuple(f"{a}_util_{c}" for a in ACTUATORS for c in CAPACITIES)
+            + ("worst_util",) + tuple(util_column(c) for c in LOAD_CRITERIA)
+            + ("tension_ratio_min", "load_util", "overall_util"))
+
+
 def group_keys(df) -> list:
     """The parameter columns of a results table but ``seed`` (a case's seeds form one
     group)."""
@@ -49,7 +65,9 @@ def verdicts(df, scene, exposure: float | None = None):
     Returns:
         ``pandas.DataFrame``: the group's parameters, ``seeds``, ``failed`` (seeds whose
         case failed), ``basis`` (``gumbel``, ``observed`` or ``failed``), ``record_s``,
-        ``exposure_s``, ``{actuator}_util`` and ``worst_util`` (inf when a seed failed:
+        ``exposure_s``, ``{actuator}_util``, each capacity's ``{actuator}_util_{capacity}``
+        (on the same basis; NaN when a seed failed or the capacity is not given) and
+        ``worst_util`` (inf when a seed failed:
         not operable), ``governing``, ``governing_capacity``, ``error_type`` and
         ``error`` (of the first failed seed, else empty); with a hanging load
         (:mod:`offshore_crane.studies.sizing.loads`, NaN without) ``tension_ratio_min``
@@ -96,6 +114,7 @@ def verdicts(df, scene, exposure: float | None = None):
         for k, a in enumerate(ACTUATORS):
             u = util[k]
             row[f"{a}_util"] = math.nan if np.isnan(u).all() else float(np.nanmax(u))
+            row.update({f"{a}_util_{cap}": float(u[c]) for c, cap in enumerate(CAPACITIES)})
         if len(ok) < n:
             row.update(worst_util=math.inf, governing="", governing_capacity="")
         elif np.isnan(util).all():

@@ -31,32 +31,52 @@ def install_hint(module: str, purpose: str):
 # =========================================================================== the grid
 @dataclass(frozen=True)
 class Grid:
-    """A checked grid: ``keys`` in product order, ``values`` their lists.
+    """A checked grid: ``keys`` in product order, ``values`` their lists; or, made by
+    :meth:`listed`, a list of cases (``rows``) instead of a product.
 
     Attributes:
         keys: Grid keys; robot fields by their dotted names, then the sea keys.
         values: ``{key: tuple of values}``: floats (``seed``: ints).
         where: The grid file (or ``"grid"``), for messages.
+        rows: None for a product; else the cases, each a tuple of values in ``keys``'
+            order (a design's candidates over its sea states).
     """
 
     keys: tuple
     values: dict
     where: str = "grid"
+    rows: tuple | None = None
+
+    @classmethod
+    def listed(cls, keys, rows, where: str = "cases") -> "Grid":
+        """The cases ``rows`` (tuples of values in ``keys``' order), run as given, not as
+        a product; their values checked by the caller."""
+        rows = tuple(tuple(r) for r in rows)
+        return cls(tuple(keys), {k: tuple(r[i] for r in rows) for i, k in enumerate(keys)},
+                   where, rows)
 
     def cases(self):
         """The product of the lists, in order, made one at a time (an iterator of
         ``{key: value}``): the last key varies fastest (the seeds of one case are
         consecutive; robot fields vary slowest, so that a worker keeps its robot for many
-        cases)."""
+        cases). A listed grid's cases in their order."""
+        if self.rows is not None:
+            return (dict(zip(self.keys, r)) for r in self.rows)
         return (dict(zip(self.keys, combo))
                 for combo in itertools.product(*(self.values[k] for k in self.keys)))
 
     @property
     def count(self) -> int:
         """How many cases :meth:`cases` makes."""
+        if self.rows is not None:
+            return len(self.rows)
         return math.prod(len(self.values[k]) for k in self.keys)
 
     def as_dict(self) -> dict:
+        """The grid as the manifest records it: ``{key: list}`` of a product, ``{"keys":
+        [...], "cases": [[...], ...]}`` of a listed grid."""
+        if self.rows is not None:
+            return {"keys": list(self.keys), "cases": [list(r) for r in self.rows]}
         return {k: list(self.values[k]) for k in self.keys}
 
 

@@ -37,8 +37,11 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             processes forked from this one on Linux, a few cases a task; joblib's loky
             workers elsewhere), or with ``scheduler = "local"`` the cluster's size
             (default 2).
-        scheduler: None (joblib or serial), ``"local"`` (a Dask ``LocalCluster``) or a
-            Dask scheduler address ``tcp://HOST:PORT``.
+        scheduler: None (joblib or serial), ``"local"`` (a Dask ``LocalCluster``), a
+            Dask scheduler address ``tcp://HOST:PORT``, or a connected
+            ``dask.distributed.Client`` (from :func:`connect`, its workers warmed up by
+            the caller: a design's generations share one), which the run uses and leaves
+            open.
         out: A results directory (resumable: finished cases are skipped), or None to
             keep the rows in memory only.
         progress: Show a progress bar (tqdm) on standard error.
@@ -76,7 +79,8 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                 or workers < 1):
         raise InputError(f"workers = {workers!r}: must be an integer ≥ 1", name="workers")
-    scheduler = check_scheduler(scheduler)
+    given = scheduler if hasattr(scheduler, "submit") else None      # a Client
+    scheduler = check_scheduler(None if given is not None else scheduler)
     batch_seconds()                     # a bad OFFSHORE_CRANE_BATCH_SECONDS: refused now
     backend = resolve_backend(backend)
     install_hint("pandas", "A sweep's results table")
@@ -85,7 +89,7 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
     store = ResultsStore.open(out, scene) if out is not None else None
     if scheduler not in (None, "local"):
         handshake(scheduler)            # an address that is no Dask scheduler: nothing written
-    client = cluster = None
+    client, cluster = given, None
     held: list = []                     # this run's rows: Arrow tables of HELD_ROWS, and
     rows: list = []                     # the dicts since the last one
     info = {"cases": 0, "skipped": 0, "ran": 0, "failed": 0, "backend": "in this process",
@@ -109,7 +113,7 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
             else:
                 pending.append((scene, params, backend, cid))
         info.update(cases=len(order), skipped=len(earlier))
-        if scheduler is not None and pending:
+        if scheduler is not None and client is None and pending:
             try:
                 client, cluster = connect(scheduler, workers)
             except SchedulerError:
@@ -118,7 +122,7 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
                 raise
         if pending:
             warm_up_scene(scene)
-            if client is not None and cluster is None:
+            if client is not None and cluster is None and given is None:
                 warm_up_workers(client, scene)
         t0 = time.perf_counter()
         n = min(workers or 1, len(pending))        # processes worth starting
@@ -158,7 +162,7 @@ def run(scene, grid, workers: int | None = 1, scheduler: str | None = None, out=
     finally:
         if store is not None:
             store.release()
-        if client is not None:
+        if client is not None and given is None:
             client.close()
         if cluster is not None:
             cluster.close()
