@@ -306,6 +306,9 @@ def test_a_ctrl_c_stops_a_compiled_loop_and_its_thread(kind, monkeypatch):
         return inner(*args, **kwargs)
 
     monkeypatch.setattr(progress, "run_polled", marked)
+    # Python's own Ctrl-C handler, whatever this session inherited: a test run started in
+    # the background of a non-interactive shell has SIGINT ignored from its start
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 1.0})
     # the crane held still, the load swinging from (0.3, 0.2) rad: no divergence, no end
     t, q, qd, qdd = held_at_home(robot, 100.0 if kind == "elastic" else 400.0, 100.0)
@@ -324,6 +327,7 @@ def test_a_ctrl_c_stops_a_compiled_loop_and_its_thread(kind, monkeypatch):
     finally:                                      # a run ended early: no stray signal
         for timer in timers:
             timer.cancel()
+        signal.signal(signal.SIGINT, previous)
     raised = time.perf_counter()
     assert len(sent) == 1, "the run ended before the signal"
     assert raised - sent[0] < 1.0
