@@ -193,14 +193,17 @@ QUANTITIES = (("sway_max", 1.0), ("tension_ratio_min", -1.0),
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ["hanging_load", "compensated_lift"])
+@pytest.mark.parametrize("name", ["hanging_load"])
 def test_the_default_3_hour_extreme_is_that_of_full_length_records(name):
     """The default verdict (size's: the Gumbel mode of the maxima of the scene's 5 seeds,
     each a stationary 3-hour record) of the sway, the smallest tension ratio, each leg's
     peak force and the winch's speed lies within 5 % (the issue's bound) of the median of
     the maxima of 20 other full-length stationary 3-hour records (seeds 6..25; the
     median of 20 carries ~2.5 % of sampling error itself for the sway, whose 3-hour
-    maximum varies by ~9 % from record to record)."""
+    maximum varies by ~9 % from record to record). The elastic compensated lift's 25
+    records (64 s of CI) are heavy statistics: ``benchmarks/extremes.py`` runs them, with
+    3 more groups of 5 seeds, and docs/sizing.md gives its deviations (within 4.0 % on
+    2026-11-27)."""
     scene = scenes.load_scene(SCENES / f"{name}.toml")
     rows = sweep.run(scene, {"seed": list(range(1, 26))}, workers=2)
     assert (rows["status"] == "ok").all()
