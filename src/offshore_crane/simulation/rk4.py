@@ -176,6 +176,21 @@ def _helpers(stamp):
 law, accel, equations, solve, ct, stage = _helpers(STAMP)
 
 
+@jit
+def workspaces(na):
+    """The equations' (``ws``) and the law's (``wl``) work tuples of :func:`accel`,
+    :func:`law` for an arm of ``na`` joints: what :func:`run` makes for itself, and what
+    the DOP853 path and the rigid plant's kernels make from Python."""
+    ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
+          np.empty((max(na, 1), 27)), np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)),
+          np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9), np.zeros(9))
+    wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
+          np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
+          np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
+          np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
+    return ws, wl
+
+
 def _runner(stamp):
     """The RK4 loop, closed over ``stamp`` only (see :func:`_helpers`)."""
 
@@ -201,13 +216,7 @@ def _runner(stamp):
         na = C.n_arm
         n = 6 + na
         gt = (g[0], g[1], g[2])
-        ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
-              np.empty((max(na, 1), 27)), np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)),
-              np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9), np.zeros(9))
-        wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
-              np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
-              np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
-              np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
+        ws, wl = workspaces(max(na, Cc.n_arm))
         kap = np.empty((3, 1))
         q = q0.copy()
         qd = qd0.copy()
@@ -316,17 +325,3 @@ def _runner(stamp):
 
 
 run = _runner(STAMP)
-
-
-def workspaces(na: int):
-    """The equations' (``ws``) and the law's (``wl``) work tuples of :func:`accel`,
-    :func:`law` (what :func:`run` makes for itself) for an arm of ``na`` joints, for calls
-    from Python (the DOP853 path) and the rigid plant's kernels."""
-    ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
-          np.empty((max(na, 1), 27)), np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)),
-          np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9), np.zeros(9))
-    wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
-          np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
-          np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
-          np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
-    return ws, wl
