@@ -121,17 +121,18 @@ def _helpers(stamp):
         C.arm_c[C.n_arm - 1, 2] = -L
 
     @jit
-    def hoisting(C, q, qd, zero, Ld, Ldd):
+    def hoisting(C, q, qd, zero, v, Ld, Ldd):
         """``(e, a)``: the cable's direction (base axes) and the payload's acceleration
         that a winch adds to the fixed-length chain's, ``a = L̈ e + 2 L̇ ė`` [m/s²], at
         ``q, qd`` (11,) on a cable of the arrays' length paid out at ``Ld`` [m/s],
-        ``Ldd`` [m/s²] (``ė = (v_payload − v_tip) / L`` at the fixed length)."""
+        ``Ldd`` [m/s²] (``ė = (v − v_tip) / L``, ``v`` the payload's velocity at the
+        fixed length, :func:`velocity`)."""
         if len(stamp) == 0:
             return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
         na = C.n_arm
         L = -C.arm_c[na - 1, 2]
         e = mv(tip_motion(C, q, qd, zero)[0], sway_direction(q[na + 4], q[na + 5])[0])
-        v, vt = velocity(C, q, qd, zero), tip_state(C, q, qd)[1]
+        vt = tip_state(C, q, qd)[1]
         k = 2.0 * Ld / L
         return e, (Ldd * e[0] + k * (v[0] - vt[0]), Ldd * e[1] + k * (v[1] - vt[1]),
                    Ldd * e[2] + k * (v[2] - vt[2]))
@@ -343,24 +344,24 @@ def _make(stamp):
         rhs[n - 1] = -damp[1] * qd[n - 1] - B[n - 1]
         hoisted = Ld != 0.0 or Ldd != 0.0
         m = C.arm_m[na - 1]
-        e, aw = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
-        if hoisted:
-            e, aw = hoisting(C, q, qd, zero, Ld, Ldd)
+        e, aw, v = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
         if drag > 0.0 or hoisted:       # the generalized forces v_i · (f − m a_w)
+            v = velocity(C, q, qd, zero)        # the payload's, at the arrays' length
+            if hoisted:
+                e, aw = hoisting(C, q, qd, zero, v, Ld, Ldd)
             f = (0.0, 0.0, 0.0)
             if drag > 0.0:
-                f = drag_force(axpy(Ld, e, velocity(C, q, qd, zero)), drag)
+                f = drag_force(axpy(Ld, e, v), drag)
             f = axpy(-m, aw, f)
             unit = np.zeros(n)
             for i in range(n):
                 unit[i] = 1.0
-                v = velocity(C, q, unit, zero)
-                rhs[i] += v[0] * f[0] + v[1] * f[1] + v[2] * f[2]
+                vi = velocity(C, q, unit, zero)
+                rhs[i] += vi[0] * f[0] + vi[1] * f[1] + vi[2] * f[2]
                 unit[i] = 0.0
         ok = cholesky_solve(Mm, rhs, n, a, L)
         energy[0] = kinetic_energy(Mm, qd, n)
         if hoisted:
-            v = velocity(C, q, qd, zero)
             energy[0] += m * Ld * (e[0] * v[0] + e[1] * v[1] + e[2] * v[2]) + 0.5 * m * Ld * Ld
         energy[1] = -(g[0] * mc[0, 0] + g[1] * mc[0, 1] + g[2] * mc[0, 2])
         return ok
@@ -392,10 +393,12 @@ def _make(stamp):
         f = (0.0, 0.0, 0.0)
         if drag > 0.0:
             f = drag_force(axpy(Ld, e, velocity(C, q, qd, np.zeros(6 + na))), drag)
-        if hoisted:
+        pulled = drag > 0.0 or hoisted  # X from the pull at the payload (kane_sample_pull)
+        pull = (0.0, 0.0, 0.0)
+        if pulled:
             a1, a2, cos2, pull, _ = hoisted_pendulum(C, Rt, w, al, at, gt, p1, p2, r1, r2,
                                                      damp[0], damp[1], f, L, Ld, Ldd)
-        else:
+        if not hoisted:                 # the fixed length's own equations (bit for bit)
             a1, a2, cos2 = pendulum(C, Rt, w, al, at, gt, p1, p2, r1, r2, damp[0], damp[1],
                                     f)
         qdd[6 + na - 2] = a1
@@ -407,10 +410,7 @@ def _make(stamp):
         store = np.empty((na, STORE_WIDTH))
         x = np.empty(6)
         M = np.empty((6, 13))
-        if drag > 0.0 or hoisted:
-            if not hoisted:
-                pull = hoisted_pendulum(C, Rt, w, al, at, gt, p1, p2, r1, r2, damp[0],
-                                        damp[1], f, L, 0.0, 0.0)[3]
+        if pulled:
             kane_sample_pull_call(C, q, qd, qdd, gt, pull, mv(Rt, scale(e_t, L)), rows, A,
                                   rhs6, diag, store)
         else:
