@@ -145,7 +145,9 @@ def test_a_given_start_is_kept(sea):
     assert np.abs(tip_positions(robot, res.q[late])[0][:, :2] - aim[late, :2]).max() <= HELD
 
 
-def test_refusals(sea, tmp_path):
+def test_refusals(sea, tmp_path, capsys):
+    import re
+
     import offshore_crane as oc
     from offshore_crane.motion.trajectories import table1
 
@@ -162,3 +164,11 @@ def test_refusals(sea, tmp_path):
     with pytest.raises(SceneError, match=r"law = \"arm-compensation\" solves the arm on line: "
                                          r"drop \[control\] compensation"):
         scenes.load_scene(path)
+    from offshore_crane.cli import main
+
+    assert main(["simulate", "--scene", str(SCENES / "compensated_lift.toml"),
+                 "--controller", "arm-compensation", "--duration", "1"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert re.search(r"--controller arm-compensation solves the arm on line, but the scene's "
+                     r"\[control\] compensation = \"arm\+winch\" already commands it", err)

@@ -106,6 +106,10 @@ def run(args) -> int:
         flags["target"] = scenes.target_deck(scene)        # the law's moving aim
     if flags:
         controller = replace(controller, _arrays={}, **flags)
+    if controller.law_name == "arm-compensation" and scene.compensation != "none":
+        raise InputError(f"--controller arm-compensation solves the arm on line, but the "
+                         f"scene's [control] compensation = \"{scene.compensation}\" "
+                         "already commands it: drop one of them", name="--controller")
     extras = scenes.instruments(scene)
     c = scene.control
     elastic = varying = None
