@@ -16,7 +16,7 @@ driver is measured by re-running this script unchanged:
 3. ``hanging``: the robot with 2 kg hanging on a rigid 0.5 m cable, computed torque;
 4. ``elastic``: ``scenes/compensated_lift.toml`` as ``offshore-crane simulate --scene``
    runs it: the compensated reference and the cable's options from
-   ``scenes.elastic_simulation`` (prepared beforehand, not timed), then
+   ``scenes.cable_simulation`` (prepared beforehand, not timed), then
    ``simulate_elastic`` at the scene's ``[control] step`` or the CLI's 1 ms, the scene's
    computed torque at every RK4 stage;
 5. one-sample forward dynamics (``oc.forward_dynamics`` per call from Python) against one
@@ -84,7 +84,7 @@ def timed_runs(repeats: int) -> dict:
     scene = scenes.load_scene(ROOT / "scenes" / "compensated_lift.toml")
     lift = scenes.load_robot(scene)
     t0 = time.perf_counter()
-    traj, options = scenes.elastic_simulation(scene, lift, scenes.load_trajectory(scene,
+    traj, options = scenes.cable_simulation(scene, lift, scenes.load_trajectory(scene,
                                                                                   lift))
     prepared = time.perf_counter() - t0
     controller, extras = scenes.controller(scene, lift), scenes.instruments(scene)

@@ -25,8 +25,13 @@ Every body's partial velocities ``v_r``, ``ω_r`` (r = 1..9) are formed, as the 
 writes them, and ``B_r = Σ_bodies v_r · m (a − g) + ω_r · (I α + ω × I ω)``,
 ``M_rs = Σ_bodies m v_r · v_s + ω_r · I ω_s``; ``A X = B`` with ``A = [[0, Jᵀ], [I3, 0]]``,
 ``J_ir = u_i · v_S_i,r`` the leg-length Jacobian (a leg's rate is ``l̇_i = J_i · u``).
-It checks the fused factoring (same kinematics, other algebra) and gives the equations of
-motion ``M q̈ + h = A X``.
+A leg's links move as its sphere centre S does, so their partials are formed for the
+three components of ``v_S`` and the leg's share of B and M (:func:`leg_share`: a force
+``f_S`` and an inertia ``M_S`` seen at S, from those partials and the links' own forces,
+not from the fused ``(M' × u)/l``) is carried to the speeds by ``v_S,r``
+(:func:`carry`); sums only over the speeds that move a body (the platform's six for the
+platform and the legs, and the joints above an arm body). It checks the fused factoring
+(same kinematics, other algebra) and gives the equations of motion ``M q̈ + h = A X``.
 
 ``C`` is a :class:`KaneConstants` (arrays read once from the robot's URDF); workspaces
 (``rows``, ``A``, ``rhs``, ``diag``, ``store``, …) are indexable arrays the caller
@@ -282,17 +287,77 @@ def legs_and_platform(C, R, p, v, a, omega, alpha, g, static, leg_model, F, M, A
 
 
 # --------------------------------------------------------------------------- explicit
-def accumulate(B, Mm, Vw, Ww, m, Iw, F, T, want_mass):
+def accumulate(B, Mm, Vw, Ww, m, Iw, F, T, want_mass, nr):
     """Add one body's share to ``B_r += v_r·F + ω_r·T`` and, with ``want_mass``,
-    ``M_rs += m v_r·v_s + ω_r·(I_w ω_s)``; ``Vw, Ww`` (n, 3) hold its partials (n = 9,
-    or 11 with the hanging load's sway speeds)."""
-    for r in range(Vw.shape[0]):
+    ``M_rs += m v_r·v_s + ω_r·(I_w ω_s)`` for r, s < ``nr``; ``Vw, Ww`` (n, 3) hold its
+    partials (n = 9, or 11 with the hanging load's sway speeds), of which rows ``nr..n−1``
+    are zero for this body (the speeds of joints beyond it: their share, exact zeros,
+    is not added)."""
+    for r in range(nr):
         vr, wr = take(Vw, r, 0), take(Ww, r, 0)
         B[r] = B[r] + dot(vr, F) + dot(wr, T)
         if want_mass:
             Iwr = mv(Iw, wr)
             for s in range(r + 1):
                 Mm[r, s] = Mm[r, s] + m * dot(vr, take(Vw, s, 0)) + dot(Iwr, take(Ww, s, 0))
+
+
+def _link_partials(W, rho_lo, rho_up, e):
+    """A leg's links' partial velocities for the sphere centre's ``v_S = e`` and the
+    leg's ω = ``W``: ``(W × ρ_lo, e + W × ρ_up)``."""
+    return cross(W, rho_lo), add(e, cross(W, rho_up))
+
+
+def _pair(m_lo, m_up, IW_i, W_j, lo_i, lo_j, up_i, up_j):
+    """``m_lo v_i·v_j + ω_i·I ω_j + m_up v_i·v_j`` for a leg's partials i, j."""
+    return m_lo * dot(lo_i, lo_j) + dot(IW_i, W_j) + m_up * dot(up_i, up_j)
+
+
+def leg_share(m_lo, m_up, Iw, u, il, n, l_h, rho_lo, rho_up, F_lo, T_lo, F_up, want_mass):
+    """A leg's Kane terms in its sphere centre's velocity ``v_S``, on which its motion
+    depends alone: with the partials of ``v_S = e_x, e_y, e_z`` (ω_i = Ω e_i by
+    :func:`~offshore_crane.robot.kinematics.formulas.leg_spin`, the lower link's centre
+    ``ω_i × ρ_lo``, the upper's ``e_i + ω_i × ρ_up``; the two links share ω and their
+    inertia ``Iw`` [kg·m², base axes] is counted once), ``f_S,i = Σ v_i · F + ω_i · T``
+    [N] and the leg's inertia seen at S, ``M_S,ij = Σ m v_i · v_j + ω_i · Iw ω_j`` [kg]
+    (zeros without ``want_mass``). A generalized speed r moving S by ``v_S,r`` gets
+    ``v_S,r · f_S`` and ``v_S,r · M_S v_S,s`` (:func:`carry`): the same sums as each
+    link's partials in the nine speeds, in 3 partials instead of 6 a link."""
+    z0 = 0.0 * il
+    one = 1.0 + z0
+    Wx = leg_spin(scale((z0, u[2], -u[1]), il), u, n, l_h)        # Ω e_x: ω⊥ = u × e_x / l
+    Wy = leg_spin(scale((-u[2], z0, u[0]), il), u, n, l_h)
+    Wz = leg_spin(scale((u[1], -u[0], z0), il), u, n, l_h)
+    lo_x, up_x = _link_partials(Wx, rho_lo, rho_up, (one, z0, z0))
+    lo_y, up_y = _link_partials(Wy, rho_lo, rho_up, (z0, one, z0))
+    lo_z, up_z = _link_partials(Wz, rho_lo, rho_up, (z0, z0, one))
+    f_S = (dot(lo_x, F_lo) + dot(Wx, T_lo) + dot(up_x, F_up),
+           dot(lo_y, F_lo) + dot(Wy, T_lo) + dot(up_y, F_up),
+           dot(lo_z, F_lo) + dot(Wz, T_lo) + dot(up_z, F_up))
+    if not want_mass:
+        zt = (z0, z0, z0)
+        return f_S, (zt, zt, zt)
+    IWx, IWy, IWz = mv(Iw, Wx), mv(Iw, Wy), mv(Iw, Wz)
+    xx = _pair(m_lo, m_up, IWx, Wx, lo_x, lo_x, up_x, up_x)
+    yx = _pair(m_lo, m_up, IWy, Wx, lo_y, lo_x, up_y, up_x)
+    yy = _pair(m_lo, m_up, IWy, Wy, lo_y, lo_y, up_y, up_y)
+    zx = _pair(m_lo, m_up, IWz, Wx, lo_z, lo_x, up_z, up_x)
+    zy = _pair(m_lo, m_up, IWz, Wy, lo_z, lo_y, up_z, up_y)
+    zz = _pair(m_lo, m_up, IWz, Wz, lo_z, lo_z, up_z, up_z)
+    return f_S, ((xx, yx, zx), (yx, yy, zy), (zx, zy, zz))
+
+
+def carry(B, Mm, Vs, f_S, M_S, want_mass):
+    """Add a leg's :func:`leg_share` to the platform's speeds r, s < 6 through its sphere
+    centre's partials ``Vs`` (r, 3): ``B_r += v_S,r · f_S``, ``M_rs += v_S,r · M_S v_S,s``
+    (the arm's speeds do not move a leg)."""
+    for r in range(6):
+        vr = take(Vs, r, 0)
+        B[r] = B[r] + dot(vr, f_S)
+        if want_mass:
+            Mvr = mv(M_S, vr)
+            for s in range(r + 1):
+                Mm[r, s] = Mm[r, s] + dot(Mvr, take(Vs, s, 0))
 
 
 def world_inertia(R, I):
@@ -325,7 +390,7 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
     platform_partials(w4, w5, w6, rho, Vw, Ww)
     accumulate(B, Mm, Vw, Ww, C.plat_m, world_inertia(R, C.plat_I),
                rigid_force(C.plat_m, point_acceleration(a, omega, alpha, rho), g),
-               body_torque(R, C.plat_I, omega, alpha), want_mass)
+               body_torque(R, C.plat_I, omega, alpha), want_mass, 6)
     # legs
     for l in range(6):
         X, Y, Z = row3(C.leg_X, l), row3(C.leg_Y, l), row3(C.leg_Z, l)
@@ -348,19 +413,10 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
         platform_partials(w4, w5, w6, r, Vs, Ww)           # v_S,r; Ww: scratch
         for k in range(6):
             J[l, k] = dot(u, take(Vs, k, 0))
-        # lower link: v_r = ω_r × ρ_lo, ω_r = Ω v_S,r
-        for k in range(Vw.shape[0]):
-            w_r = leg_spin(scale(cross(u, take(Vs, k, 0)), il), u, n, l_h)
-            put(Ww, k, 0, w_r)
-            put(Vw, k, 0, cross(w_r, rho_lo))
-        Iw = world_inertia(Rl, mat3(C.leg_I, l))
-        accumulate(B, Mm, Vw, Ww, C.lo_m[l], Iw, F_lo, body_torque(Rl, mat3(C.leg_I, l), w, al),
-                   want_mass)
-        # upper link: v_r = v_S,r + ω_r × ρ_up (its inertia is counted with the lower's)
-        for k in range(Vw.shape[0]):
-            put(Vw, k, 0, add(take(Vs, k, 0), cross(take(Ww, k, 0), rho_up)))
-            put(Ww, k, 0, zero)
-        accumulate(B, Mm, Vw, Ww, C.up_m[l], Iw, F_up, zero, want_mass)
+        f_S, M_S = leg_share(C.lo_m[l], C.up_m[l], world_inertia(Rl, mat3(C.leg_I, l)), u, il,
+                             n, l_h, rho_lo, rho_up, F_lo,
+                             body_torque(Rl, mat3(C.leg_I, l), w, al), F_up, want_mass)
+        carry(B, Mm, Vs, f_S, M_S, want_mass)
     # arm: positions from O2 of the joint origins o_j and the bodies' CoMs c_b
     arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store, True)
     origin = scale(p, 0.0)
@@ -383,7 +439,7 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
                 put(Ww, 6 + j, 0, z)
         Rb = (take(store, b, ATT_), take(store, b, ATT_ + 3), take(store, b, ATT_ + 6))
         accumulate(B, Mm, Vw, Ww, C.arm_m[b], world_inertia(Rb, mat3(C.arm_I, b)),
-                   take(store, b, F_), take(store, b, T_), want_mass)
+                   take(store, b, F_), take(store, b, T_), want_mass, 7 + b)
     put(mc, 0, 0, first)
 
 

@@ -42,7 +42,7 @@ drag_force = c.K.drag_force
 #: The Kane pass with the pull, inlined into :func:`pulled` (compiled once, ~15 s: three
 #: calls a stage, 1.3 µs each against 3.5 µs not inlined, measured); the explicit pass not
 #: inlined (4.6 against 5.7 µs, not worth its ~20 s), as the rigid simulation's loop.
-kane_sample_pull, explicit_sample = c.K.kane_sample_pull, c.KE.explicit_sample
+kane_sample_pull, explicit_sample = c.K.kane_sample_pull, c.explicit_sample
 solve6, cholesky_solve, unpack = c.solve6, c.cholesky_solve, c.unpack
 actuation_minus_bias = c.actuation_minus_bias
 inline = njit(inline="always", **c.JIT)
