@@ -189,3 +189,37 @@ def test_public_calls_hand_the_kernels_one_signature(robot):
             oc.forward_dynamics(robot, q[0], qd[0], X[0], gravity=g)
     added = [len(k.signatures) - b for k, b in zip(kernels, before)]
     assert max(added) <= 1, added
+
+
+@pytest.mark.parametrize("which", ["robot", "cable", "no arm"])
+def test_compiled_views_are_the_constants(robot, which):
+    """The compiled kernels rebuild the constants from one flat buffer (``unpack``, its
+    views written directly by ``views.c_view``): each view equals the constant the
+    description gives (the Python-side views of the same buffer), bit for bit, has its
+    shape, is C-contiguous and reads the buffer itself (a view, not a copy)."""
+    from offshore_crane.dynamics import compiled
+    from offshore_crane.dynamics.constants import FIELDS, cable_arrays, robot_arrays
+
+    if which == "cable":
+        arrays = cable_arrays(oc.load_robot(overrides={"payload.mass": 2.0,
+                                                       "payload.cable_length": 0.5}))
+    elif which == "no arm":
+        arrays = robot_arrays(oc.load_robot(with_arm=0))
+    else:
+        arrays = robot_arrays(robot)
+    C, lim_arm, lim_stroke, lim_ujoint = compiled.unpack(arrays.flat, arrays.layout,
+                                                         arrays.prismatic)
+    views = {**C._asdict(), "lim_arm": lim_arm, "lim_stroke": lim_stroke,
+             "lim_ujoint": lim_ujoint}
+    expected = {**arrays.kane._asdict(), **{f"lim_{k}": v for k, v in (
+        ("arm", arrays.limits.arm), ("stroke", arrays.limits.stroke),
+        ("ujoint", arrays.limits.ujoint))}}
+    for name in FIELDS:
+        got, want = np.asarray(views[name]), np.asarray(expected[name])
+        assert got.shape == want.shape, name
+        np.testing.assert_array_equal(got, want, err_msg=name)
+        if got.ndim:
+            assert got.flags.c_contiguous, name
+        if got.ndim and got.size:
+            assert np.shares_memory(got, arrays.flat), name
+    assert C.n_arm == arrays.kane.n_arm

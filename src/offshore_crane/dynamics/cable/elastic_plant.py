@@ -33,6 +33,7 @@ from offshore_crane.kernel_cache import njit
 
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.dynamics import compiled as c
+from offshore_crane.dynamics import views
 from offshore_crane.dynamics.cable.kernels import jit
 from offshore_crane.dynamics.formulas import STORE_WIDTH
 
@@ -44,6 +45,7 @@ drag_force = c.K.drag_force
 #: inlined (4.6 against 5.7 µs, not worth its ~20 s), as the rigid simulation's loop.
 kane_sample_pull, explicit_sample = c.K.kane_sample_pull, c.explicit_sample
 solve6, cholesky_solve, unpack = c.solve6, c.cholesky_solve, c.unpack
+c_view = views.c_view
 actuation_minus_bias = c.actuation_minus_bias
 inline = njit(inline="always", **c.JIT)
 #: :func:`derivative`'s ``status[0]``: the mass matrix positive definite, or singular (the
@@ -73,15 +75,18 @@ _SIZES = (6 + _MAX_ARM, 6 + _MAX_ARM, 6 + _MAX_ARM, _MAX_ARM, 36, 6, 42,
 
 @inline
 def _carve(w):
-    """The views of the work buffer ``w`` (:data:`WORK`,), each up to the next's start."""
-    return (w[_Q:_QD], w[_QD:_QDD], w[_QDD:_ROWS], w[_ROWS:_A], w[_A:_RHS6].reshape((6, 6)),
-            w[_RHS6:_DIAG], w[_DIAG:_STORE].reshape((7, 6)),
-            w[_STORE:_X6].reshape((_MAX_ARM, STORE_WIDTH)), w[_X6:_M13],
-            w[_M13:_XP].reshape((6, 13)), w[_XP:_X0], w[_X0:_XS], w[_XS:_B], w[_B:_J],
-            w[_J:_MM].reshape((6, 6)), w[_MM:_L].reshape((9, 9)), w[_L:_VW].reshape((9, 9)),
-            w[_VW:_WW].reshape((9, 3)), w[_WW:_VS].reshape((9, 3)),
-            w[_VS:_MC].reshape((9, 3)), w[_MC:_RHS].reshape((1, 3)), w[_RHS:_ACC],
-            w[_ACC:WORK])
+    """The views of the work buffer ``w`` (:data:`WORK`,), each up to the next's start
+    (written directly, :func:`~offshore_crane.dynamics.views.c_view`: four calls a stage)."""
+    return (c_view(w, _Q, (_QD - _Q,)), c_view(w, _QD, (_QDD - _QD,)),
+            c_view(w, _QDD, (_ROWS - _QDD,)), c_view(w, _ROWS, (_A - _ROWS,)),
+            c_view(w, _A, (6, 6)), c_view(w, _RHS6, (_DIAG - _RHS6,)),
+            c_view(w, _DIAG, (7, 6)), c_view(w, _STORE, (_MAX_ARM, STORE_WIDTH)),
+            c_view(w, _X6, (_M13 - _X6,)), c_view(w, _M13, (6, 13)),
+            c_view(w, _XP, (_X0 - _XP,)), c_view(w, _X0, (_XS - _X0,)),
+            c_view(w, _XS, (_B - _XS,)), c_view(w, _B, (_J - _B,)), c_view(w, _J, (6, 6)),
+            c_view(w, _MM, (9, 9)), c_view(w, _L, (9, 9)), c_view(w, _VW, (9, 3)),
+            c_view(w, _WW, (9, 3)), c_view(w, _VS, (9, 3)), c_view(w, _MC, (1, 3)),
+            c_view(w, _RHS, (_ACC - _RHS,)), c_view(w, _ACC, (WORK - _ACC,)))
 
 
 def _helpers(stamp):
