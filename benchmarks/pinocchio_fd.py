@@ -34,6 +34,7 @@ X = 0|, the scale of the forces in the equation).
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
@@ -83,6 +84,11 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     import pinocchio as pin
 
+    # One core for every timing, ours and Pinocchio's: on this 2-core VM an unpinned
+    # process sometimes runs ~1.5x slower for its whole life (benchmarks/simulation.py's
+    # forward_dynamics_rows says how it was measured).
+    os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
+
     robot = oc.load_robot()
     t = oc.motion.trajectories.time_grid()
     q, qd, qdd = oc.motion.trajectories.table1(t)
@@ -111,6 +117,7 @@ def main(argv=None) -> int:
         cd[k] = pin.constraintDynamics(model, tree.data, states.q[k], states.v[k], tau[k],
                                        tree.cmodels, tree.cdatas, prox)
 
+    per_call(constraint_dynamics, n, 1)           # warm-up (the first pass of a process)
     ref = per_call(constraint_dynamics, n, args.repeats)
     rows.append(("constraintDynamics (mu = 0)", ref.sum(axis=1) / n, ref, error(cd)))
 

@@ -160,9 +160,19 @@ def forward_dynamics_rows(repeats: int, samples: int = 300) -> dict | None:
         "ours": lambda k: oc.forward_dynamics(robot, q[k], qd[k], X[k]),
     }
     out = {"pin": pin.__version__, "samples": len(q)}
-    for name, call in calls.items():
-        per_call(call, min(len(q), 10), 1)                      # warm-up
-        out[f"{name}_s"] = float(np.median(per_call(call, len(q), repeats)))
+    # On one core: on this 2-core VM an unpinned process timed these calls either at one
+    # speed or, in about 4 processes of 10, ~1.45x slower for its whole life (its compiled
+    # loops too, Pinocchio's calls not); pinned to one core, 6 processes of 6 ran at the
+    # first (measured 2026-11-27). Every call below, ours and Pinocchio's, runs pinned.
+    cpus = os.sched_getaffinity(0)
+    os.sched_setaffinity(0, {min(cpus)})
+    try:
+        for name, call in calls.items():
+            per_call(call, len(q), 1)                           # warm-up: every state once
+            out[f"{name}_s"] = float(np.median(per_call(call, len(q), repeats)))
+    finally:
+        os.sched_setaffinity(0, cpus)
+    out["pinned"] = True
     return out
 
 

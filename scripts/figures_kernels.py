@@ -206,8 +206,10 @@ def simulation_rows(r: dict) -> dict:
             f"{e['axial_period_s'] * 1e3:.3g} ms)."]
     if fd:
         ratio = fd["ours_s"] / fd["constraint_dynamics_s"]
+        pinned = ", the process on one core" if fd.get("pinned") else ""
         text.append(f"One-sample forward dynamics (`oc.forward_dynamics`, one call from "
-                    f"Python on {fd['samples']} Table 1 states): {fd['ours_s'] * 1e6:.1f} µs "
+                    f"Python on {fd['samples']} Table 1 states{pinned}): "
+                    f"{fd['ours_s'] * 1e6:.1f} µs "
                     f"a call against {fd['constraint_dynamics_s'] * 1e6:.1f} µs for "
                     f"Pinocchio {fd['pin']}'s `constraintDynamics` ({ratio:.2f} ×; target "
                     f"≤ 0.5 ×: {_met(ratio <= 0.5)}) and {fd['lcaba_s'] * 1e6:.1f} µs for "
