@@ -7,6 +7,8 @@ Tolerances: the identities are exact, so they hold to round-off (values ~1e3 N, 
 solver is a proximal iteration stopped at 1e-12: 1e-8 relative, the issue's bound.
 """
 
+import re
+
 import numpy as np
 import pytest
 
@@ -115,3 +117,36 @@ def test_errors(robot, states):
     pitched[1, 4] = np.pi / 2
     with pytest.raises(oc.SingularConfigurationError, match="attitude singularity"):
         forward_dynamics(robot, pitched, qd[:2], X[:2], limits=False)
+
+
+def test_one_sample_fast_path_is_the_batch_kernel(robot, states):
+    """A ``(9,)`` float64 state goes through one compiled call (``compiled.forward_one``):
+    the same kernel as a batch, so the same numbers bit for bit; any other array (a
+    strided row, another dtype) goes the general way and gives them too."""
+    q, qd, _, X = states
+    batch = forward_dynamics(robot, q[:6], qd[:6], X[:6])
+    for k in range(6):
+        np.testing.assert_array_equal(forward_dynamics(robot, q[k], qd[k], X[k]), batch[k])
+    wide = np.zeros((9, 2))
+    wide[:, 0] = q[0]                                   # a column: strides (16,)
+    np.testing.assert_array_equal(forward_dynamics(robot, wide[:, 0], qd[0], X[0]), batch[0])
+    np.testing.assert_array_equal(
+        forward_dynamics(robot, q[0].astype(np.float32).astype(np.float64), qd[0],
+                         X[0].tolist()),
+        forward_dynamics(robot, q[0].astype(np.float32).astype(np.float64)[None],
+                         qd[:1], X[:1])[0])
+
+
+def test_one_sample_fast_path_reports_like_the_batch(robot, states):
+    """What the one compiled call finds (a non-finite input, a pose out of the workspace,
+    the attitude singularity) is reported by the general path: the same exception and
+    message as the same sample given as a batch of one."""
+    q, qd, _, X = states
+    cases = {"inf": (2, np.inf), "pitched": (4, np.pi / 2), "high": (2, q[0, 2] + 5.0)}
+    for name, (j, value) in cases.items():
+        bad = q[0].copy()
+        bad[j] = value
+        with pytest.raises(oc.OffshoreCraneError) as batch:
+            forward_dynamics(robot, bad[None], qd[:1], X[:1])
+        with pytest.raises(type(batch.value), match=re.escape(str(batch.value))):
+            forward_dynamics(robot, bad, qd[0], X[0])
