@@ -99,9 +99,10 @@ def test_no_new_array_escapes_the_golden_file(now):
 
 
 def test_one_compiled_explicit_pass_serves_every_plant(now):
-    """Every plant and law above ran through one specialisation of the compiled explicit
-    pass (``compiled.explicit_sample``, ~20 s to compile with its formulas inlined): a
-    caller handing it another array layout or type would compile it again."""
+    """The runs above that reach the compiled explicit pass (``compiled.explicit_sample``,
+    ~20 s to compile with its formulas inlined: the rigid robot's loop and the forward
+    dynamics) went through one specialisation of it: a caller handing it another array
+    layout or type would compile it again."""
     from offshore_crane.dynamics import compiled
 
     assert len(compiled.explicit_sample.signatures) == 1, compiled.explicit_sample.signatures

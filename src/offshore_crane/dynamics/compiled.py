@@ -40,9 +40,10 @@ def _jit_formula(f):
 K = backends.bind({}, _jit_formula)
 _kane_sample = K.kane_sample
 #: The formulas compiled without inlining, each built once, for the paths that call a
-#: formula now and then (the actuators' coordinates, the hanging load's Kane passes):
-#: ~2x the run time of the inlined build. The explicit form itself is
-#: :func:`explicit_sample` below: inlined once, called by every driver.
+#: formula now and then (the actuators' coordinates, the hanging load's Kane passes) and
+#: for the hanging and elastic plants' explicit pass: ~2x the run time of the inlined
+#: build. The explicit form itself is
+#: :func:`explicit_sample` below: inlined once, called by the drivers that run it most.
 KE = backends.bind({}, njit(**JIT))
 STAMP = backends.source_stamp()
 
@@ -52,10 +53,13 @@ def _explicit(stamp):
     def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, diag, mc):
         """:func:`~offshore_crane.dynamics.formulas.explicit_sample` as one function with
         its formulas inlined (``K``'s), compiled once (closed over the formulas' hash
-        ``stamp``, which keys its disk cache) and called by every driver: the equations of
-        motion, the explicit inverse dynamics, the simulation loops. 2.3 µs a sample of
-        forward dynamics against 4.4 µs through :data:`KE`'s calls, and the text is not
-        inlined again into each driver."""
+        ``stamp``, which keys its disk cache) and called by the drivers that run it most:
+        the equations of motion, the explicit inverse dynamics and the rigid robot's loop
+        (:mod:`offshore_crane.simulation.rk4`). 3.0 µs a sample of forward dynamics
+        against 4.4 µs through :data:`KE`'s calls; the text is not inlined again into each
+        driver, but Numba links its code into every function that calls it and optimises
+        it again there (the hanging and elastic plants call :data:`KE`'s: their loops,
+        one per law, would each compile ~15 s longer)."""
         if len(stamp) == 0:
             return
         _inlined_explicit(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, diag,

@@ -41,9 +41,12 @@ tip_state, tip_motion, dot = c.K.tip_state, c.K.tip_motion, c.K.dot
 cable_tension, sway_damping_force = c.K.cable_tension, c.K.sway_damping_force
 drag_force = c.K.drag_force
 #: The Kane pass with the pull, inlined into :func:`pulled` (compiled once, ~15 s: three
-#: calls a stage, 1.3 µs each against 3.5 µs not inlined, measured); the explicit pass not
-#: inlined (4.6 against 5.7 µs, not worth its ~20 s), as the rigid simulation's loop.
-kane_sample_pull, explicit_sample = c.K.kane_sample_pull, c.explicit_sample
+#: calls a stage, 1.3 µs each against 3.5 µs not inlined, measured); the explicit pass
+#: through its formulas' calls (``KE``), not the compiled-once inlined pass the rigid loop
+#: calls (``compiled.explicit_sample``): linked into this plant's loops, that one made
+#: each loop compile ~15 s longer (Numba optimises linked code again in every caller),
+#: and the test suite, which compiles a loop per law, ~2 min longer.
+kane_sample_pull, explicit_sample = c.K.kane_sample_pull, c.KE.explicit_sample
 solve6, cholesky_solve, unpack = c.solve6, c.cholesky_solve, c.unpack
 c_view = views.c_view
 actuation_minus_bias = c.actuation_minus_bias

@@ -33,7 +33,7 @@ tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_forc
 hoisted_pendulum, kane_sample_pull = c.K.hoisted_pendulum, c.K.kane_sample_pull
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
 tip_state, hanging_velocity, drag_force = c.K.tip_state, c.K.hanging_velocity, c.K.drag_force
-explicit_sample, cholesky_solve, solve6 = c.explicit_sample, c.cholesky_solve, c.solve6
+explicit_sample, cholesky_solve, solve6 = c.KE.explicit_sample, c.cholesky_solve, c.solve6
 kinetic_energy = c.kinetic_energy
 actuation_minus_bias = c.actuation_minus_bias
 #: One sample at a time from Python (the simulation's law): not inlined (compiles in
