@@ -43,7 +43,6 @@ def c_view(typingctx, flat, offset, shape):
         flat_type = signature.args[0]
         src = make_array(flat_type)(context, builder, args[0])
         out = make_array(signature.return_type)(context, builder)
-        intp = context.get_value_type(types.intp)
         dims = [context.cast(builder, d, t, types.intp)
                 for d, t in zip(cgutils.unpack_tuple(builder, args[2]),
                                 signature.args[2].types)]
