@@ -26,7 +26,7 @@ import contextlib
 import os
 import warnings
 
-from offshore_crane import compile_times
+from offshore_crane import compile_times, kernel_calls
 from offshore_crane.progress import first_time, notice
 
 #: Kernels compiled (not found in the cache) by this process so far.
@@ -98,6 +98,22 @@ def _recovering(dispatcher):
     cache = getattr(dispatcher, "_cache", None)
     if type(cache) is FunctionCache:
         dispatcher._cache = _cache_class()(dispatcher.py_func)
+    return _ensuring(dispatcher)
+
+
+def _ensuring(dispatcher):
+    """Before ``dispatcher`` compiles or loads a signature, the functions its text calls
+    by address are loaded (:func:`offshore_crane.kernel_calls.reached`,
+    :meth:`~offshore_crane.kernel_calls.Entry.ensure`): Numba compiles and loads through
+    ``compile``, from Python and when another kernel that calls it is typed."""
+    compile_ = dispatcher.compile
+
+    def compile(sig):
+        for entry in kernel_calls.reached(dispatcher.py_func):
+            entry.ensure()
+        return compile_(sig)
+
+    dispatcher.compile = compile
     return dispatcher
 
 
@@ -152,10 +168,16 @@ def _cache_class():
                 compile_times.saved(_name(self._py_func))
 
             def _index_key(self, sig, codegen):
-                # Numba's key hashes the byte code, which holds no constant's value: a
-                # generated program's checksum tells two of its texts apart
-                key = super()._index_key(sig, codegen)
-                digest = self._py_func.__globals__.get(PROGRAM_DIGEST)
+                # Numba's key: the byte code (which holds no constant's value) and the
+                # closure's values pickled, where a compiled function pickles with the
+                # random ids of the intrinsics it uses (a new key, a compile, in every
+                # process): the closure is described by stable_key instead. A generated
+                # program's checksum tells two of its texts apart.
+                f = self._py_func
+                cells = tuple(c.cell_contents for c in f.__closure__ or ())
+                key = (sig, codegen.magic_tuple(), (_sha(f.__code__.co_code),
+                                                     _sha(repr(stable_key(cells)))))
+                digest = f.__globals__.get(PROGRAM_DIGEST)
                 return key if digest is None else (*key, digest)
 
         _CLASS.append(RecoveringCache)
@@ -209,3 +231,57 @@ def remove_entry(cache_file, name: str, exc: Exception) -> None:
     warnings.warn(KernelCacheWarning(
         f"compiled-kernel cache entry {where}.* could not be loaded ({type(exc).__name__}: "
         f"{reason}): removed {len(files)} file(s), compiling {name} again"), stacklevel=2)
+
+
+def _sha(data) -> str:
+    import hashlib
+
+    return hashlib.sha256(data if isinstance(data, bytes) else data.encode()).hexdigest()
+
+
+_FILES: dict = {}
+
+
+def _file_digest(path: str) -> str:
+    """The checksum of a source file's text (once per process), or its path when it
+    cannot be read."""
+    if path not in _FILES:
+        try:
+            with open(path, "rb") as fh:
+                _FILES[path] = _sha(fh.read())
+        except OSError:
+            _FILES[path] = path
+    return _FILES[path]
+
+
+def stable_key(obj, seen=None):
+    """What a compiled kernel's closure holds, described the same in every process: a
+    compiled function by its name, byte code, its source file's checksum and (the same
+    way) its closure; an intrinsic by its name; arrays by their bytes; plain values by
+    ``repr``; anything else pickled (Numba's pickler)."""
+    from numba.core.dispatcher import Dispatcher
+    from numba.core.extending import _Intrinsic
+
+    seen = set() if seen is None else seen
+    if isinstance(obj, (str, bytes, int, float, complex, bool, type(None))):
+        return (type(obj).__name__, obj)
+    if isinstance(obj, (tuple, list)):
+        return (type(obj).__name__, tuple(stable_key(x, seen) for x in obj))
+    if id(obj) in seen:
+        return ("seen",)
+    seen.add(id(obj))
+    if isinstance(obj, Dispatcher):
+        f = obj.py_func
+        cells = tuple(c.cell_contents for c in f.__closure__ or ())
+        return ("kernel", f.__module__, f.__qualname__, _sha(f.__code__.co_code),
+                _file_digest(f.__code__.co_filename), stable_key(cells, seen))
+    if isinstance(obj, _Intrinsic):
+        return ("intrinsic", obj._name, getattr(obj._defn, "__module__", ""),
+                getattr(obj._defn, "__qualname__", ""))
+    import numpy as np
+
+    if isinstance(obj, np.ndarray):
+        return ("array", obj.dtype.str, obj.shape, _sha(np.ascontiguousarray(obj).tobytes()))
+    from numba.core.serialize import dumps
+
+    return ("pickled", _sha(dumps(obj)))

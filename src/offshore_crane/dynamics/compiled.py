@@ -17,6 +17,7 @@ bit-identical to one thread (every sample is computed independently).
 from __future__ import annotations
 
 import numpy as np
+from offshore_crane import kernel_calls
 from offshore_crane.kernel_cache import njit
 
 from offshore_crane.robot.kinematics import workspace as ws
@@ -40,10 +41,9 @@ def _jit_formula(f):
 K = backends.bind({}, _jit_formula)
 _kane_sample = K.kane_sample
 #: The formulas compiled without inlining, each built once, for the paths that call a
-#: formula now and then (the actuators' coordinates, the hanging load's Kane passes) and
-#: for the hanging and elastic plants' explicit pass: ~2x the run time of the inlined
-#: build. The explicit form itself is :func:`explicit_sample` below: inlined once, called
-#: by the drivers that run it most.
+#: formula now and then (the actuators' coordinates, the hanging load's Kane passes):
+#: ~2x the run time of the inlined build. The explicit form itself is
+#: :func:`explicit_sample` below: inlined once, called by address.
 KE = backends.bind({}, njit(**JIT))
 STAMP = backends.source_stamp()
 
@@ -53,13 +53,12 @@ def _explicit(stamp):
     def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, diag, mc):
         """:func:`~offshore_crane.dynamics.formulas.explicit_sample` as one function with
         its formulas inlined (``K``'s), compiled once (closed over the formulas' hash
-        ``stamp``, which keys its disk cache) and called by the drivers that run it most:
-        the equations of motion, the explicit inverse dynamics and the rigid robot's loop
-        (:mod:`offshore_crane.simulation.rk4`). 3.0 µs a sample of forward dynamics
-        against 4.4 µs through :data:`KE`'s calls; the text is not inlined again into each
-        driver, but Numba links its code into every function that calls it and optimises
-        it again there (the hanging and elastic plants call :data:`KE`'s: their loops,
-        one per law, would each compile ~15 s longer)."""
+        ``stamp``, which keys its disk cache) and called by address
+        (:data:`call_explicit`) by every kernel that runs it: the equations of motion,
+        the explicit inverse dynamics, the rigid robot's loop and the hanging and elastic
+        plants. 3.0 µs a sample of forward dynamics against 4.4 µs through :data:`KE`'s
+        calls; called by address, its code is not linked into each caller and optimised
+        again there (:mod:`offshore_crane.kernel_calls`)."""
         if len(stamp) == 0:
             return
         _inlined_explicit(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, diag,
@@ -70,6 +69,45 @@ def _explicit(stamp):
 
 _inlined_explicit = K.explicit_sample            # reached as a global: cacheable
 explicit_sample = _explicit(STAMP)
+
+
+def _none_type():
+    from numba import types
+
+    return types.none
+
+
+def kane_constants_type():
+    """The Numba type of :class:`~.formulas.KaneConstants` as :func:`unpack` makes it
+    (C-contiguous float64 arrays, ``n_arm`` an int64, ``arm_prism`` booleans)."""
+    from numba import types
+
+    f8 = types.float64
+    nd = {"plat_m": 0, "plat_c": 1, "plat_I": 2, "n_arm": -1, "arm_t": 2, "arm_Ro": 3,
+          "arm_axis": 2, "arm_prism": -2, "arm_m": 1, "arm_c": 2, "arm_I": 3, "leg_s": 2,
+          "leg_P": 2, "leg_X": 2, "leg_Y": 2, "leg_Z": 2, "lo_m": 1, "lo_c": 2, "up_m": 1,
+          "up_c": 2, "leg_I": 3, "thin_It": 1, "lo_cz": 1, "up_cz": 1, "L": 0}
+    kind = {0: f8, -1: types.int64, -2: types.Array(types.boolean, 1, "C")}
+    return types.NamedTuple([kind[nd[n]] if nd[n] <= 0 else types.Array(f8, nd[n], "C")
+                             for n in KaneConstants._fields], KaneConstants)
+
+
+def _explicit_types():
+    from numba import types
+
+    v, m = types.Array(types.float64, 1, "C"), types.Array(types.float64, 2, "C")
+    return (kane_constants_type(), v, v, v, types.UniTuple(types.float64, 3),
+            types.boolean, v, m, m, m, m, m, m, m, m)
+
+
+#: :func:`explicit_sample` called by address (:mod:`offshore_crane.kernel_calls`): every
+#: kernel that runs it calls ``call_explicit`` with its arguments, exactly typed as
+#: :func:`_explicit_types` (``C`` from :func:`unpack`; ``q, qd, qdd, B`` (n,) and the
+#: work arrays C-contiguous, ``g`` a tuple of 3 floats). Its code is compiled once, in
+#: its own library, not again in each caller.
+EXPLICIT = kernel_calls.Entry("explicit_sample", lambda: explicit_sample,
+                              _explicit_types(), _none_type(), STAMP)
+call_explicit = EXPLICIT.call
 
 _BAD_INPUT, _VIOLATION, _BAD_OUTPUT, _KAPPA = ws.BAD_INPUT, ws.VIOLATION, ws.BAD_OUTPUT, ws.KAPPA
 #: A clean health record, and the slots that hold the first sample of something found.
@@ -337,8 +375,8 @@ def _make(stamp):
                     X[k, j] = np.nan
                 continue
             B[:] = 0.0
-            explicit_sample(C, q[k], qd[k], qdd[k], gt, False, B, J, Mm, store, Vw, Ww, Vs,
-                             diag, mc)
+            call_explicit(C, q[k], qd[k], qdd[k], gt, False, B, J, Mm, store, Vw, Ww, Vs,
+                          diag, mc)
             for b in range(na):
                 X[k, b] = B[6 + b]
             leg_system(B, J, iL, A, rhs)
@@ -381,8 +419,8 @@ def _make(stamp):
                 continue
             B[:] = 0.0
             Mm[:] = 0.0
-            explicit_sample(C, q[k], qd[k], zero, gt, want_M or want_qdd, B, J, Mm, store,
-                             Vw, Ww, Vs, diag, mc)
+            call_explicit(C, q[k], qd[k], zero, gt, want_M or want_qdd, B, J, Mm, store,
+                          Vw, Ww, Vs, diag, mc)
             if want_h:
                 for r in range(9):
                     hout[k, r] = B[r]

@@ -14,7 +14,7 @@ from offshore_crane.simulation.laws import codes
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 
-explicit_sample, actuator_coordinates = c.explicit_sample, c.KE.actuator_coordinates
+explicit_sample, actuator_coordinates = c.call_explicit, c.KE.actuator_coordinates
 solve6, cholesky_solve, unpack, check = c.solve6, c.cholesky_solve, c.unpack, c._check
 actuation_minus_bias, leg_system = c.actuation_minus_bias, c.leg_system
 kinetic_energy = c.kinetic_energy

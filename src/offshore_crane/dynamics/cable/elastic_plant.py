@@ -29,6 +29,7 @@ RK4 loop). Like the drivers of :mod:`.kernels`, they close over the formulas' ha
 from __future__ import annotations
 
 import numpy as np
+from offshore_crane import kernel_calls
 from offshore_crane.kernel_cache import njit
 
 from offshore_crane.conventions import GRAVITY
@@ -41,12 +42,11 @@ tip_state, tip_motion, dot = c.K.tip_state, c.K.tip_motion, c.K.dot
 cable_tension, sway_damping_force = c.K.cable_tension, c.K.sway_damping_force
 drag_force = c.K.drag_force
 #: The Kane pass with the pull, inlined into :func:`pulled` (compiled once, ~15 s: three
-#: calls a stage, 1.3 µs each against 3.5 µs not inlined, measured); the explicit pass
-#: through its formulas' calls (``KE``), not the compiled-once inlined pass the rigid loop
-#: calls (``compiled.explicit_sample``): linked into this plant's loops, that one made
-#: each loop compile ~15 s longer (Numba optimises linked code again in every caller),
-#: and the test suite, which compiles a loop per law, ~2 min longer.
-kane_sample_pull, explicit_sample = c.K.kane_sample_pull, c.KE.explicit_sample
+#: calls a stage, 1.3 µs each against 3.5 µs not inlined, measured); the explicit pass is
+#: the compiled-once inlined one, called by address (``compiled.call_explicit``), as the
+#: plant's own passes are by its loops (:data:`DERIVATIVE` below): linked, each loop (one
+#: per law) compiled them again, ~15 s each.
+kane_sample_pull, explicit_sample = c.K.kane_sample_pull, c.call_explicit
 solve6, cholesky_solve, unpack = c.solve6, c.cholesky_solve, c.unpack
 c_view = views.c_view
 actuation_minus_bias = c.actuation_minus_bias
@@ -249,6 +249,21 @@ def _make(stamp):
 
 
 measure, computed_torque, derivative = _make(c.STAMP)
+
+_V, _ARRAYS = "float64[::1]", "float64[::1], int64[:, ::1], boolean[::1]"
+#: :func:`measure`, :func:`computed_torque` and :func:`derivative` called by address
+#: (:mod:`offshore_crane.kernel_calls`): the elastic plant's loops, one per law, call
+#: them without compiling their Kane passes again.
+MEASURE = kernel_calls.Entry.typed(
+    "elastic_measure", lambda: measure,
+    f"float64({_ARRAYS}, {_V}, float64, float64, {_V}, {_V}, {_V})", c.STAMP)
+COMPUTED_TORQUE = kernel_calls.Entry.typed(
+    "elastic_computed_torque", lambda: computed_torque,
+    f"none({_ARRAYS}, {_V}, {_V}, {_V}, {_V}, {_V}, {_V})", c.STAMP)
+DERIVATIVE = kernel_calls.Entry.typed(
+    "elastic_derivative", lambda: derivative,
+    f"float64({_ARRAYS}, {_ARRAYS}, {_V}, float64, float64, {_V}, {_V}, {_V}, {_V}, {_V}, "
+    "int64[::1])", c.STAMP)
 
 
 def parameters(gravity, ea: float, damping: float, sway, drag: float) -> np.ndarray:

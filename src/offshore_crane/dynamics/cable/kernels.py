@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 from offshore_crane.stops import CODES
+from offshore_crane import kernel_calls
 from offshore_crane.kernel_cache import njit
 
 from offshore_crane.dynamics import compiled as c
@@ -33,7 +34,7 @@ tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_forc
 hoisted_pendulum, kane_sample_pull = c.K.hoisted_pendulum, c.K.kane_sample_pull
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
 tip_state, hanging_velocity, drag_force = c.K.tip_state, c.K.hanging_velocity, c.K.drag_force
-explicit_sample, cholesky_solve, solve6 = c.KE.explicit_sample, c.cholesky_solve, c.solve6
+explicit_sample, cholesky_solve, solve6 = c.call_explicit, c.cholesky_solve, c.solve6
 kinetic_energy = c.kinetic_energy
 actuation_minus_bias = c.actuation_minus_bias
 #: One sample at a time from Python (the simulation's law): not inlined (compiles in
@@ -445,3 +446,16 @@ def _make(stamp):
 
 
 integrate, kane, kane_pulled, accelerations, computed_torque, payload = _make(c.STAMP)
+
+_V, _ARRAYS = "float64[::1]", "float64[::1], int64[:, ::1], boolean[::1]"
+#: :func:`accelerations` and :func:`computed_torque` called by address
+#: (:mod:`offshore_crane.kernel_calls`): the hanging plant's loops, one per law, call
+#: them without compiling their Kane passes again.
+ACCELERATIONS = kernel_calls.Entry.typed(
+    "cable_accelerations", lambda: accelerations,
+    f"boolean({_ARRAYS}, {_V}, float64, {_V}, {_V}, {_V}, {_V}, float64, float64, {_V}, "
+    f"{_V})", c.STAMP)
+COMPUTED_TORQUE = kernel_calls.Entry.typed(
+    "cable_computed_torque", lambda: computed_torque,
+    f"float64({_ARRAYS}, {_V}, float64, {_V}, {_V}, {_V}, {_V}, float64, float64, {_V})",
+    c.STAMP)

@@ -19,7 +19,10 @@ from offshore_crane.kernel_cache import njit
 from offshore_crane.simulation.plants import shared_kernels as shared
 
 jit = njit(**c.JIT)
-derivative, measure, computed_torque = ep.derivative, ep.measure, ep.computed_torque
+#: The plant's passes, called by address: each loop (one per law) compiles its own code
+#: only (:mod:`offshore_crane.kernel_calls`).
+derivative, measure, computed_torque = (ep.DERIVATIVE.call, ep.MEASURE.call,
+                                        ep.COMPUTED_TORQUE.call)
 carve = ep._carve
 unpack = c.unpack
 tip_kinematics = ck.tip_kinematics

@@ -18,7 +18,10 @@ from offshore_crane.stops import CODES
 
 OK, _, SINGULAR, DIVERGED, _, _ = CODES
 jit = njit(**c.JIT)
-accelerations, computed_torque, pay_kernel = ck.accelerations, ck.computed_torque, ck.payload
+#: The plant's Kane passes, called by address: each loop (one per law) compiles its own
+#: code only (:mod:`offshore_crane.kernel_calls`).
+accelerations, computed_torque = ck.ACCELERATIONS.call, ck.COMPUTED_TORQUE.call
+pay_kernel = ck.payload
 set_length, tip_kinematics = ck.set_length, ck.tip_kinematics
 actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
 #: A coordinate beyond this has diverged (record.DIVERGED_STATE).
@@ -142,7 +145,7 @@ def params(plant) -> tuple:
     # a winch writes its length into the arrays: the plant's and the model's own copies
     own = (lambda x: x.copy()) if len(Lh) > 1 else (lambda x: x)
     return (own(a.flat), a.layout, a.prismatic, np.asarray(plant.damp_p, float),
-            plant.drag_p, np.asarray(plant.g, float), np.zeros(11), np.zeros(2),
+            plant.drag_p, np.array(plant.g, dtype=float), np.zeros(11), np.zeros(2),
             own(m.flat), m.layout, m.prismatic, np.asarray(plant.damp_c, float),
             plant.drag_c, legs.flat, legs.layout, legs.prismatic, np.zeros(11),
             np.ascontiguousarray(Lh, dtype=float))
