@@ -168,7 +168,26 @@ def _helpers(stamp):
     return load, cable, pulled, accelerate
 
 
-load, cable, pulled, accelerate = _helpers(c.STAMP)
+load, cable_kernel, pulled_kernel, accelerate = _helpers(c.STAMP)
+
+
+def _types(kind):
+    from numba import types
+
+    v, m, t3 = types.float64[::1], types.float64[:, ::1], types.UniTuple(types.float64, 3)
+    f, C = types.float64, c.kane_constants_type()
+    return ((C, v, v, v, t3, t3, t3, v, v, m, v, m, m, v, m), types.none) if kind == "pulled" \
+        else ((C, v, f, f, v, v, v, v, v), f)
+
+
+#: :func:`pulled` and :func:`cable` called by address (:mod:`offshore_crane.
+#: kernel_calls`): compiled once each (the Kane pass with the pull inlined, the cable's
+#: model), not again in :func:`measure`, :func:`computed_torque` and :func:`derivative`,
+#: which run them.
+PULLED = kernel_calls.Entry("elastic_pulled", lambda: pulled_kernel, *_types("pulled"),
+                            c.STAMP)
+CABLE = kernel_calls.Entry("elastic_cable", lambda: cable_kernel, *_types("cable"), c.STAMP)
+pulled, cable = PULLED.call, CABLE.call
 
 
 def _make(stamp):
