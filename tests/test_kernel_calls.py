@@ -56,6 +56,30 @@ def test_a_call_by_address_gives_the_direct_call_bit_for_bit():
     assert WEIGHTED.slot[0] != 0                   # the caller's compile loaded it
 
 
+def test_a_caller_by_address_links_none_of_the_callees_code():
+    """The point of an entry: the caller's module declares the slot and defines nothing of
+    the callee, where a direct call links the callee's definition into it."""
+    @numba.njit
+    def by_address(x, out):
+        return call_weighted(x, 2.0, out)
+
+    @numba.njit
+    def direct(x, out):
+        return _weighted(x, 2.0, out)
+
+    x, out = np.ones(3), np.empty(3)
+    by_address(x, out)
+    direct(x, out)
+    callee = WEIGHTED._cres.library
+
+    def linked(f):            # the libraries Numba links into f's module (a private list)
+        return f.overloads[f.signatures[0]].library._linking_libraries
+
+    assert callee in linked(direct)
+    assert callee not in linked(by_address)
+    assert WEIGHTED.symbol in by_address.inspect_llvm(by_address.signatures[0])
+
+
 def test_an_argument_of_another_type_is_refused_when_the_caller_compiles():
     @njit
     def wrong(x, out):
