@@ -223,3 +223,45 @@ def test_compiled_views_are_the_constants(robot, which):
         if got.ndim and got.size:
             assert np.shares_memory(got, arrays.flat), name
     assert C.n_arm == arrays.kane.n_arm
+
+
+def test_views_without_an_owner_are_only_made_of_a_kernels_arguments():
+    """``views.c_view`` (and ``unpack``, ``_carve``, which call it) makes arrays that do
+    not keep their buffer alive: the buffer must be an argument of the running kernel
+    (or an element of one, or unpacked from one), never an array the kernel made. Every
+    call site in the package's sources, read with ``ast``."""
+    import ast
+    from pathlib import Path
+
+    def own(fn):                            # fn's nodes, not those of functions in it
+        todo = list(fn.body)
+        while todo:
+            node = todo.pop()
+            yield node
+            if not isinstance(node, (ast.FunctionDef, ast.Lambda)):
+                todo.extend(ast.iter_child_nodes(node))
+
+    makers = {"c_view", "unpack", "_carve", "carve"}
+    root = Path(oc.__file__).parent
+    sites = 0
+    for path in root.rglob("*.py"):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for fn in (n for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)):
+            params = {a.arg for a in fn.args.args}
+            for node in own(fn):               # names unpacked from an argument: a, b = P
+                if (isinstance(node, ast.Assign) and isinstance(node.value, ast.Name)
+                        and node.value.id in params and isinstance(node.targets[0], ast.Tuple)):
+                    params |= {e.id for e in node.targets[0].elts if isinstance(e, ast.Name)}
+            for call in (n for n in own(fn) if isinstance(n, ast.Call)):
+                f = call.func               # c_view(...), or c.unpack(...) (not struct's)
+                name = f.id if isinstance(f, ast.Name) else (
+                    f.attr if isinstance(f, ast.Attribute) and isinstance(f.value, ast.Name)
+                    and f.value.id in {"c", "compiled", "ep", "views"} else None)
+                if name not in makers or not call.args:
+                    continue
+                buf = call.args[0]
+                base = buf.value if isinstance(buf, ast.Subscript) else buf
+                where = f"{path.relative_to(root)}:{call.lineno}"
+                assert isinstance(base, ast.Name) and base.id in params, where
+                sites += 1
+    assert sites >= 30                          # the rule was applied to the call sites

@@ -68,9 +68,11 @@ def bind(math_functions: dict, wrap=lambda f: f) -> types.SimpleNamespace:
     return types.SimpleNamespace(**out)
 
 
-#: Modules inlined into the compiled loops besides the formulas (read, not imported:
+#: Modules whose code the compiled kernels embed besides the formulas: the RK4 tableau,
+#: the views without an owner, the calls by address (read, not imported:
 #: importing them would import Numba).
-INLINED = ("offshore_crane.dynamics.integrator",)
+INLINED = ("offshore_crane.dynamics.integrator", "offshore_crane.dynamics.views",
+           "offshore_crane.kernel_calls")
 
 
 def source_stamp() -> str:
