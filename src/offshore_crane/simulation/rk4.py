@@ -15,6 +15,7 @@ core, one session).
 from __future__ import annotations
 
 import numpy as np
+from offshore_crane import kernel_calls
 from offshore_crane.kernel_cache import njit
 from offshore_crane.stops import CODES
 from offshore_crane.simulation.laws import codes
@@ -172,7 +173,7 @@ def _helpers(stamp):
             equations(C, g, q, qd, ws)
             ct(C, n, kp, kd, q, qd, qr, qdr, qddr, Xc, ws, wl)
         elif hold == 0:
-            law(Cc, g, kind, kp, kd, q, qd, qr, qdr, qddr, Xc, wl)
+            call_law(Cc, g, kind, kp, kd, q, qd, qr, qdr, qddr, Xc, wl)
         if shared or hold == 0:
             for j in range(9):
                 Xa[j] = min(max(Xc[j], lo[j]), hi[j])
@@ -207,6 +208,22 @@ _WS = ((9,), (6, 6), (9, 9), (9, 9), "S", (9, 3), (9, 3), (9, 3), (7, 6), (1, 3)
        (9,))
 _WL = ((9,), (6, 6), (9, 9), "S", (9, 3), (9, 3), (9, 3), (7, 6), (1, 3), (6, 6), (6,), (6,),
        (6, 13), (9,), (9,), (9,), (9,), (9,), (9,))
+
+
+def _law_types():
+    from numba import types
+
+    v, t3 = types.float64[::1], types.UniTuple(types.float64, 3)
+    wl = types.Tuple([types.Array(types.float64, 2 if s == "S" else len(s), "C")
+                      for s in _WL])
+    return (c.kane_constants_type(), t3, types.int64, v, v, v, v, v, v, v, v, wl), types.none
+
+
+#: :func:`law` called by address (:mod:`offshore_crane.kernel_calls`) by the loop and its
+#: stages: its code (the explicit pass's call, the actuators' coordinates) is not linked
+#: into :func:`run` and optimised again there.
+LAW = kernel_calls.Entry("rigid_law", lambda: law, *_law_types(), STAMP)
+call_law = LAW.call
 
 
 def work_size(na: int) -> int:
@@ -303,7 +320,8 @@ def _runner(stamp):
                     equations(C, gt, q, qd, ws)
                     ct(C, n, kp, kd, q, qd, qr[i0], qdr[i0], qddr[i0], Xc, ws, wl)
                 else:
-                    law(Cc, gt, kind, kp, kd, qm, qdm, qr[i0], qdr[i0], qddr[i0], Xc, wl)
+                    call_law(Cc, gt, kind, kp, kd, qm, qdm, qr[i0], qdr[i0], qddr[i0], Xc,
+                             wl)
                 for j in range(9):
                     sat[j] = Xc[j] < lo[j] or Xc[j] > hi[j]
                     Xa[j] = min(max(Xc[j], lo[j]), hi[j])
