@@ -226,7 +226,8 @@ def test_compiled_views_are_the_constants(robot, which):
 
 
 def test_views_without_an_owner_are_only_made_of_a_kernels_arguments():
-    """``views.c_view`` (and ``unpack``, ``_carve``, which call it) makes arrays that do
+    """``views.c_view`` (and ``unpack``, ``_carve``, which call it) and ``views.unowned``
+    make arrays that do
     not keep their buffer alive: the buffer must be an argument of the running kernel
     (or an element of one, or unpacked from one), never an array the kernel made. Every
     call site in the package's sources, read with ``ast``."""
@@ -241,7 +242,7 @@ def test_views_without_an_owner_are_only_made_of_a_kernels_arguments():
             if not isinstance(node, (ast.FunctionDef, ast.Lambda)):
                 todo.extend(ast.iter_child_nodes(node))
 
-    makers = {"c_view", "unpack", "_carve", "carve"}
+    makers = {"c_view", "unpack", "_carve", "carve", "unowned"}
     root = Path(oc.__file__).parent
     sites = 0
     for path in root.rglob("*.py"):
@@ -265,3 +266,26 @@ def test_views_without_an_owner_are_only_made_of_a_kernels_arguments():
                 assert isinstance(base, ast.Name) and base.id in params, where
                 sites += 1
     assert sites >= 30                          # the rule was applied to the call sites
+
+
+def test_unowned_keeps_the_data_and_refuses_what_it_cannot_strip():
+    """``views.unowned`` returns its tuple with the same arrays' data (nested tuples and
+    numbers kept); a value it cannot strip (a string) is refused when the caller
+    compiles."""
+    import numba
+
+    from offshore_crane.dynamics.views import unowned
+
+    @numba.njit
+    def total(P):
+        Q = unowned(P)
+        return Q[0].sum() + Q[1] + Q[2][0].sum()
+
+    assert total((np.arange(3.0), 2.5, (np.ones((2, 2)),))) == 3.0 + 2.5 + 4.0
+
+    @numba.njit
+    def bad(P):
+        return unowned(P)
+
+    with pytest.raises(numba.core.errors.TypingError, match="unowned"):
+        bad(("text", np.zeros(1)))

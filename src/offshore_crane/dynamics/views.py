@@ -73,3 +73,38 @@ def c_view(typingctx, flat, offset, shape):
         return out._getvalue()
 
     return sig, codegen
+
+
+@intrinsic
+def unowned(typingctx, x):
+    """``x`` (an array, or a tuple of arrays, numbers and such tuples) with each array's
+    owner dropped
+    (the same data, shape and strides; module docstring: ``x`` must be an argument of the
+    running kernel, which its caller keeps alive). A loop that hands the arrays of its
+    arguments' tuples to called kernels at every stage no longer changes their reference
+    counts."""
+    def allowed(t):
+        return isinstance(t, (types.Array, types.Number, types.Boolean)) or (
+            isinstance(t, types.BaseTuple) and all(allowed(e) for e in t.types))
+
+    if not allowed(x):
+        return None
+    sig = x(x)
+
+    def strip(context, builder, typ, value):
+        if isinstance(typ, types.BaseTuple):
+            for i, t in enumerate(typ.types):
+                value = builder.insert_value(value, strip(
+                    context, builder, t, builder.extract_value(value, i)), i)
+            return value
+        if not isinstance(typ, types.Array):
+            return value
+        ary = make_array(typ)(context, builder, value=value)
+        ary.meminfo = cgutils.get_null_value(ary.meminfo.type)
+        ary.parent = cgutils.get_null_value(ary.parent.type)
+        return ary._getvalue()
+
+    def codegen(context, builder, signature, args):
+        return strip(context, builder, signature.args[0], args[0])
+
+    return sig, codegen

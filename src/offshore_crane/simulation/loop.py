@@ -28,7 +28,7 @@ import numpy as np
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 from offshore_crane.stops import CODES
 from offshore_crane.simulation.templates import (IQ, IQD, check, command, keep,
-                                                law_rate, rhs)
+                                                law_rate, rhs, unowned)
 
 OK, _WORKSPACE, _SINGULAR, DIVERGED, STOPPED, _SLACK = CODES
 
@@ -78,6 +78,7 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
     resolutions ``resq``, ``resqd``), the rate limit ``rlim`` and lag ``lag`` (empty:
     none). ``status``: (stop code, its output sample, samples recorded, control
     instants); ends before a step when ``halt[0]`` is not zero (STOPPED)."""
+    P, L = unowned(P), unowned(L)      # handed to the plant and the law at every stage
     n = y.shape[0]
     n_pz = n_p + n_z
     k1 = np.zeros(n)
@@ -216,6 +217,12 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
     for name in ("rhs", "check", "keep", "inverse", "gravity", "coords", "payload",
                  "arm_tip"):
         ns[name] = getattr(kernels, name)
+    if compiled:
+        from offshore_crane.dynamics.views import unowned as strip
+
+        ns["unowned"] = strip
+    else:
+        ns["unowned"] = unowned
     templates = {f.__name__: f for f in TEMPLATES} | dict(law_templates)
     parts = {id(f): f for f in [*templates.values(), kernels.rhs.py_func]}.values()
     from offshore_crane.dynamics import integrator

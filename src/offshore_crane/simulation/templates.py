@@ -21,6 +21,14 @@ def _unbound(name: str):
     return call
 
 
+
+
+def unowned(x):
+    """``x`` itself: in a compiled loop, :func:`offshore_crane.dynamics.views.unowned`
+    (the arrays of the loop's argument tuples without their owner)."""
+    return x
+
+
 # the plant's kernels (offshore_crane.simulation.plants: Plant.KERNELS)
 rhs, check, keep = _unbound("rhs"), _unbound("check"), _unbound("keep")
 inverse, gravity = _unbound("inverse"), _unbound("gravity")
