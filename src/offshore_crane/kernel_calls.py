@@ -12,8 +12,9 @@ into it). An :class:`Entry` is such a function called by address instead:
   the entry's *slot*, an ``int64`` the JIT knows by a symbol of the entry's name
   (registered when the entry is made, before any caller can be compiled or loaded);
   the arguments must have exactly the entry's types, but numbers that convert without
-  loss (checked when the caller compiles: an error names the argument). The callee's code stays in its own library, compiled
-  and cached once; a caller compiles in the time of its own code.
+  loss (checked when the caller compiles: an error names the argument). The callee's
+  code stays in its own library, compiled and cached once; a caller compiles in the time
+  of its own code.
 - :meth:`Entry.ensure` fills the slot: the function compiled for the entry's types, or
   loaded from the disk cache. :func:`offshore_crane.kernel_cache.njit` does it, before a
   kernel is compiled or loaded, for every entry that kernel's Python text reaches
