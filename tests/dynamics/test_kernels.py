@@ -289,3 +289,27 @@ def test_unowned_keeps_the_data_and_refuses_what_it_cannot_strip():
 
     with pytest.raises(numba.core.errors.TypingError, match="unowned"):
         bad(("text", np.zeros(1)))
+
+
+@pytest.mark.parametrize("na", [0, 3, 5])
+def test_the_rigid_loops_carved_work_arrays_are_its_workspaces(na):
+    """``rk4.carve`` lays the loop's work arrays out in a buffer of ``rk4.work_size``:
+    each view has the shape of the array ``rk4.workspaces`` allocates, the views tile the
+    buffer without overlap, and the last ends at the buffer's end (no overrun)."""
+    import numba
+
+    from offshore_crane.simulation import rk4
+
+    @numba.njit
+    def views(w, na):               # the views leave compiled code: w stays alive below
+        ws, wl = rk4.carve(w, na)
+        return ws + wl
+
+    w = np.zeros(rk4.work_size(na))
+    carved = views(w, na)
+    ws, wl = rk4.workspaces(na)
+    assert [a.shape for a in carved] == [a.shape for a in ws + wl]
+    starts = [(a.ctypes.data - w.ctypes.data) // 8 for a in carved]
+    ends = [s + a.size for s, a in zip(starts, carved)]
+    assert starts == [0] + ends[:-1]
+    assert ends[-1] == w.size

@@ -59,12 +59,6 @@ INTEGRATORS = ("rk4", "dop853")
 
 
 # --------------------------------------------------------------------------- compiled
-def _rk4():
-    from offshore_crane.simulation import rk4
-
-    return rk4
-
-
 def _loop():
     """The compiled RK4 loop, its control law and accelerations (:mod:`.rk4`, which
     imports Numba: loaded on first use)."""
@@ -152,6 +146,7 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
     from offshore_crane.robot.kinematics import workspace as ws
 
     run = _loop()[0]
+    from offshore_crane.simulation.rk4 import work_size
     plant = robot_arrays(robot)
     model = robot_arrays(controller.model or robot)
     kp, kd = controller.gains
@@ -178,7 +173,7 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
                     out_every, StageGrid(qr, qdr, qddr),
                     LawParameters(kind, kp, kd, hold, nq, nqd, lo, hi),
                     limits, q0, qd0, rec, health, status, stop,
-                    np.zeros(_rk4().work_size(max(plant.kane.n_arm, model.kane.n_arm)))),
+                    np.zeros(work_size(max(plant.kane.n_arm, model.kane.n_arm)))),
         lambda: status[2], n_out, "sample", "simulate", stop)
     n_done = int(status[2])
     t_out = tt[::2][::out_every][:n_out]

@@ -203,7 +203,7 @@ def workspaces(na):
 
 
 #: The work arrays of :func:`workspaces`, in order: ``ws``'s, then ``wl``'s (``S``: the
-#: arm workspace, ``(max(na, 1), 27)``).
+#: arm workspace, ``(max(na, 1), 27)``); :func:`carve` lays them out by :data:`_COUNTS`.
 _WS = ((9,), (6, 6), (9, 9), (9, 9), "S", (9, 3), (9, 3), (9, 3), (7, 6), (1, 3), (9,), (9,),
        (9,))
 _WL = ((9,), (6, 6), (9, 9), "S", (9, 3), (9, 3), (9, 3), (7, 6), (1, 3), (6, 6), (6,), (6,),
@@ -226,10 +226,14 @@ LAW = kernel_calls.Entry("rigid_law", lambda: law, *_law_types(), STAMP)
 call_law = LAW.call
 
 
+#: Each work array's element count, in :data:`_WS` then :data:`_WL` order (0: the arm
+#: workspace, 27 per joint): the one layout :func:`work_size` and :func:`carve` share.
+_COUNTS = tuple(0 if s == "S" else int(np.prod(s)) for s in _WS + _WL)
+
+
 def work_size(na: int) -> int:
     """The length of :func:`run`'s ``work`` buffer for an arm of ``na`` joints."""
-    arm = max(na, 1) * 27
-    return sum(arm if s == "S" else int(np.prod(s)) for s in _WS + _WL)
+    return sum(c or max(na, 1) * 27 for c in _COUNTS)
 
 
 @inline
@@ -238,11 +242,9 @@ def carve(w, na):
     (:func:`work_size`), without an owner (:mod:`offshore_crane.dynamics.views`: handed
     from call to call, owned arrays cost the loop their reference counts)."""
     r = max(na, 1)
-    o = np.zeros(34, dtype=np.int64)          # each array's start
-    sizes = (9, 36, 81, 81, r * 27, 27, 27, 27, 42, 3, 9, 9, 9,
-             9, 36, 81, r * 27, 27, 27, 27, 42, 3, 36, 6, 6, 78, 9, 9, 9, 9, 9, 9)
-    for i in range(32):
-        o[i + 1] = o[i] + sizes[i]
+    o = np.zeros(len(_COUNTS) + 1, dtype=np.int64)          # each array's start
+    for i in range(len(_COUNTS)):
+        o[i + 1] = o[i] + (_COUNTS[i] if _COUNTS[i] > 0 else r * 27)
     ws = (c_view(w, o[0], (9,)), c_view(w, o[1], (6, 6)), c_view(w, o[2], (9, 9)),
           c_view(w, o[3], (9, 9)), c_view(w, o[4], (r, 27)), c_view(w, o[5], (9, 3)),
           c_view(w, o[6], (9, 3)), c_view(w, o[7], (9, 3)), c_view(w, o[8], (7, 6)),
