@@ -9,7 +9,11 @@ inlined (Table 1, 20 s, one core, measured in one session); inlining everything 
 loop (the law too, at three stage sites) ran at 53.9 but compiled in 47 s instead of 22 s.
 The work arrays are views without an owner of a buffer the caller passes (:func:`carve`):
 a real-time factor of 67.3 against 63.5 with owned arrays (their reference counts; one
-core, one session).
+core, one session). :func:`stage` is handed the packed arrays and that buffer and makes
+its views itself: handed the views (the two robots' constants and the two work tuples,
+about 80 array structures copied at each of its three calls a step), the loop ran at
+68.2 against 77.2; inlined into the loop, at 81.0, but the loop's compile took 27.5 s
+against 22.6 s (one core, one session).
 """
 
 from __future__ import annotations
@@ -162,13 +166,16 @@ def _helpers(stamp):
         forces(C, Bc, J, A, rhs, x, M13, Xout)
 
     @jit
-    def stage(shared, C, Cc, g, n, kind, kp, kd, hold, q, qd, qr, qdr, qddr, lo, hi, Xc,
-              Xa, qdd, ws, wl):
+    def stage(shared, plant, model, g, n, kind, kp, kd, hold, q, qd, qr, qdr, qddr, lo, hi,
+              Xc, Xa, qdd, work):
         """One RK4 stage after the first: the law at every stage (``hold`` 0: with the
         pass shared when ``shared``, :data:`SHARED`) or the held forces, clamped into
         ``Xa``, and q̈ into ``qdd``; False when M is singular."""
         if len(stamp) == 0:
             return False
+        C = unpack(plant[0], plant[1], plant[2])[0]
+        Cc = unpack(model[0], model[1], model[2])[0]
+        ws, wl = carve(work, max(C.n_arm, Cc.n_arm))
         if shared:
             equations(C, g, q, qd, ws)
             ct(C, n, kp, kd, q, qd, qr, qdr, qddr, Xc, ws, wl)
@@ -377,18 +384,18 @@ def _runner(stamp):
             k1q[:] = qd
             rk4_stage(q, k1q, 0.5 * h, qs)
             rk4_stage(qd, k1v, 0.5 * h, qds)
-            stage(shared, C, Cc, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 1], qdr[i0 + 1],
-                  qddr[i0 + 1], lo, hi, Xc, Xa, k2v, ws, wl)
+            stage(shared, plant, model, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 1],
+                  qdr[i0 + 1], qddr[i0 + 1], lo, hi, Xc, Xa, k2v, work)
             k2q[:] = qds
             rk4_stage(q, k2q, 0.5 * h, qs)
             rk4_stage(qd, k2v, 0.5 * h, qds)
-            stage(shared, C, Cc, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 1], qdr[i0 + 1],
-                  qddr[i0 + 1], lo, hi, Xc, Xa, k3v, ws, wl)
+            stage(shared, plant, model, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 1],
+                  qdr[i0 + 1], qddr[i0 + 1], lo, hi, Xc, Xa, k3v, work)
             k3q[:] = qds
             rk4_stage(q, k3q, h, qs)
             rk4_stage(qd, k3v, h, qds)
-            stage(shared, C, Cc, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 2], qdr[i0 + 2],
-                  qddr[i0 + 2], lo, hi, Xc, Xa, k4v, ws, wl)
+            stage(shared, plant, model, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 2],
+                  qdr[i0 + 2], qddr[i0 + 2], lo, hi, Xc, Xa, k4v, work)
             rk4_combine(q, h, k1q, k2q, k3q, qds)              # k4 of q is the stage's q̇
             rk4_combine(qd, h, k1v, k2v, k3v, k4v)
 
