@@ -1,8 +1,10 @@
 """Compiled kernels of the rigid plant (:mod:`.rigid`) for the RK4 driver
 (:mod:`offshore_crane.simulation.loop`; imports Numba), over the compiled loop's
 equations of motion and laws (:mod:`offshore_crane.simulation.rk4`). ``P``
-(:func:`params`): the plant's and the model's packed arrays, gravity, the equations' and
-the law's workspaces."""
+(:func:`params`): the plant's and the model's packed arrays, gravity, the one zeroed work
+buffer (:func:`offshore_crane.simulation.rk4.carve`: the equations' and the law's work
+arrays, views made in each kernel rather than handed in P, which the driver passes at
+every stage)."""
 
 from __future__ import annotations
 
@@ -18,7 +20,7 @@ from offshore_crane.simulation import rk4
 from offshore_crane.simulation.laws import codes
 
 jit = njit(**c.JIT)
-accel, law = rk4.accel, rk4.law
+equations, solve, carve, law = rk4.equations, rk4.solve, rk4.carve, rk4.call_law
 unpack = c.unpack
 CT, PDG = codes.COMPUTED_TORQUE, codes.PD_GRAVITY
 
@@ -31,8 +33,10 @@ def _make(stamp):
         if len(stamp) == 0:
             return False
         C = unpack(P[0], P[1], P[2])[0]
-        qdd = P[9]
-        ok = accel(C, P[6], 6 + C.n_arm, y[:9], y[9:18], X, qdd, P[7])
+        qdd = P[8]
+        ws = carve(P[7], max(P[2].shape[0], P[5].shape[0]))[0]
+        equations(C, P[6], y[:9], y[9:18], ws)
+        ok = solve(6 + C.n_arm, X, qdd, ws)
         for j in range(9):
             dy[j] = y[9 + j]
             dy[9 + j] = qdd[j]
@@ -51,16 +55,18 @@ def _make(stamp):
         if len(stamp) == 0:
             return
         Cc = unpack(P[3], P[4], P[5])[0]
-        zero = P[10]
-        law(Cc, P[6], CT, zero, zero, y[:9], y[9:18], y[:9], y[9:18], qdd, X, P[8])
+        zero = P[9]
+        wl = carve(P[7], max(P[2].shape[0], P[5].shape[0]))[1]
+        law(Cc, P[6], CT, zero, zero, y[:9], y[9:18], y[:9], y[9:18], qdd, X, wl)
 
     @jit
     def gravity(P, i, y, X):
         if len(stamp) == 0:
             return
         Cc = unpack(P[3], P[4], P[5])[0]
-        zero = P[10]
-        law(Cc, P[6], PDG, zero, zero, y[:9], zero, y[:9], zero, zero, X, P[8])
+        zero = P[9]
+        wl = carve(P[7], max(P[2].shape[0], P[5].shape[0]))[1]
+        law(Cc, P[6], PDG, zero, zero, y[:9], zero, y[:9], zero, zero, X, wl)
 
     return rhs, keep, inverse, gravity
 
@@ -79,6 +85,6 @@ def params(plant) -> tuple:
     from offshore_crane.dynamics.constants import robot_arrays
 
     a, m = robot_arrays(plant.robot), robot_arrays(plant.model)
-    ws, wl = rk4.workspaces(max(a.kane.n_arm, m.kane.n_arm))
+    work = np.zeros(rk4.work_size(max(a.kane.n_arm, m.kane.n_arm)))
     return (a.flat, a.layout, a.prismatic, m.flat, m.layout, m.prismatic,
-            tuple(float(x) for x in plant.g), ws, wl, np.zeros(9), np.zeros(9))
+            tuple(float(x) for x in plant.g), work, np.zeros(9), np.zeros(9))
