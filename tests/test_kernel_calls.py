@@ -16,6 +16,7 @@ import numba
 import numpy as np
 import pytest
 
+import offshore_crane as oc
 from offshore_crane import kernel_calls
 from offshore_crane.kernel_cache import njit, stable_key
 
@@ -134,6 +135,26 @@ def test_the_explicit_pass_is_declared_with_the_types_the_kernels_give_it(robot)
 
     assert numba.typeof(robot_arrays(robot).kane) == c.kane_constants_type()
     assert c.EXPLICIT.argtypes[0] == c.kane_constants_type()
+
+
+def test_a_signatures_short_names_are_the_types_the_packed_arrays_and_work_give():
+    """``PACKED``, ``V``, ``M``, ``T3`` of a signature's text are what ``numba.typeof``
+    gives the description's packed arrays, a work vector, a work matrix, gravity; a name
+    given as a keyword is used as it is."""
+    from offshore_crane.dynamics.constants import robot_arrays
+    from numba import types
+
+    a = robot_arrays(oc.load_robot())
+    e = kernel_calls.Entry.typed("test_short_names", lambda: _weighted,
+                                 "float64(*PACKED, V, M, T3, W)", "test", W=types.int8)
+    given = (a.flat, a.layout, a.prismatic, np.zeros(3), np.zeros((2, 3)), (0.0, 0.0, -9.81))
+    assert e.argtypes[:6] == tuple(numba.typeof(x) for x in given)
+    assert e.argtypes[6] == types.int8 and e.restype == types.float64
+
+
+def test_a_signature_with_an_unknown_name_is_refused_where_it_is_declared():
+    with pytest.raises(NameError, match="'Q'"):
+        kernel_calls.Entry.typed("test_unknown", lambda: _weighted, "float64(V, Q)", "test")
 
 
 def test_the_cache_key_of_a_closure_does_not_hold_an_intrinsics_random_id():

@@ -64,12 +64,16 @@ class Entry:
         _BY_CALL[id(self.call)] = self
 
     @classmethod
-    def typed(cls, name: str, dispatcher, signature: str, stamp: str) -> "Entry":
-        """An entry whose types are a Numba signature's text (``"float64(float64[::1],
-        int64)"``)."""
+    def typed(cls, name: str, dispatcher, signature: str, stamp: str, **named) -> "Entry":
+        """An entry whose types are a signature's text: Numba's names
+        (``"float64(float64[::1], int64)"``), the short names of :func:`short_names`
+        (``"none(*PACKED, V, T3)"``) and the types given as keywords (``C=...``).
+        The one way entries declare their types."""
         from numba.core import sigutils
 
-        argtypes, restype = sigutils.normalize_signature(signature)
+        scope = {**short_names(), **named}
+        sig = eval(signature, {"__builtins__": {}}, scope)      # noqa: S307 (our text)
+        argtypes, restype = sigutils.normalize_signature(sig)
         return cls(name, dispatcher, argtypes, restype, stamp)
 
     def ensure(self) -> None:
@@ -85,6 +89,21 @@ class Entry:
                             f"{self.restype}")
         self._cres = cres                                  # keeps its code alive
         self.slot[0] = cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name)
+
+
+def short_names() -> dict:
+    """The names a signature's text may use (:meth:`Entry.typed`): Numba's types, and
+    ``V`` a C-contiguous float64 vector, ``M`` a C-contiguous float64 matrix, ``T3`` a
+    tuple of 3 floats (a point, gravity) and ``PACKED`` the three packed arrays of a
+    robot's description (``flat``, ``layout``, ``prismatic``:
+    :class:`~offshore_crane.dynamics.constants.RobotArrays`), to unpack (``*PACKED``)."""
+    from numba.core import types
+
+    f8 = types.float64
+    return {**vars(types), "V": types.Array(f8, 1, "C"), "M": types.Array(f8, 2, "C"),
+            "T3": types.UniTuple(f8, 3),
+            "PACKED": (types.Array(f8, 1, "C"), types.Array(types.int64, 2, "C"),
+                       types.Array(types.boolean, 1, "C"))}
 
 
 def _caller(entry: Entry):

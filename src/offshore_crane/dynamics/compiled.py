@@ -71,12 +71,6 @@ _inlined_explicit = K.explicit_sample            # reached as a global: cacheabl
 explicit_sample = _explicit(STAMP)
 
 
-def _none_type():
-    from numba import types
-
-    return types.none
-
-
 def kane_constants_type():
     """The Numba type of :class:`~.formulas.KaneConstants` as :func:`unpack` makes it
     (C-contiguous float64 arrays, ``n_arm`` an int64, ``arm_prism`` booleans)."""
@@ -92,21 +86,15 @@ def kane_constants_type():
                              for n in KaneConstants._fields], KaneConstants)
 
 
-def _explicit_types():
-    from numba import types
-
-    v, m = types.Array(types.float64, 1, "C"), types.Array(types.float64, 2, "C")
-    return (kane_constants_type(), v, v, v, types.UniTuple(types.float64, 3),
-            types.boolean, v, m, m, m, m, m, m, m, m)
-
-
 #: :func:`explicit_sample` called by address (:mod:`offshore_crane.kernel_calls`): every
-#: kernel that runs it calls ``call_explicit`` with its arguments, exactly typed as
-#: :func:`_explicit_types` (``C`` from :func:`unpack`; ``q, qd, qdd, B`` (n,) and the
-#: work arrays C-contiguous, ``g`` a tuple of 3 floats). Its code is compiled once, in
-#: its own library, not again in each caller.
-EXPLICIT = kernel_calls.Entry("explicit_sample", lambda: explicit_sample,
-                              _explicit_types(), _none_type(), STAMP)
+#: kernel that runs it calls ``call_explicit`` with its arguments, exactly typed (``C``
+#: from :func:`unpack`; ``q, qd, qdd, B`` (n,) and the work arrays C-contiguous, ``g`` a
+#: tuple of 3 floats). Its code is compiled once, in its own library, not again in each
+#: caller.
+EXPLICIT = kernel_calls.Entry.typed(
+    "explicit_sample", lambda: explicit_sample,
+    "none(C, V, V, V, T3, boolean, V, M, M, M, M, M, M, M, M)", STAMP,
+    C=kane_constants_type())
 call_explicit = EXPLICIT.call
 
 _BAD_INPUT, _VIOLATION, _BAD_OUTPUT, _KAPPA = ws.BAD_INPUT, ws.VIOLATION, ws.BAD_OUTPUT, ws.KAPPA

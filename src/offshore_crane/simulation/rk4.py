@@ -194,19 +194,15 @@ def _helpers(stamp):
 law, accel, equations, solve, ct, stage = _helpers(STAMP)
 
 
-@jit
-def workspaces(na):
+def workspaces(na: int) -> tuple:
     """The equations' (``ws``) and the law's (``wl``) work tuples of :func:`accel`,
-    :func:`law` for an arm of ``na`` joints: what :func:`run` makes for itself, and what
-    the DOP853 path and the rigid plant's kernels make from Python."""
-    ws = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.zeros((9, 9)),
-          np.empty((max(na, 1), 27)), np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)),
-          np.zeros((7, 6)), np.empty((1, 3)), np.empty(9), np.empty(9), np.zeros(9))
-    wl = (np.zeros(9), np.empty((6, 6)), np.zeros((9, 9)), np.empty((max(na, 1), 27)),
-          np.empty((9, 3)), np.empty((9, 3)), np.empty((9, 3)), np.zeros((7, 6)),
-          np.empty((1, 3)), np.empty((6, 6)), np.empty(6), np.empty(6), np.empty((6, 13)),
-          np.zeros(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9), np.empty(9))
-    return ws, wl
+    :func:`law` for an arm of ``na`` joints, as owned zeroed arrays (:data:`_WS`,
+    :data:`_WL`): for the DOP853 path, which calls them from Python. The compiled loops
+    carve the same arrays from one buffer (:func:`carve`)."""
+    def made(shapes):
+        return tuple(np.zeros((max(na, 1), 27) if s == "S" else s) for s in shapes)
+
+    return made(_WS), made(_WL)
 
 
 #: The work arrays of :func:`workspaces`, in order: ``ws``'s, then ``wl``'s (``S``: the
@@ -217,19 +213,20 @@ _WL = ((9,), (6, 6), (9, 9), "S", (9, 3), (9, 3), (9, 3), (7, 6), (1, 3), (6, 6)
        (6, 13), (9,), (9,), (9,), (9,), (9,), (9,))
 
 
-def _law_types():
+def _work_type(shapes):
+    """The Numba type of a work tuple laid out as ``shapes`` (:data:`_WL`)."""
     from numba import types
 
-    v, t3 = types.float64[::1], types.UniTuple(types.float64, 3)
-    wl = types.Tuple([types.Array(types.float64, 2 if s == "S" else len(s), "C")
-                      for s in _WL])
-    return (c.kane_constants_type(), t3, types.int64, v, v, v, v, v, v, v, v, wl), types.none
+    return types.Tuple([types.Array(types.float64, 2 if s == "S" else len(s), "C")
+                        for s in shapes])
 
 
 #: :func:`law` called by address (:mod:`offshore_crane.kernel_calls`) by the loop and its
 #: stages: its code (the explicit pass's call, the actuators' coordinates) is not linked
 #: into :func:`run` and optimised again there.
-LAW = kernel_calls.Entry("rigid_law", lambda: law, *_law_types(), STAMP)
+LAW = kernel_calls.Entry.typed("rigid_law", lambda: law,
+                               "none(C, T3, int64, V, V, V, V, V, V, V, V, WL)", STAMP,
+                               C=c.kane_constants_type(), WL=_work_type(_WL))
 call_law = LAW.call
 
 

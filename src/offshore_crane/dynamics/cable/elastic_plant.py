@@ -171,22 +171,17 @@ def _helpers(stamp):
 load, cable_kernel, pulled_kernel, accelerate = _helpers(c.STAMP)
 
 
-def _types(kind):
-    from numba import types
-
-    v, m, t3 = types.float64[::1], types.float64[:, ::1], types.UniTuple(types.float64, 3)
-    f, C = types.float64, c.kane_constants_type()
-    return ((C, v, v, v, t3, t3, t3, v, v, m, v, m, m, v, m), types.none) if kind == "pulled" \
-        else ((C, v, f, f, v, v, v, v, v), f)
-
-
 #: :func:`pulled` and :func:`cable` called by address (:mod:`offshore_crane.
 #: kernel_calls`): compiled once each (the Kane pass with the pull inlined, the cable's
 #: model), not again in :func:`measure`, :func:`computed_torque` and :func:`derivative`,
 #: which run them.
-PULLED = kernel_calls.Entry("elastic_pulled", lambda: pulled_kernel, *_types("pulled"),
-                            c.STAMP)
-CABLE = kernel_calls.Entry("elastic_cable", lambda: cable_kernel, *_types("cable"), c.STAMP)
+PULLED = kernel_calls.Entry.typed(
+    "elastic_pulled", lambda: pulled_kernel,
+    "none(C, V, V, V, T3, T3, T3, V, V, M, V, M, M, V, M)", c.STAMP,
+    C=c.kane_constants_type())
+CABLE = kernel_calls.Entry.typed(
+    "elastic_cable", lambda: cable_kernel, "float64(C, V, float64, float64, V, V, V, V, V)",
+    c.STAMP, C=c.kane_constants_type())
 pulled, cable = PULLED.call, CABLE.call
 
 
@@ -269,20 +264,18 @@ def _make(stamp):
 
 measure, computed_torque, derivative = _make(c.STAMP)
 
-_V, _ARRAYS = "float64[::1]", "float64[::1], int64[:, ::1], boolean[::1]"
 #: :func:`measure`, :func:`computed_torque` and :func:`derivative` called by address
 #: (:mod:`offshore_crane.kernel_calls`): the elastic plant's loops, one per law, call
 #: them without compiling their Kane passes again.
 MEASURE = kernel_calls.Entry.typed(
-    "elastic_measure", lambda: measure,
-    f"float64({_ARRAYS}, {_V}, float64, float64, {_V}, {_V}, {_V})", c.STAMP)
+    "elastic_measure", lambda: measure, "float64(*PACKED, V, float64, float64, V, V, V)",
+    c.STAMP)
 COMPUTED_TORQUE = kernel_calls.Entry.typed(
-    "elastic_computed_torque", lambda: computed_torque,
-    f"none({_ARRAYS}, {_V}, {_V}, {_V}, {_V}, {_V}, {_V})", c.STAMP)
+    "elastic_computed_torque", lambda: computed_torque, "none(*PACKED, V, V, V, V, V, V)",
+    c.STAMP)
 DERIVATIVE = kernel_calls.Entry.typed(
     "elastic_derivative", lambda: derivative,
-    f"float64({_ARRAYS}, {_ARRAYS}, {_V}, float64, float64, {_V}, {_V}, {_V}, {_V}, {_V}, "
-    "int64[::1])", c.STAMP)
+    "float64(*PACKED, *PACKED, V, float64, float64, V, V, V, V, V, int64[::1])", c.STAMP)
 
 
 def parameters(gravity, ea: float, damping: float, sway, drag: float) -> np.ndarray:

@@ -447,15 +447,12 @@ def _make(stamp):
 
 integrate, kane, kane_pulled, accelerations, computed_torque, payload = _make(c.STAMP)
 
-_V, _ARRAYS = "float64[::1]", "float64[::1], int64[:, ::1], boolean[::1]"
 #: :func:`accelerations` and :func:`computed_torque` called by address
 #: (:mod:`offshore_crane.kernel_calls`): the hanging plant's loops, one per law, call
 #: them without compiling their Kane passes again.
 ACCELERATIONS = kernel_calls.Entry.typed(
     "cable_accelerations", lambda: accelerations,
-    f"boolean({_ARRAYS}, {_V}, float64, {_V}, {_V}, {_V}, {_V}, float64, float64, {_V}, "
-    f"{_V})", c.STAMP)
+    "boolean(*PACKED, V, float64, V, V, V, V, float64, float64, V, V)", c.STAMP)
 COMPUTED_TORQUE = kernel_calls.Entry.typed(
     "cable_computed_torque", lambda: computed_torque,
-    f"float64({_ARRAYS}, {_V}, float64, {_V}, {_V}, {_V}, {_V}, float64, float64, {_V})",
-    c.STAMP)
+    "float64(*PACKED, V, float64, V, V, V, V, float64, float64, V)", c.STAMP)
