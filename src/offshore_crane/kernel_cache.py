@@ -24,9 +24,10 @@ from __future__ import annotations
 
 import contextlib
 import os
+import threading
 import warnings
 
-from offshore_crane import compile_times, kernel_calls
+from offshore_crane import compile_beside, compile_times, kernel_calls
 from offshore_crane.progress import first_time, notice
 
 #: Kernels compiled (not found in the cache) by this process so far.
@@ -101,20 +102,53 @@ def _recovering(dispatcher):
     return _ensuring(dispatcher)
 
 
+#: Per thread: inside an outermost compile (whose end loads what the kernels it
+#: compiles call by address).
+_LOCAL = threading.local()
+
+
 def _ensuring(dispatcher):
-    """Before ``dispatcher`` compiles or loads a signature, the functions its text calls
-    by address are loaded (:func:`offshore_crane.kernel_calls.reached`,
-    :meth:`~offshore_crane.kernel_calls.Entry.ensure`): Numba compiles and loads through
-    ``compile``, from Python and when another kernel that calls it is typed."""
+    """When ``dispatcher`` compiles or loads a signature, the functions its text calls
+    by address (:func:`offshore_crane.kernel_calls.reached`) are loaded before it
+    returns (:meth:`~offshore_crane.kernel_calls.Entry.ensure`), so that no kernel runs
+    before them. Compiling the kernel needs only their symbols: when the kernel is not in
+    the disk cache, those of them that are not either compile in a helper process while
+    this one compiles the kernel (:mod:`offshore_crane.compile_beside`). A kernel compiled
+    inside another's compile leaves its passes to the outermost one, which reaches them
+    too. Numba compiles and loads through ``compile``, from Python and when another
+    kernel that calls it is typed."""
     compile_ = dispatcher.compile
 
     def compile(sig):
-        for entry in kernel_calls.reached(dispatcher.py_func):
+        entries = [e for e in kernel_calls.reached(dispatcher.py_func) if not e.slot[0]]
+        if not entries or getattr(_LOCAL, "outer", False):
+            return compile_(sig)
+        beside = None
+        if not _cached(dispatcher, sig):
+            beside = compile_beside.start([e for e in entries if not e.cached()])
+        _LOCAL.outer = True
+        try:
+            out = compile_(sig)
+        except BaseException:
+            if beside is not None:
+                beside.stop()
+            raise
+        finally:
+            _LOCAL.outer = False
+        if beside is not None:
+            beside.wait()
+        for entry in entries:
             entry.ensure()
-        return compile_(sig)
+        return out
 
     dispatcher.compile = compile
     return dispatcher
+
+
+def _cached(dispatcher, sig) -> bool:
+    """Whether ``dispatcher`` has ``sig`` in the disk cache (nothing loaded)."""
+    has = getattr(dispatcher._cache, "has", None)
+    return bool(has is not None and has(sig, dispatcher.targetctx))
 
 
 _CLASS: list = []
@@ -161,6 +195,18 @@ def _cache_class():
                     notice("compile", COMPILE_NOTICE if wait is None else
                            COMPILE_NOTICE.replace("once (", f"once, {wait} (", 1))
                 return found
+
+            def has(self, sig, target_context) -> bool:
+                """Whether the index holds an entry for ``sig`` (nothing loaded)."""
+                if not self._enabled:
+                    return False
+                try:
+                    target_context.refresh()
+                    key = self._index_key(sig, target_context.codegen())
+                    with locked(self._cache_file, shared=True):
+                        return key in self._cache_file._load_index()
+                except Exception:               # unreadable: as if absent (it compiles)
+                    return False
 
             def save_overload(self, sig, data):
                 with locked(self._cache_file, shared=False):

@@ -56,6 +56,8 @@ class Entry:
 
         self.name, self.argtypes, self.restype = name, tuple(argtypes), restype
         self._dispatcher = dispatcher
+        #: The module that makes the entry (where a helper process finds it by name).
+        self.module = getattr(dispatcher, "__module__", None)
         digest = hashlib.sha1(f"{stamp}|{self.argtypes}|{restype}".encode()).hexdigest()[:16]
         self.symbol = f"offshore_crane_slot_{name}_{digest}"
         self.slot = np.zeros(1, dtype=np.int64)     # the address, once ensured
@@ -75,6 +77,13 @@ class Entry:
         sig = eval(signature, {"__builtins__": {}}, scope)      # noqa: S307 (our text)
         argtypes, restype = sigutils.normalize_signature(sig)
         return cls(name, dispatcher, argtypes, restype, stamp)
+
+    def cached(self) -> bool:
+        """Whether the function is in the disk cache for :attr:`argtypes` (nothing is
+        loaded or compiled)."""
+        dispatcher = self._dispatcher()
+        has = getattr(dispatcher._cache, "has", None)
+        return bool(has is not None and has(self.argtypes, dispatcher.targetctx))
 
     def ensure(self) -> None:
         """Compile the function for :attr:`argtypes` (or load it from the disk cache) and
@@ -104,6 +113,18 @@ def short_names() -> dict:
             "T3": types.UniTuple(f8, 3),
             "PACKED": (types.Array(f8, 1, "C"), types.Array(types.int64, 2, "C"),
                        types.Array(types.boolean, 1, "C"))}
+
+
+def named(name: str) -> Entry:
+    """The entry made under ``name`` in this process.
+
+    Raises:
+        KeyError: none was.
+    """
+    for entry in _BY_CALL.values():
+        if entry.name == name:
+            return entry
+    raise KeyError(f"no entry named {name!r} was made in this process")
 
 
 def _caller(entry: Entry):

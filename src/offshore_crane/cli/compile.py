@@ -77,17 +77,20 @@ def compile_all(jobs: int | None = None, report=None) -> list[tuple[str, float]]
         if report:
             report(items)
 
-    if jobs == 1:
-        for name in order:
-            done(_part(name))
-        return out
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from offshore_crane import compile_beside
 
-    with ProcessPoolExecutor(min(jobs, len(order)),
-                             mp_context=multiprocessing.get_context("spawn")) as pool:
-        for f in as_completed([pool.submit(_part, name) for name in order]):
-            done(f.result())
+    with compile_beside.off():          # the groups' processes are all there are
+        if jobs == 1:
+            for name in order:
+                done(_part(name))
+            return out
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+
+        with ProcessPoolExecutor(min(jobs, len(order)),
+                                 mp_context=multiprocessing.get_context("spawn")) as pool:
+            for f in as_completed([pool.submit(_part, name) for name in order]):
+                done(f.result())
     return out
 
 
