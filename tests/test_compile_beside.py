@@ -110,3 +110,13 @@ def test_off_turns_the_helper_off_for_a_block_and_restores_the_switch(monkeypatc
         assert os.environ[compile_beside.SWITCH] == "0"
         assert compile_beside.start([object()]) is None
     assert os.environ[compile_beside.SWITCH] == "1"
+
+
+def test_passes_are_dealt_longest_first_to_the_least_busy_helper():
+    """The elastic lift's passes (their recorded compile times [s]) on 2 helpers:
+    20.4 s against 22.0 s; an unknown time counts as a small one."""
+    names = ["explicit", "pulled", "cable", "derivative", "measure", "torque"]
+    shares = compile_beside.deal(names, 2, [18.3, 11.9, 5.0, 5.1, 1.1, None])
+    assert shares == [["explicit", "measure", "torque"], ["pulled", "derivative", "cable"]]
+    assert compile_beside.deal(names[:1], 4, [3.0]) == [["explicit"]]
+    assert compile_beside.deal([], 2, []) == []

@@ -129,6 +129,27 @@ def test_reached_finds_entries_through_globals_closures_attributes_and_kernels()
     assert kernel_calls.reached(_direct) == ()
 
 
+@njit
+def _outer_pass(x, w, out):
+    """An entry's function that itself calls an entry by address."""
+    return call_weighted(x, w, out)
+
+
+OUTER = kernel_calls.Entry.typed("test_outer", lambda: _outer_pass,
+                                 "float64(V, float64, V)", "test")
+call_outer = OUTER.call
+
+
+def test_reached_all_follows_the_entries_own_calls_by_address():
+    """What must be loaded before a kernel runs: the entries it calls and theirs."""
+    def above(x):
+        return call_outer(x, 1.0, x)
+
+    assert kernel_calls.reached(above) == (OUTER,)
+    assert kernel_calls.reached_all(above) == (OUTER, WEIGHTED)
+    assert kernel_calls.reached_all(_direct) == ()
+
+
 def test_the_explicit_pass_is_declared_with_the_types_the_kernels_give_it(robot):
     from offshore_crane.dynamics import compiled as c
     from offshore_crane.dynamics.constants import robot_arrays

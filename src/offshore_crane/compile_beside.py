@@ -1,18 +1,21 @@
-"""Compile the big passes a kernel calls by address in a second process, beside it.
+"""Compile the big passes a kernel calls by address in helper processes, beside it.
 
 A kernel that calls big compiled passes by address (:mod:`offshore_crane.kernel_calls`)
 needs only their symbols to compile; their code must be loaded before the kernel runs.
 When neither the kernel nor its passes are in the disk cache, :func:`start` runs the
-passes' compile in a helper process (``python -m offshore_crane.compile_beside
-module:entry ...``, which writes them to the disk cache) while this process compiles the
-kernel; :meth:`Beside.wait` then waits for it, and the passes load from the cache. Numba
-compiles under one lock per process: a second process is what uses a second core (a
-first ``simulate`` of the rigid robot: its loop and the explicit pass at once).
+passes' compile in helper processes (``python -m offshore_crane.compile_beside
+module:entry ...``; a helper compiles its passes, writes them to the disk cache and loads
+nothing) while this process compiles the kernel; :meth:`Beside.wait` then waits for
+them, and the passes load from the cache. Numba compiles under one lock per process:
+other processes are what use the other cores (a first ``simulate`` of the rigid robot:
+its loop, the explicit pass and the law at once). There is one helper per usable core
+at most, the passes dealt longest first (their last compile times,
+:func:`offshore_crane.compile_times.seconds`) to the helper with the least to do.
 
 Nothing runs beside when there is one usable core, when ``OFFSHORE_CRANE_COMPILE_BESIDE``
-is ``0`` (the helper sets it for itself), or when the helper cannot be started; a helper
-that fails or outlives :data:`TIMEOUT` is stopped with a warning and the passes compile
-in this process, as they would without it.
+is ``0`` (:func:`off`), in a helper, or when a helper cannot be started; a helper that
+fails or outlives :data:`TIMEOUT` is stopped with a warning and the passes compile in
+this process, as they would without it.
 """
 
 from __future__ import annotations
@@ -26,6 +29,12 @@ import warnings
 
 #: The environment variable that turns the helper off (``0``).
 SWITCH = "OFFSHORE_CRANE_COMPILE_BESIDE"
+#: The environment variable that hands a helper this process's ``sys.path``.
+PATH = "OFFSHORE_CRANE_COMPILE_BESIDE_PATH"
+#: The switch's value in a helper's environment.
+HELPER = "helper"
+#: The compile time counted for a pass no record knows [s] (a small kernel's).
+UNKNOWN = 1.0
 #: The longest wait for a helper [s]: far beyond any compile measured (the whole kernel
 #: set in one process: about 250 s on a busy 2-core machine); past it the helper is
 #: stopped and the passes compile here.
@@ -45,48 +54,60 @@ def usable_cores() -> int:
 
 
 class Beside:
-    """A helper process compiling ``entries`` (:class:`~offshore_crane.kernel_calls.
+    """Helper processes compiling ``entries`` (:class:`~offshore_crane.kernel_calls.
     Entry`)."""
 
-    def __init__(self, entries, process, log):
-        self.entries, self._process, self._log = entries, process, log
+    def __init__(self, entries, processes):
+        self.entries, self._processes = entries, processes    # [(process, log), ...]
 
     def wait(self) -> bool:
-        """Wait for the helper (at most :data:`TIMEOUT`); True when it compiled every
-        entry. A failure is reported as a :class:`CompileBesideWarning` naming the
-        entries and the helper's last line of error."""
-        try:
-            code = self._process.wait(timeout=TIMEOUT)
-            why = None if code == 0 else f"exit status {code}"
-        except subprocess.TimeoutExpired:
-            self._process.kill()
-            self._process.wait()
-            why = f"no answer in {TIMEOUT:.0f} s"
-        last = self._last_line()
-        if why is not None:
-            names = ", ".join(e.name for e in self.entries)
-            warnings.warn(CompileBesideWarning(
-                f"the helper process compiling {names} beside this one failed ({why}"
-                f"{': ' + last if last else ''}): compiling them here instead"),
-                stacklevel=2)
-        return why is None
+        """Wait for the helpers (at most :data:`TIMEOUT` in all); True when each
+        compiled its entries. A failure is reported as a :class:`CompileBesideWarning`
+        naming the entries and the helper's last line of error."""
+        import time
+
+        end, ok = time.monotonic() + TIMEOUT, True
+        for process, log in self._processes:
+            try:
+                code = process.wait(timeout=max(end - time.monotonic(), 0.0))
+                why = None if code == 0 else f"exit status {code}"
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait()
+                why = f"no answer in {TIMEOUT:.0f} s"
+            last = _last_line(log)
+            if why is not None:
+                ok = False
+                names = ", ".join(a.split(":")[-1] for a in process.args[3:])
+                warnings.warn(CompileBesideWarning(
+                    f"the helper process compiling {names} beside this one failed ({why}"
+                    f"{': ' + last if last else ''}): compiling them here instead"),
+                    stacklevel=2)
+        return ok
 
     def stop(self) -> None:
-        """Stop the helper now (this process was interrupted)."""
-        if self._process.poll() is None:
-            self._process.kill()
-            self._process.wait()
-        self._last_line()
+        """Stop the helpers now (this process was interrupted)."""
+        for process, log in self._processes:
+            if process.poll() is None:
+                process.kill()
+                process.wait()
+            _last_line(log)
 
-    def _last_line(self) -> str:
-        try:
-            self._log.seek(0)
-            lines = [x for x in self._log.read().decode(errors="replace").splitlines()
-                     if x.strip()]
-            self._log.close()
-            return lines[-1].strip() if lines else ""
-        except (OSError, ValueError):
-            return ""
+
+def _last_line(log) -> str:
+    """The last non-empty line a helper wrote (and its log closed)."""
+    try:
+        log.seek(0)
+        lines = [x for x in log.read().decode(errors="replace").splitlines() if x.strip()]
+        log.close()
+        return lines[-1].strip() if lines else ""
+    except (OSError, ValueError):
+        return ""
+
+
+def helping() -> bool:
+    """This process is a helper (it compiles and writes, it loads nothing)."""
+    return os.environ.get(SWITCH) == HELPER
 
 
 @contextlib.contextmanager
@@ -105,35 +126,61 @@ def off():
 
 
 def start(entries) -> Beside | None:
-    """Start compiling ``entries`` in a helper process, or None (nothing to compile, the
-    switch off, one usable core, or the process could not start)."""
-    if os.environ.get(SWITCH, "1") == "0" or usable_cores() < 2:
+    """Start compiling ``entries`` in helper processes, or None (nothing to compile, the
+    switch off, in a helper, one usable core, or no process could start)."""
+    from offshore_crane import compile_times
+
+    cores = usable_cores()
+    if os.environ.get(SWITCH, "1") != "1" or cores < 2:
         return None
-    entries = [e for e in entries if e.module]
+    entries = [e for e in entries if e.module and e.module != "__main__"]  # importable
     if not entries:
         return None
-    env = dict(os.environ, **{SWITCH: "0"})
-    log = tempfile.TemporaryFile()
-    try:
-        process = subprocess.Popen(
-            [sys.executable, "-m", __name__, *(f"{e.module}:{e.name}" for e in entries)],
-            stdin=subprocess.DEVNULL, stdout=log, stderr=log, env=env)
-    except OSError:
-        log.close()
-        return None
-    return Beside(entries, process, log)
+    shares = deal(entries, cores, [compile_times.seconds(e.kernel()) for e in entries])
+    # the helper imports the entries' modules from where this process finds them: its
+    # sys.path, set once the helper has started (as PYTHONPATH, a folder of the user's
+    # could hide a module of the standard library from the interpreter's own start)
+    path = [os.path.abspath(p) if p else os.getcwd() for p in sys.path if isinstance(p, str)]
+    env = dict(os.environ, **{SWITCH: HELPER, PATH: os.pathsep.join(path)})
+    processes = []
+    for share in shares:
+        log = tempfile.TemporaryFile()
+        try:
+            processes.append((subprocess.Popen(
+                [sys.executable, "-m", __name__, *(f"{e.module}:{e.name}" for e in share)],
+                stdin=subprocess.DEVNULL, stdout=log, stderr=log, env=env), log))
+        except OSError:
+            log.close()
+    return Beside(entries, processes) if processes else None
+
+
+def deal(entries, n: int, seconds) -> list[list]:
+    """``entries`` dealt to at most ``n`` helpers, longest first to the one with the
+    least to do, by their compile ``seconds`` (None: unknown, counted as
+    :data:`UNKNOWN`); each helper's share keeps the entries' order of length."""
+    cost = [UNKNOWN if s is None else s for s in seconds]
+    shares: list = [[] for _ in range(min(n, len(entries)))]
+    loads = [0.0] * len(shares)
+    for i in sorted(range(len(entries)), key=lambda i: -cost[i]):
+        k = loads.index(min(loads))
+        shares[k].append(entries[i])
+        loads[k] += cost[i]
+    return shares
 
 
 def main(specs: list[str]) -> int:
-    """The helper: import each ``module:entry`` and compile (or load) the entry."""
+    """The helper: import each ``module:entry`` and compile the entry into the disk
+    cache (or find it there)."""
     import importlib
 
+    if os.environ.get(PATH):
+        sys.path[:] = os.environ[PATH].split(os.pathsep)
     from offshore_crane import kernel_calls
 
     for spec in specs:
         module, name = spec.split(":")
         importlib.import_module(module)
-        kernel_calls.named(name).ensure()
+        kernel_calls.named(name).compile()
     return 0
 
 

@@ -51,6 +51,16 @@ def _wait(seconds) -> str | None:
     return f"about {seconds:.0f} s" if seconds >= 1.0 else "under a second"
 
 
+def seconds(name: str) -> float | None:
+    """The last cold compile of kernel ``name`` [s]: this machine's record, else the
+    package's table, else None."""
+    for table in (_read(record_path()), _read(SHIPPED)):
+        value = table.get("kernels", {}).get(name)
+        if _wait(value) is not None:
+            return float(value)
+    return None
+
+
 def estimate(name: str) -> str | None:
     """How long the cold compile of kernel ``name`` is expected to take, in words
     (``"about 26 s, as long as its last compile on this machine"``), or None when

@@ -110,7 +110,8 @@ _LOCAL = threading.local()
 def _ensuring(dispatcher):
     """When ``dispatcher`` compiles or loads a signature, the functions its text calls
     by address (:func:`offshore_crane.kernel_calls.reached`) are loaded before it
-    returns (:meth:`~offshore_crane.kernel_calls.Entry.ensure`), so that no kernel runs
+    returns (:meth:`~offshore_crane.kernel_calls.Entry.ensure`; and those they call by
+    address, :func:`~offshore_crane.kernel_calls.reached_all`), so that no kernel runs
     before them. Compiling the kernel needs only their symbols: when the kernel is not in
     the disk cache, those of them that are not either compile in a helper process while
     this one compiles the kernel (:mod:`offshore_crane.compile_beside`). A kernel compiled
@@ -120,9 +121,9 @@ def _ensuring(dispatcher):
     compile_ = dispatcher.compile
 
     def compile(sig):
-        entries = [e for e in kernel_calls.reached(dispatcher.py_func) if not e.slot[0]]
-        if not entries or getattr(_LOCAL, "outer", False):
-            return compile_(sig)
+        entries = [e for e in kernel_calls.reached_all(dispatcher.py_func) if not e.slot[0]]
+        if not entries or getattr(_LOCAL, "outer", False) or compile_beside.helping():
+            return compile_(sig)          # (a helper only writes its kernels' cache)
         beside = None
         if not _cached(dispatcher, sig):
             beside = compile_beside.start([e for e in entries if not e.cached()])

@@ -78,6 +78,12 @@ class Entry:
         argtypes, restype = sigutils.normalize_signature(sig)
         return cls(name, dispatcher, argtypes, restype, stamp)
 
+    def kernel(self) -> str:
+        """The compiled function's name in the compile-time record
+        (:mod:`offshore_crane.compile_times`: its module and qualified name)."""
+        f = self._dispatcher().py_func
+        return f"{f.__module__}.{f.__qualname__}"
+
     def cached(self) -> bool:
         """Whether the function is in the disk cache for :attr:`argtypes` (nothing is
         loaded or compiled)."""
@@ -85,14 +91,19 @@ class Entry:
         has = getattr(dispatcher._cache, "has", None)
         return bool(has is not None and has(self.argtypes, dispatcher.targetctx))
 
-    def ensure(self) -> None:
-        """Compile the function for :attr:`argtypes` (or load it from the disk cache) and
-        put its address in the slot; nothing when it is there already."""
-        if self.slot[0]:
-            return
+    def compile(self):
+        """Compile the function for :attr:`argtypes`, or load it from the disk cache
+        (its compile result)."""
         dispatcher = self._dispatcher()
         dispatcher.compile(self.argtypes)
-        cres = dispatcher.overloads[self.argtypes]
+        return dispatcher.overloads[self.argtypes]
+
+    def ensure(self) -> None:
+        """:meth:`compile` and put the function's address in the slot; nothing when it
+        is there already."""
+        if self.slot[0]:
+            return
+        cres = self.compile()
         if cres.signature.return_type != self.restype:
             raise TypeError(f"{self.name} returns {cres.signature.return_type}, declared "
                             f"{self.restype}")
@@ -252,3 +263,16 @@ def reached(py_func) -> tuple:
             objects = deeper
     out = _REACHED[py_func] = tuple(found)
     return out
+
+
+def reached_all(py_func) -> tuple:
+    """The entries ``py_func``'s text reaches (:func:`reached`) and, the same way, those
+    the entries' own texts reach: every function called by address that must be loaded
+    before ``py_func`` runs."""
+    out, todo = [], list(reached(py_func))
+    while todo:
+        entry = todo.pop(0)
+        if entry not in out:
+            out.append(entry)
+            todo.extend(reached(entry._dispatcher().py_func))
+    return tuple(out)
