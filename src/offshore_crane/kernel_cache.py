@@ -137,7 +137,11 @@ def _ensuring(dispatcher):
         finally:
             _LOCAL.outer = False
         if beside is not None:
-            beside.wait()
+            try:
+                beside.wait()
+            except BaseException:             # interrupted while waiting: stop them
+                beside.stop()
+                raise
         for entry in entries:
             entry.ensure()
         return out
