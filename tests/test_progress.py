@@ -184,6 +184,29 @@ def test_the_wait_comes_from_this_machine_then_the_package_table(tmp_path, monke
     assert ct.estimate("b.run").startswith("about 3 s on a 2-core machine")
 
 
+def test_the_wait_counts_the_helpers_compiling_beside(tmp_path, monkeypatch):
+    """With helpers (:func:`compile_times.beside`), the wait is the longest of the
+    kernel's own compile, a helper's load and the whole work shared by the cores; the
+    plan is used by the next compile that opens in the thread, once."""
+    import json
+
+    from offshore_crane import compile_times as ct
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    table = tmp_path / "table.json"
+    table.write_text(json.dumps({"kernels": {"a.run": 19.0}}))
+    monkeypatch.setattr(ct, "SHIPPED", table)
+    assert ct.estimate("a.run", ((21.0, 3.0), 2)).startswith("about 22 s with 2 helper "
+                                                              "processes compiling")
+    assert ct.estimate("a.run", ((10.0,), 4)).startswith("about 19 s with 1 helper process ")
+    assert ct.estimate("c.run", ((10.0,), 2)) is None
+    monkeypatch.setattr(ct, "_OPEN", {})
+    ct.beside((30.0,), 2)
+    assert ct.started("a.run").startswith("about 30 s with 1 helper")
+    ct._OPEN.clear()
+    assert ct.started("a.run").startswith("about 19 s on ")      # used once
+
+
 def test_the_compile_notice_types_no_time():
     """The notice names the way to compile up front and states no duration: a typed
     time went stale (it said 65 s where a busy 2-core machine took 207 s); the measured

@@ -136,7 +136,8 @@ def start(entries) -> Beside | None:
     entries = [e for e in entries if e.module and e.module != "__main__"]  # importable
     if not entries:
         return None
-    shares = deal(entries, cores, [compile_times.seconds(e.kernel()) for e in entries])
+    cost = {e.name: compile_times.seconds(e.kernel()) for e in entries}
+    shares = deal(entries, cores, [cost[e.name] for e in entries])
     # the helper imports the entries' modules from where this process finds them: its
     # sys.path, set once the helper has started (as PYTHONPATH, a folder of the user's
     # could hide a module of the standard library from the interpreter's own start)
@@ -151,7 +152,11 @@ def start(entries) -> Beside | None:
                 stdin=subprocess.DEVNULL, stdout=log, stderr=log, env=env), log))
         except OSError:
             log.close()
-    return Beside(entries, processes) if processes else None
+    if not processes:
+        return None
+    compile_times.beside([sum(UNKNOWN if cost[e.name] is None else cost[e.name]
+                              for e in share) for share in shares], cores)
+    return Beside(entries, processes)
 
 
 def deal(entries, n: int, seconds) -> list[list]:

@@ -61,10 +61,26 @@ def seconds(name: str) -> float | None:
     return None
 
 
-def estimate(name: str) -> str | None:
+def estimate(name: str, beside=None) -> str | None:
     """How long the cold compile of kernel ``name`` is expected to take, in words
     (``"about 26 s, as long as its last compile on this machine"``), or None when
-    neither this machine's record nor the package's table knows it."""
+    neither this machine's record nor the package's table knows it.
+
+    Args:
+        beside: ``(loads, cores)``: helper processes compile what the kernel calls beside
+            it (:mod:`offshore_crane.compile_beside`), each ``loads[i]`` [s] of work, on
+            ``cores`` cores: the wait is the longest of the kernel's, a helper's and the
+            whole work shared by the cores.
+    """
+    if beside and beside[0]:
+        own = seconds(name)
+        if own is None:
+            return None
+        loads, cores = beside
+        wait = max(own, max(loads), (own + sum(loads)) / max(cores, 1))
+        helpers = f"{len(loads)} helper process{'es' if len(loads) > 1 else ''}"
+        return (f"{_wait(wait)} with {helpers} compiling what it calls beside it (the "
+                "last compiles recorded: this machine's, else benchmarks/compile.py's)")
     mine = _wait(_read(record_path()).get("kernels", {}).get(name))
     if mine is not None:
         return f"{mine}, as long as its last compile on this machine"
@@ -80,11 +96,23 @@ def started(name: str) -> str | None:
     """A kernel missed the cache: if no compile is open in this thread, open one under
     ``name`` (the outermost kernel) and return its :func:`estimate`; else None."""
     key = threading.get_ident()
+    planned, _BESIDE.value = getattr(_BESIDE, "value", None), None
     with _lock:
         if key in _OPEN:
             return None
         _OPEN[key] = (name, time.perf_counter())
-    return estimate(name)
+    return estimate(name, planned)
+
+
+#: Per thread: the helpers of the compile about to open (:func:`beside`).
+_BESIDE = threading.local()
+
+
+def beside(loads, cores: int) -> None:
+    """Helper processes compile beside the compile about to open in this thread, each
+    ``loads[i]`` [s] of work, on ``cores`` cores: its :func:`started` tells the wait
+    with them (:func:`estimate`)."""
+    _BESIDE.value = (tuple(loads), cores)
 
 
 def saved(name: str) -> None:
