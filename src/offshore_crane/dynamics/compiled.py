@@ -97,6 +97,41 @@ EXPLICIT = kernel_calls.Entry.typed(
     C=kane_constants_type())
 call_explicit = EXPLICIT.call
 
+def _passes(stamp):
+    @njit(**JIT)
+    def kane_pass(C, q, qd, qdd, g, static, leg_model, want_legs, rows, A, rhs, diag,
+                  store):
+        """:func:`~offshore_crane.dynamics.formulas.kane_sample` inlined, compiled once
+        and called by address (:data:`call_kane`)."""
+        if len(stamp) == 0:
+            return
+        _kane_sample(C, q, qd, qdd, g, static, leg_model, want_legs, rows, A, rhs, diag,
+                     store)
+
+    @njit(**JIT)
+    def kane_pull_pass(C, q, qd, qdd, g, pull, at, rows, A, rhs, diag, store):
+        """:func:`~offshore_crane.dynamics.formulas.kane_sample_pull` inlined, compiled
+        once and called by address (:data:`call_kane_pull`)."""
+        if len(stamp) == 0:
+            return
+        _kane_sample_pull(C, q, qd, qdd, g, pull, at, rows, A, rhs, diag, store)
+
+    return kane_pass, kane_pull_pass
+
+
+_kane_sample_pull = K.kane_sample_pull              # reached as a global: cacheable
+kane_pass, kane_pull_pass = _passes(STAMP)
+#: The fused Kane pass and the one with a pull at the tip, called by address by the
+#: hanging load's and the elastic cable's kernels (compiled once, not in each kernel).
+KANE = kernel_calls.Entry.typed(
+    "kane_sample", lambda: kane_pass,
+    "none(C, V, V, V, T3, boolean, int64, boolean, V, M, V, M, M)", STAMP,
+    C=kane_constants_type())
+KANE_PULL = kernel_calls.Entry.typed(
+    "kane_sample_pull", lambda: kane_pull_pass,
+    "none(C, V, V, V, T3, T3, T3, V, M, V, M, M)", STAMP, C=kane_constants_type())
+call_kane, call_kane_pull = KANE.call, KANE_PULL.call
+
 _BAD_INPUT, _VIOLATION, _BAD_OUTPUT, _KAPPA = ws.BAD_INPUT, ws.VIOLATION, ws.BAD_OUTPUT, ws.KAPPA
 #: A clean health record, and the slots that hold the first sample of something found.
 _EMPTY, _FIRST_SLOTS = ws.new_health(), ws.FIRST

@@ -31,15 +31,16 @@ from offshore_crane.dynamics.formulas import STORE_WIDTH
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 
 tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_force
-hoisted_pendulum, kane_sample_pull = c.K.hoisted_pendulum, c.K.kane_sample_pull
+hoisted_pendulum = c.K.hoisted_pendulum
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
 tip_state, hanging_velocity, drag_force = c.K.tip_state, c.K.hanging_velocity, c.K.drag_force
 explicit_sample, cholesky_solve, solve6 = c.call_explicit, c.cholesky_solve, c.solve6
 kinetic_energy = c.kinetic_energy
 actuation_minus_bias = c.actuation_minus_bias
-#: One sample at a time from Python (the simulation's law): not inlined (compiles in
-#: seconds rather than the inlined driver's ~20 s, at no cost that matters here).
-kane_sample_call, kane_sample_pull_call = c.KE.kane_sample, c.KE.kane_sample_pull
+#: The Kane passes inlined, compiled once and called by address (:data:`offshore_crane.
+#: dynamics.compiled.KANE`, ``KANE_PULL``): the law's (:func:`computed_torque`) and
+#: :func:`kane_pulled`'s.
+kane_sample_call, kane_sample_pull_call = c.call_kane, c.call_kane_pull
 finite_inputs = c._finite_inputs
 kane_sample, unpack, post, tangent_bounds = c.K.kane_sample, c.unpack, c._post, c.tangent_bounds
 jit = njit(**c.JIT)
@@ -303,8 +304,9 @@ def _make(stamp):
                 for j in range(9):
                     X[k, j] = np.nan
                 continue
-            kane_sample_pull(C, q[k], qd[k], qdd[k], gt, (P[k, 0], P[k, 1], P[k, 2]),
-                             (AT[k, 0], AT[k, 1], AT[k, 2]), rows, A, rhs6, diag, store)
+            kane_sample_pull_call(C, q[k], qd[k], qdd[k], gt, (P[k, 0], P[k, 1], P[k, 2]),
+                                  (AT[k, 0], AT[k, 1], AT[k, 2]), rows, A, rhs6, diag,
+                                  store)
             for b in range(3):
                 X[k, b] = rows[b]
             post(k, q, na, A, rhs6, diag, True, want_cond, want_limits, warn, error,
