@@ -27,7 +27,8 @@ import sys
 import tempfile
 import warnings
 
-#: The environment variable that turns the helper off (``0``).
+#: The environment variable of the helpers: unset or ``1``, on; any other value (``0``),
+#: off.
 SWITCH = "OFFSHORE_CRANE_COMPILE_BESIDE"
 #: The environment variable that hands a helper this process's ``sys.path``.
 PATH = "OFFSHORE_CRANE_COMPILE_BESIDE_PATH"
