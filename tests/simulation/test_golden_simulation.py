@@ -60,6 +60,8 @@ MOVED: dict[str, float] = {f"{case}/{field}": 1e-12
 #: ``{"case/field": why}``: arrays that were not computed (all NaN) and now are.
 ADDED = {f"{case}/energy": "the elastic plant records its mechanical energy (issue 37)"
          for case in ("elastic_ct_hoist", "elastic_ct_rate", "elastic_none")}
+ADDED["rigid_python/energy"] = ("the driver's rigid plant records its mechanical energy, "
+                                "as the compiled loop does (issue 37)")
 
 
 @pytest.fixture(scope="module")

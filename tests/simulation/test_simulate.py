@@ -66,6 +66,31 @@ def test_energy_change_equals_the_actuators_work(robot):
     assert np.abs(res.energy - res.energy[0] - work).max() <= 1e-6 * np.abs(work).max()
 
 
+def test_the_driver_records_the_energy_the_compiled_loop_records(robot):
+    """PD on the RK4 driver's rigid plant and on the compiled loop: the same run bit for
+    bit, so the same energy (the driver's from its plant's record, the loop's own)."""
+    from offshore_crane.simulation import rigid
+
+    c = Controller("pd")
+    loop = simulate(robot, 0.3, table1, controller=c, step=1e-3)
+    driven = rigid._driven(robot, 0.3, table1, None, None, c, (0.0, 0.0, -9.81), 1e-3,
+                           None, True, 0.0, None, None)
+    np.testing.assert_array_equal(driven.q, loop.q)
+    np.testing.assert_array_equal(driven.energy, loop.energy)
+
+
+def test_a_pid_runs_energy_changes_by_the_actuators_work(robot):
+    """PID on the driver's rigid plant (its integral a state of the law, not of the
+    robot): E(t) − E(0) = ∫ power dt, to the trapezoidal rule's O(h²) at 1 ms (1e-6 of
+    the work done, as for the compiled loop)."""
+    from scipy.integrate import cumulative_trapezoid
+
+    res = simulate(robot, 3.0, table1, controller=Controller("pid"), step=1e-3)
+    assert np.isfinite(res.energy).all()
+    work = cumulative_trapezoid(res.power, res.t, initial=0.0)
+    assert np.abs(res.energy - res.energy[0] - work).max() <= 1e-6 * np.abs(work).max()
+
+
 def test_sample_and_hold_error_has_the_expected_size(robot):
     """X held for T = 5 ms: the force lags the one the law wants by ~Ẋ T/2 on average, an
     acceleration error M⁻¹ Ẋ T/2 that the loop turns into an error ~ M⁻¹ Ẋ T / (2 Kp).

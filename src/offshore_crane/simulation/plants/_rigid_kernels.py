@@ -21,6 +21,7 @@ from offshore_crane.simulation.laws import codes
 
 jit = njit(**c.JIT)
 equations, solve, carve, law = rk4.equations, rk4.solve, rk4.carve, rk4.call_law
+kinetic_energy = c.kinetic_energy
 unpack = c.unpack
 CT, PDG = codes.COMPUTED_TORQUE, codes.PD_GRAVITY
 
@@ -45,8 +46,17 @@ def _make(stamp):
 
     @jit
     def keep(P, EXTRA, k, y, dy, aux):
+        """The energy [J] at ``y`` into ``EXTRA[k, 0]``: kinetic ``½ q̇ᵀ M q̇`` and
+        gravitational ``−g · Σ m c``, from the explicit pass that :func:`rhs` at ``y``
+        (the step's first stage) left in the work buffer, as the compiled loop records
+        it (:func:`offshore_crane.simulation.rk4.run`)."""
         if len(stamp) == 0:
             return
+        n = 6 + P[2].shape[0]
+        ws = carve(P[7], max(P[2].shape[0], P[5].shape[0]))[0]
+        Mm, mc, g = ws[2], ws[9], P[6]
+        EXTRA[k, 0] = kinetic_energy(Mm, y[9:18], n) - (g[0] * mc[0, 0] + g[1] * mc[0, 1]
+                                                          + g[2] * mc[0, 2])
 
     @jit
     def inverse(P, i, y, qdd, X):

@@ -3,7 +3,7 @@
 its compiled kernels :mod:`._rigid_kernels`). Its stops: a singular mass matrix, a
 non-finite state, the workspace. Checked against
 Pinocchio's constraint dynamics (``tests/simulation/test_simulate.py``) and by its
-work–energy balance."""
+work–energy balance (its energy recorded at every output sample, as the compiled loop's)."""
 
 from __future__ import annotations
 
@@ -14,11 +14,13 @@ from offshore_crane.stops import StopCause
 class RigidPlant(Plant):
     name = "rigid"
     size = 18
+    RECORDED = {"energy": 0}
     KERNELS = "offshore_crane.simulation.plants._rigid_kernels"
 
     def finish(self, res, rec, limits):
         from offshore_crane.simulation.record import actuator_power, workspace_stop
 
+        res.energy = rec["energy"][:len(res)]
         res.power = actuator_power(self.robot, res.q, res.qd, res.X)
         found = workspace_stop(self.robot, res, limits)
         return None if found is None else (found[0], StopCause.WORKSPACE, found[1])
