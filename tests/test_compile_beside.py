@@ -116,7 +116,8 @@ def test_passes_are_dealt_longest_first_to_the_least_busy_helper():
     """The elastic lift's passes (their recorded compile times [s]) on 2 helpers:
     20.4 s against 22.0 s; an unknown time counts as a small one."""
     names = ["explicit", "pulled", "cable", "derivative", "measure", "torque"]
-    shares = compile_beside.deal(names, 2, [18.3, 11.9, 5.0, 5.1, 1.1, None])
+    shares, loads = compile_beside.deal(names, 2, [18.3, 11.9, 5.0, 5.1, 1.1, None])
     assert shares == [["explicit", "measure", "torque"], ["pulled", "derivative", "cable"]]
-    assert compile_beside.deal(names[:1], 4, [3.0]) == [["explicit"]]
-    assert compile_beside.deal([], 2, []) == []
+    assert loads == pytest.approx([20.4, 22.0])
+    assert compile_beside.deal(names[:1], 4, [3.0]) == ([["explicit"]], [3.0])
+    assert compile_beside.deal([], 2, []) == ([], [])

@@ -55,11 +55,11 @@ def usable_cores() -> int:
 
 
 class Beside:
-    """Helper processes compiling ``entries`` (:class:`~offshore_crane.kernel_calls.
-    Entry`)."""
+    """Helper processes compiling entries (:class:`~offshore_crane.kernel_calls.Entry`);
+    each helper's command line names its entries."""
 
-    def __init__(self, entries, processes):
-        self.entries, self._processes = entries, processes    # [(process, log), ...]
+    def __init__(self, processes):
+        self._processes = processes                   # [(process, log), ...]
 
     def wait(self) -> bool:
         """Wait for the helpers (at most :data:`TIMEOUT` in all); True when each
@@ -137,8 +137,8 @@ def start(entries) -> Beside | None:
     entries = [e for e in entries if e.module and e.module != "__main__"]  # importable
     if not entries:
         return None
-    cost = {e.name: compile_times.seconds(e.kernel()) for e in entries}
-    shares = deal(entries, cores, [cost[e.name] for e in entries])
+    shares, loads = deal(entries, cores,
+                         [compile_times.seconds(e.kernel()) for e in entries])
     # the helper imports the entries' modules from where this process finds them: its
     # sys.path, set once the helper has started (as PYTHONPATH, a folder of the user's
     # could hide a module of the standard library from the interpreter's own start)
@@ -155,15 +155,15 @@ def start(entries) -> Beside | None:
             log.close()
     if not processes:
         return None
-    compile_times.beside([sum(UNKNOWN if cost[e.name] is None else cost[e.name]
-                              for e in share) for share in shares], cores)
-    return Beside(entries, processes)
+    compile_times.beside(loads, cores)
+    return Beside(processes)
 
 
-def deal(entries, n: int, seconds) -> list[list]:
+def deal(entries, n: int, seconds) -> tuple[list[list], list[float]]:
     """``entries`` dealt to at most ``n`` helpers, longest first to the one with the
     least to do, by their compile ``seconds`` (None: unknown, counted as
-    :data:`UNKNOWN`); each helper's share keeps the entries' order of length."""
+    :data:`UNKNOWN`): each helper's share (in the entries' order of length) and its load
+    [s]."""
     cost = [UNKNOWN if s is None else s for s in seconds]
     shares: list = [[] for _ in range(min(n, len(entries)))]
     loads = [0.0] * len(shares)
@@ -171,7 +171,7 @@ def deal(entries, n: int, seconds) -> list[list]:
         k = loads.index(min(loads))
         shares[k].append(entries[i])
         loads[k] += cost[i]
-    return shares
+    return shares, loads
 
 
 def main(specs: list[str]) -> int:

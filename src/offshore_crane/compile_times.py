@@ -51,14 +51,39 @@ def _wait(seconds) -> str | None:
     return f"about {seconds:.0f} s" if seconds >= 1.0 else "under a second"
 
 
-def seconds(name: str) -> float | None:
-    """The last cold compile of kernel ``name`` [s]: this machine's record, else the
-    package's table, else None."""
-    for table in (_read(record_path()), _read(SHIPPED)):
-        value = table.get("kernels", {}).get(name)
-        if _wait(value) is not None:
-            return float(value)
+def _lookup(name: str) -> tuple[float, str] | None:
+    """The last cold compile of kernel ``name`` [s] and where it comes from, in words to
+    follow the wait (:func:`estimate`): this machine's record, else the package's table;
+    None when neither knows it."""
+    mine = _read(record_path()).get("kernels", {}).get(name)
+    if _wait(mine) is not None:
+        return float(mine), ", as long as its last compile on this machine"
+    table = _read(SHIPPED)
+    theirs = table.get("kernels", {}).get(name)
+    if _wait(theirs) is not None:
+        where = table.get("machine", "the benchmark's machine")
+        return float(theirs), (f" on {where} (benchmarks/compile.py, "
+                               f"{table.get('date', '?')})")
     return None
+
+
+def seconds(name: str) -> float | None:
+    """The last cold compile of kernel ``name`` [s] (:func:`_lookup`), or None."""
+    found = _lookup(name)
+    return None if found is None else found[0]
+
+
+def kernel_name(f) -> str:
+    """A kernel's name in the compile-time record: its module and qualified name, and
+    the instance of a template (:data:`INSTANCE`)."""
+    instance = f.__globals__.get(INSTANCE)
+    return f"{f.__module__}.{f.__qualname__}" + (f" [{instance}]" if instance else "")
+
+
+#: The name, in an instantiated template's namespace, of what tells its instance apart
+#: (:func:`offshore_crane.simulation.loop.instantiate`: the plant and the law): one text,
+#: many compiled loops, each with a compile time of its own.
+INSTANCE = "__kernel_instance__"
 
 
 def estimate(name: str, beside=None) -> str | None:
@@ -72,24 +97,17 @@ def estimate(name: str, beside=None) -> str | None:
             ``cores`` cores: the wait is the longest of the kernel's, a helper's and the
             whole work shared by the cores.
     """
-    if beside and beside[0]:
-        own = seconds(name)
-        if own is None:
-            return None
-        loads, cores = beside
-        wait = max(own, max(loads), (own + sum(loads)) / max(cores, 1))
-        helpers = f"{len(loads)} helper process{'es' if len(loads) > 1 else ''}"
-        return (f"{_wait(wait)} with {helpers} compiling what it calls beside it (the "
-                "last compiles recorded: this machine's, else benchmarks/compile.py's)")
-    mine = _wait(_read(record_path()).get("kernels", {}).get(name))
-    if mine is not None:
-        return f"{mine}, as long as its last compile on this machine"
-    table = _read(SHIPPED)
-    theirs = _wait(table.get("kernels", {}).get(name))
-    if theirs is not None:
-        where = table.get("machine", "the benchmark's machine")
-        return f"{theirs} on {where} (benchmarks/compile.py, {table.get('date', '?')})"
-    return None
+    found = _lookup(name)
+    if found is None:
+        return None
+    own, where = found
+    if not (beside and beside[0]):
+        return f"{_wait(own)}{where}"
+    loads, cores = beside
+    wait = max(own, max(loads), (own + sum(loads)) / max(cores, 1))
+    helpers = f"{len(loads)} helper process{'es' if len(loads) > 1 else ''}"
+    return (f"{_wait(wait)} with {helpers} compiling what it calls beside it (the "
+            "last compiles recorded: this machine's, else benchmarks/compile.py's)")
 
 
 def started(name: str) -> str | None:

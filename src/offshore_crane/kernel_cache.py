@@ -125,7 +125,7 @@ def _ensuring(dispatcher):
         if not entries or getattr(_LOCAL, "outer", False) or compile_beside.helping():
             return compile_(sig)          # (a helper only writes its kernels' cache)
         beside = None
-        if not _cached(dispatcher, sig):
+        if not kernel_calls.cached(dispatcher, sig):
             beside = compile_beside.start([e for e in entries if not e.cached()])
         _LOCAL.outer = True
         try:
@@ -150,26 +150,12 @@ def _ensuring(dispatcher):
     return dispatcher
 
 
-def _cached(dispatcher, sig) -> bool:
-    """Whether ``dispatcher`` has ``sig`` in the disk cache (nothing loaded)."""
-    has = getattr(dispatcher._cache, "has", None)
-    return bool(has is not None and has(sig, dispatcher.targetctx))
-
-
 _CLASS: list = []
 
 
-#: The name, in an instantiated template's namespace, of what tells its instance apart
-#: (:func:`offshore_crane.simulation.loop.instantiate`: the plant and the law): one text,
-#: many compiled loops, each with a compile time of its own.
-INSTANCE = "__kernel_instance__"
-
-
-def _name(f) -> str:
-    """A kernel's name in the compile-time record: its module and qualified name, and
-    the instance of a template (:data:`INSTANCE`)."""
-    instance = f.__globals__.get(INSTANCE)
-    return f"{f.__module__}.{f.__qualname__}" + (f" [{instance}]" if instance else "")
+#: What tells a template's instances apart (:data:`offshore_crane.compile_times.INSTANCE`).
+INSTANCE = compile_times.INSTANCE
+_name = compile_times.kernel_name
 
 
 def _cache_class():

@@ -80,16 +80,15 @@ class Entry:
 
     def kernel(self) -> str:
         """The compiled function's name in the compile-time record
-        (:mod:`offshore_crane.compile_times`: its module and qualified name)."""
-        f = self._dispatcher().py_func
-        return f"{f.__module__}.{f.__qualname__}"
+        (:func:`offshore_crane.compile_times.kernel_name`)."""
+        from offshore_crane.compile_times import kernel_name
+
+        return kernel_name(self._dispatcher().py_func)
 
     def cached(self) -> bool:
-        """Whether the function is in the disk cache for :attr:`argtypes` (nothing is
-        loaded or compiled)."""
-        dispatcher = self._dispatcher()
-        has = getattr(dispatcher._cache, "has", None)
-        return bool(has is not None and has(self.argtypes, dispatcher.targetctx))
+        """Whether the function is in the disk cache for :attr:`argtypes`
+        (:func:`cached`)."""
+        return cached(self._dispatcher(), self.argtypes)
 
     def compile(self):
         """Compile the function for :attr:`argtypes`, or load it from the disk cache
@@ -109,6 +108,13 @@ class Entry:
                             f"{self.restype}")
         self._cres = cres                                  # keeps its code alive
         self.slot[0] = cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name)
+
+
+def cached(dispatcher, sig) -> bool:
+    """Whether ``dispatcher`` has ``sig`` in its disk cache (nothing is loaded or
+    compiled; the cache of :mod:`offshore_crane.kernel_cache` answers, another says no)."""
+    has = getattr(dispatcher._cache, "has", None)
+    return bool(has is not None and has(sig, dispatcher.targetctx))
 
 
 def short_names() -> dict:

@@ -165,6 +165,15 @@ def _helpers(stamp):
             Bc[r] = f
         forces(C, Bc, J, A, rhs, x, M13, Xout)
 
+    @inline
+    def energy(Mm, mc, qd, n, g):
+        """The robot's energy [J] from an explicit pass at (q, q̇): kinetic ``½ q̇ᵀ M q̇``
+        (M's lower triangle ``Mm``) and gravitational ``−g · Σ m c`` (``mc`` (1, 3))."""
+        if len(stamp) == 0:
+            return 0.0
+        return kinetic_energy(Mm, qd, n) - (g[0] * mc[0, 0] + g[1] * mc[0, 1]
+                                            + g[2] * mc[0, 2])
+
     @jit
     def stage(shared, plant, model, g, n, kind, kp, kd, hold, q, qd, qr, qdr, qddr, lo, hi,
               Xc, Xa, qdd, work):
@@ -188,10 +197,10 @@ def _helpers(stamp):
             return solve(n, Xa, qdd, ws)
         return accel(C, g, n, q, qd, Xa, qdd, ws)
 
-    return law, accel, equations, solve, ct, stage
+    return law, accel, equations, solve, ct, energy, stage
 
 
-law, accel, equations, solve, ct, stage = _helpers(STAMP)
+law, accel, equations, solve, ct, energy, stage = _helpers(STAMP)
 
 
 def workspaces(na: int) -> tuple:
@@ -350,7 +359,6 @@ def _runner(stamp):
             if step % out_every == 0 or stop != OK:
                 o = step // out_every if stop == OK else (step + out_every - 1) // out_every
                 if o < Q.shape[0]:
-                    T = kinetic_energy(Mm, qd, n)
                     pw = 0.0
                     for b in range(na):
                         pw += Xa[b] * qd[6 + b]
@@ -368,7 +376,7 @@ def _runner(stamp):
                         XC[o, j] = Xc[j]
                         XA[o, j] = Xa[j]
                         SAT[o, j] = sat[j]
-                    E[o] = T - (gt[0] * mc[0, 0] + gt[1] * mc[0, 1] + gt[2] * mc[0, 2])
+                    E[o] = energy(Mm, mc, qd, n, gt)
                     P[o] = pw
                     status[2] = o + 1
             if stop != OK:

@@ -21,7 +21,15 @@ from offshore_crane.simulation.laws import codes
 
 jit = njit(**c.JIT)
 equations, solve, carve, law = rk4.equations, rk4.solve, rk4.carve, rk4.call_law
-kinetic_energy = c.kinetic_energy
+energy = rk4.energy
+inline = njit(inline="always", **c.JIT)
+
+
+@inline
+def _work(P):
+    """The equations' and the law's work tuples (``ws``, ``wl``), carved from ``P[7]``
+    for the longer arm of the plant's and the model's (their ``prismatic`` flags)."""
+    return carve(P[7], max(P[2].shape[0], P[5].shape[0]))
 unpack = c.unpack
 CT, PDG = codes.COMPUTED_TORQUE, codes.PD_GRAVITY
 
@@ -35,7 +43,7 @@ def _make(stamp):
             return False
         C = unpack(P[0], P[1], P[2])[0]
         qdd = P[8]
-        ws = carve(P[7], max(P[2].shape[0], P[5].shape[0]))[0]
+        ws = _work(P)[0]
         equations(C, P[6], y[:9], y[9:18], ws)
         ok = solve(6 + C.n_arm, X, qdd, ws)
         for j in range(9):
@@ -52,11 +60,8 @@ def _make(stamp):
         it (:func:`offshore_crane.simulation.rk4.run`)."""
         if len(stamp) == 0:
             return
-        n = 6 + P[2].shape[0]
-        ws = carve(P[7], max(P[2].shape[0], P[5].shape[0]))[0]
-        Mm, mc, g = ws[2], ws[9], P[6]
-        EXTRA[k, 0] = kinetic_energy(Mm, y[9:18], n) - (g[0] * mc[0, 0] + g[1] * mc[0, 1]
-                                                          + g[2] * mc[0, 2])
+        ws = _work(P)[0]
+        EXTRA[k, 0] = energy(ws[2], ws[9], y[9:18], 6 + P[2].shape[0], P[6])
 
     @jit
     def inverse(P, i, y, qdd, X):
@@ -66,7 +71,7 @@ def _make(stamp):
             return
         Cc = unpack(P[3], P[4], P[5])[0]
         zero = P[9]
-        wl = carve(P[7], max(P[2].shape[0], P[5].shape[0]))[1]
+        wl = _work(P)[1]
         law(Cc, P[6], CT, zero, zero, y[:9], y[9:18], y[:9], y[9:18], qdd, X, wl)
 
     @jit
@@ -75,7 +80,7 @@ def _make(stamp):
             return
         Cc = unpack(P[3], P[4], P[5])[0]
         zero = P[9]
-        wl = carve(P[7], max(P[2].shape[0], P[5].shape[0]))[1]
+        wl = _work(P)[1]
         law(Cc, P[6], PDG, zero, zero, y[:9], zero, y[:9], zero, zero, X, wl)
 
     return rhs, keep, inverse, gravity
