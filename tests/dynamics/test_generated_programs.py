@@ -70,8 +70,8 @@ def copied(tmp_path, monkeypatch):
     def copy(arrays, cable=False):
         original = lanes.kane_kernel(arrays, FULL, cable)
         name = real_name(arrays, cable)
-        shutil.copy2(lanes._folder() / name, folder / name)
-        monkeypatch.setattr(lanes, "_folder", lambda: folder)
+        shutil.copy2(lanes.cache_folder() / name, folder / name)
+        monkeypatch.setattr(lanes, "cache_folder", lambda: folder)
         _fresh(monkeypatch)
         _copy_compiled(original, lanes.kane_kernel(arrays, FULL, cable))
         return folder / name
@@ -137,7 +137,7 @@ def test_a_damaged_program_is_generated_again_with_the_same_forces(copied, monke
     q, qd, qdd = random_states(robot, 3 * LANES + 5, seed=36)
     massless = LEG_MODEL_CODES["massless"]
     assert lanes.kane_kernel(arrays, massless) is not None
-    other = (lanes._folder() / real_name(arrays, leg_model=massless)).read_text()
+    other = (lanes.cache_folder() / real_name(arrays, leg_model=massless)).read_text()
     path = copied(arrays)
 
     def run():
@@ -182,12 +182,12 @@ def test_a_read_only_package_checks_the_programs_in_the_users_cache(tmp_path, mo
     it copied there, so that nothing compiles)."""
     robot = oc.load_robot()
     arrays = robot_arrays(robot)
-    original, real = lanes.kane_kernel(arrays, FULL), lanes._folder()
+    original, real = lanes.kane_kernel(arrays, FULL), lanes.cache_folder()
     access = os.access
     monkeypatch.setattr(lanes.os, "access", lambda p, mode: False if Path(p) == real
                         else access(p, mode))
     monkeypatch.setattr(lanes.Path, "home", classmethod(lambda cls: tmp_path))
-    folder = lanes._folder()
+    folder = lanes.cache_folder()
     assert folder == tmp_path / ".cache" / "offshore_crane" / "lanes"
     _fresh(monkeypatch)
     kernel, caught = _caught(lambda: lanes.kane_kernel(arrays, FULL))    # written there
@@ -230,7 +230,7 @@ def test_a_program_that_cannot_be_written_leaves_the_per_sample_kernel(
     robot = oc.load_robot()
     q, qd, qdd = random_states(robot, LANES + 1, seed=40)
     expected = solve(robot, q, qd, qdd).X
-    monkeypatch.setattr(lanes, "_folder", lambda: tmp_path)
+    monkeypatch.setattr(lanes, "cache_folder", lambda: tmp_path)
     _fresh(monkeypatch)
     replace = os.replace
     monkeypatch.setattr(lanes.os, "replace", lambda src, dst: failure(replace, src, dst)
@@ -274,7 +274,7 @@ import offshore_crane as oc
 from offshore_crane.dynamics import lanes, solve
 sys.path.insert(0, sys.argv[3])
 from problems import random_states
-lanes._folder = lambda: Path(sys.argv[1])
+lanes.cache_folder = lambda: Path(sys.argv[1])
 robot = oc.load_robot()
 q, qd, qdd = random_states(robot, 20, seed=41)
 while time.time() < float(sys.argv[2]):

@@ -145,7 +145,7 @@ def test_an_untraceable_text_keeps_the_per_sample_kernel(tmp_path, monkeypatch):
         raise tracing.TraceError("a branch on a value cannot be traced")
 
     monkeypatch.setattr(tracing, "trace_kane", refuse)
-    monkeypatch.setattr(lanes, "_folder", lambda: tmp_path)
+    monkeypatch.setattr(lanes, "cache_folder", lambda: tmp_path)
     monkeypatch.setattr(lanes, "_KERNELS", {})
     monkeypatch.setattr(lanes, "_BY_ARRAYS", {})
     monkeypatch.setattr(lanes, "_SOURCES", ["another text"])     # another key: no file
@@ -163,7 +163,7 @@ def test_a_read_only_package_keeps_the_programs_in_the_users_cache(tmp_path, mon
     written, else into the user's cache folder (an installation owned by another user)."""
     monkeypatch.setattr(lanes.os, "access", lambda path, mode: False)
     monkeypatch.setattr(lanes.Path, "home", classmethod(lambda cls: tmp_path))
-    assert lanes._folder() == tmp_path / ".cache" / "offshore_crane" / "lanes"
+    assert lanes.cache_folder() == tmp_path / ".cache" / "offshore_crane" / "lanes"
 
 
 def test_literals_are_written_as_python_reads_them():
@@ -194,7 +194,7 @@ def test_a_new_version_of_the_text_removes_the_programs_of_the_old(tmp_path, mon
     """Writing a program removes the programs of other versions of the text (their
     compiled code, and a killed writer's temporary file) but keeps the other structures
     of its own version."""
-    monkeypatch.setattr(lanes, "_folder", lambda: tmp_path)
+    monkeypatch.setattr(lanes, "cache_folder", lambda: tmp_path)
     monkeypatch.setattr(lanes, "_KERNELS", {})
     monkeypatch.setattr(lanes, "_BY_ARRAYS", {})
     version = lanes._sources_hash()[:8]

@@ -22,6 +22,8 @@ from offshore_crane.kernel_cache import njit
 
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.dynamics import backends
+from offshore_crane.dynamics.explicit_pass import (EXPLICIT, call_explicit,  # noqa: F401
+                                                  explicit_sample, kane_constants_type)
 from offshore_crane.dynamics.constants import FIELDS
 from offshore_crane.dynamics.formulas import KaneConstants
 from offshore_crane.dynamics.linear import (actuation_minus_bias, cholesky_solve,  # noqa: F401
@@ -43,59 +45,10 @@ _kane_sample = K.kane_sample
 #: The formulas compiled without inlining, each built once, for the paths that call a
 #: formula now and then (the actuators' coordinates, the hanging load's Kane passes):
 #: ~2x the run time of the inlined build. The explicit form itself is
-#: :func:`explicit_sample` below: inlined once, called by address.
+#: :func:`.explicit_pass.explicit_sample`: one program, called by address.
 KE = backends.bind({}, njit(**JIT))
 STAMP = backends.source_stamp()
 
-
-def _explicit(stamp):
-    @njit(**JIT)
-    def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, diag, mc):
-        """:func:`~offshore_crane.dynamics.formulas.explicit_sample` as one function with
-        its formulas inlined (``K``'s), compiled once (closed over the formulas' hash
-        ``stamp``, which keys its disk cache) and called by address
-        (:data:`call_explicit`) by every kernel that runs it: the equations of motion,
-        the explicit inverse dynamics, the rigid robot's loop and the hanging and elastic
-        plants. 3.0 µs a sample of forward dynamics against 4.4 µs through :data:`KE`'s
-        calls; called by address, its code is not linked into each caller and optimised
-        again there (:mod:`offshore_crane.kernel_calls`)."""
-        if len(stamp) == 0:
-            return
-        _inlined_explicit(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, diag,
-                          mc)
-
-    return explicit_sample
-
-
-_inlined_explicit = K.explicit_sample            # reached as a global: cacheable
-explicit_sample = _explicit(STAMP)
-
-
-def kane_constants_type():
-    """The Numba type of :class:`~.formulas.KaneConstants` as :func:`unpack` makes it
-    (C-contiguous float64 arrays, ``n_arm`` an int64, ``arm_prism`` booleans)."""
-    from numba import types
-
-    f8 = types.float64
-    nd = {"plat_m": 0, "plat_c": 1, "plat_I": 2, "n_arm": -1, "arm_t": 2, "arm_Ro": 3,
-          "arm_axis": 2, "arm_prism": -2, "arm_m": 1, "arm_c": 2, "arm_I": 3, "leg_s": 2,
-          "leg_P": 2, "leg_X": 2, "leg_Y": 2, "leg_Z": 2, "lo_m": 1, "lo_c": 2, "up_m": 1,
-          "up_c": 2, "leg_I": 3, "thin_It": 1, "lo_cz": 1, "up_cz": 1, "L": 0}
-    kind = {0: f8, -1: types.int64, -2: types.Array(types.boolean, 1, "C")}
-    return types.NamedTuple([kind[nd[n]] if nd[n] <= 0 else types.Array(f8, nd[n], "C")
-                             for n in KaneConstants._fields], KaneConstants)
-
-
-#: :func:`explicit_sample` called by address (:mod:`offshore_crane.kernel_calls`): every
-#: kernel that runs it calls ``call_explicit`` with its arguments, exactly typed (``C``
-#: from :func:`unpack`; ``q, qd, qdd, B`` (n,) and the work arrays C-contiguous, ``g`` a
-#: tuple of 3 floats). Its code is compiled once, in its own library, not again in each
-#: caller.
-EXPLICIT = kernel_calls.Entry.typed(
-    "explicit_sample", lambda: explicit_sample,
-    "none(C, V, V, V, T3, boolean, V, M, M, M, M, M, M, M, M)", STAMP,
-    C=kane_constants_type())
-call_explicit = EXPLICIT.call
 
 def _passes(stamp):
     @njit(**JIT)

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from offshore_crane.dynamics.formulas import KaneConstants
+from offshore_crane.dynamics.layout import FIELDS, field_view  # noqa: F401 (re-exported)
 from offshore_crane.robot.kinematics.workspace import Limits, limits_of
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
@@ -37,12 +38,6 @@ class RobotArrays:
     flat: np.ndarray
     layout: np.ndarray
     prismatic: np.ndarray
-
-
-#: The float fields packed in :attr:`RobotArrays.flat`, in order: KaneConstants' fields
-#: but ``n_arm`` and ``arm_prism``, then the limits.
-FIELDS = tuple(f for f in KaneConstants._fields if f not in ("n_arm", "arm_prism")) + (
-    "lim_arm", "lim_stroke", "lim_ujoint")
 
 
 def build(model) -> RobotArrays:
@@ -71,15 +66,6 @@ def build(model) -> RobotArrays:
         up_cz=f(model.upper_com[:, 2]),
         L=float(np.linalg.norm(model.p_platform_S, axis=1).mean()))
     return pack(kane, limits_of(model))
-
-
-def field_view(buffer, offset: int, shape: tuple, scalar=float):
-    """A field of :data:`FIELDS` in ``buffer``, laid out as :attr:`RobotArrays.flat`
-    (``offset``: the field's row of :attr:`RobotArrays.layout`, ``shape`` its own):
-    ``scalar(buffer[offset])`` for a scalar, else the view of that shape."""
-    if not shape:
-        return scalar(buffer[offset])
-    return buffer[offset:offset + int(np.prod(shape))].reshape(shape)
 
 
 def pack(kane: KaneConstants, limits: Limits) -> RobotArrays:

@@ -393,29 +393,9 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
                body_torque(R, C.plat_I, omega, alpha), want_mass, 6)
     # legs
     for l in range(6):
-        X, Y, Z = row3(C.leg_X, l), row3(C.leg_Y, l), row3(C.leg_Z, l)
-        r, d, length, il, u, dx, dy, dz, h = leg_geometry(p, R, row3(C.leg_s, l),
-                                                          row3(C.leg_P, l), X, Y, Z)
-        a2, n = ujoint_axes(X, Z, dx, dz, h)
-        l_h = length / h
-        Rl = leg_frame(u, a2)
-        rho_lo = mv(Rl, row3(C.lo_c, l))
-        rho_up = mv(Rl, row3(C.up_c, l))
-        leg_diagnostics(diag, l, length, h, d[2], dx, dy, dz)
-        v_S = point_velocity(v, omega, r)
-        a_S = point_acceleration(a, omega, alpha, r)
-        w, al = leg_motion(v_S, a_S, u, length, il, Y, a2, n, l_h, True)[2:4]
-        zero = scale(r, 0.0)
-        first = add(first, add(scale(add(row3(C.leg_P, l), rho_lo), C.lo_m[l]),
-                               scale(add(add(p, r), rho_up), C.up_m[l])))
-        F_lo = rigid_force(C.lo_m[l], point_acceleration(zero, w, al, rho_lo), g)
-        F_up = rigid_force(C.up_m[l], point_acceleration(a_S, w, al, rho_up), g)
-        platform_partials(w4, w5, w6, r, Vs, Ww)           # v_S,r; Ww: scratch
-        for k in range(6):
-            J[l, k] = dot(u, take(Vs, k, 0))
-        f_S, M_S = leg_share(C.lo_m[l], C.up_m[l], world_inertia(Rl, mat3(C.leg_I, l)), u, il,
-                             n, l_h, rho_lo, rho_up, F_lo,
-                             body_torque(Rl, mat3(C.leg_I, l), w, al), F_up, want_mass)
+        first_l, f_S, M_S = explicit_leg(C, l, p, R, v, a, omega, alpha, w4, w5, w6, g,
+                                         want_mass, J, Vs, Ww, diag)
+        first = add(first, first_l)
         carry(B, Mm, Vs, f_S, M_S, want_mass)
     # arm: positions from O2 of the joint origins o_j and the bodies' CoMs c_b
     arm_forward(C, R, omega, alpha, a, q, qd, qdd, 6, g, store, True)
@@ -441,6 +421,39 @@ def explicit_sample(C, q, qd, qdd, g, want_mass, B, J, Mm, store, Vw, Ww, Vs, di
         accumulate(B, Mm, Vw, Ww, C.arm_m[b], world_inertia(Rb, mat3(C.arm_I, b)),
                    take(store, b, F_), take(store, b, T_), want_mass, 7 + b)
     put(mc, 0, 0, first)
+
+
+def explicit_leg(C, l, p, R, v, a, omega, alpha, w4, w5, w6, g, want_mass, J, Vs, Ww,
+                 diag):
+    """Leg ``l``'s part of :func:`explicit_sample`, which depends on no other leg: its
+    row of the leg Jacobian ``J``, its sphere centre's partials ``Vs`` (Ww: scratch), its
+    diagnostics (column l of ``diag``); returns its links' first moment ``Σ m c`` [kg·m]
+    about the base origin and its share ``f_S``, ``M_S`` (:func:`leg_share`), which
+    :func:`carry` adds to the platform's speeds."""
+    X, Y, Z = row3(C.leg_X, l), row3(C.leg_Y, l), row3(C.leg_Z, l)
+    r, d, length, il, u, dx, dy, dz, h = leg_geometry(p, R, row3(C.leg_s, l),
+                                                      row3(C.leg_P, l), X, Y, Z)
+    a2, n = ujoint_axes(X, Z, dx, dz, h)
+    l_h = length / h
+    Rl = leg_frame(u, a2)
+    rho_lo = mv(Rl, row3(C.lo_c, l))
+    rho_up = mv(Rl, row3(C.up_c, l))
+    leg_diagnostics(diag, l, length, h, d[2], dx, dy, dz)
+    v_S = point_velocity(v, omega, r)
+    a_S = point_acceleration(a, omega, alpha, r)
+    w, al = leg_motion(v_S, a_S, u, length, il, Y, a2, n, l_h, True)[2:4]
+    zero = scale(r, 0.0)
+    first = add(scale(add(row3(C.leg_P, l), rho_lo), C.lo_m[l]),
+                scale(add(add(p, r), rho_up), C.up_m[l]))
+    F_lo = rigid_force(C.lo_m[l], point_acceleration(zero, w, al, rho_lo), g)
+    F_up = rigid_force(C.up_m[l], point_acceleration(a_S, w, al, rho_up), g)
+    platform_partials(w4, w5, w6, r, Vs, Ww)           # v_S,r; Ww: scratch
+    for k in range(6):
+        J[l, k] = dot(u, take(Vs, k, 0))
+    f_S, M_S = leg_share(C.lo_m[l], C.up_m[l], world_inertia(Rl, mat3(C.leg_I, l)), u, il, n,
+                         l_h, rho_lo, rho_up, F_lo, body_torque(Rl, mat3(C.leg_I, l), w, al),
+                         F_up, want_mass)
+    return first, f_S, M_S
 
 
 def actuator_coordinates(C, q, qd, pos, rate):

@@ -13,7 +13,7 @@ compiled code), so X, κ and the health record are those of the per-sample kerne
 bit (tested).
 
 The program is specific to the robot's structure (arm joint count and types, leg model,
-the constants' layout): its module is written once into a cache folder (:func:`_folder`),
+the constants' layout): its module is written once into a cache folder (:func:`cache_folder`),
 named by a hash of the structure and of the formulas' and this module's source, with a
 fixed modification time, so that Numba's disk cache of it stays valid across processes
 and on machines given a copy of the cache.
@@ -179,18 +179,23 @@ def _structure_key(arrays, leg_model: int, cable: bool = False) -> str:
     return h.hexdigest()[:20]
 
 
-def _folder() -> Path:
-    """Where the generated modules live: beside this package's own Numba cache (so that
-    ``NUMBA_CACHE_DIR`` and its copies hold their compiled code as they hold the other
-    kernels'), or in the user's cache folder when the package's is not writable."""
-    beside = Path(__file__).resolve().parent / "__pycache__" / "lanes"
+def cache_folder() -> Path:
+    """Where the generated modules live (:func:`package_cache`)."""
+    return package_cache("lanes")
+
+
+def package_cache(name: str) -> Path:
+    """The folder ``name`` of generated programs: beside this package's own Numba cache
+    (so that ``NUMBA_CACHE_DIR`` and its copies hold their compiled code as they hold the
+    other kernels'), or in the user's cache folder when the package's is not writable."""
+    beside = Path(__file__).resolve().parent / "__pycache__" / name
     try:
         beside.mkdir(parents=True, exist_ok=True)
         if os.access(beside, os.W_OK):
             return beside
     except OSError:
         pass
-    return Path.home() / ".cache" / "offshore_crane" / "lanes"
+    return Path.home() / ".cache" / "offshore_crane" / name
 
 
 def kane_kernel(arrays, leg_model: int, cable: bool = False):
@@ -214,7 +219,7 @@ def kane_kernel(arrays, leg_model: int, cable: bool = False):
 def _load(key: str, arrays, leg_model: int, cable: bool):
     """The structure's kernel: its program read from the folder and checked, else traced
     and written (checked after writing); None when it cannot be traced, or written."""
-    folder = _folder()
+    folder = cache_folder()
     version = _sources_hash()[:8]
     path = folder / f"kane_lanes_{version}_{key}.py"
     text, problem = _read_program(path)
@@ -248,12 +253,9 @@ def _read_program(path: Path) -> tuple[str | None, str | None]:
     """``(text, None)`` when ``path`` holds a program whose last line is the checksum of
     the text before it; ``(None, None)`` when there is no program; ``(None, what is
     wrong)`` when it is damaged or cannot be read."""
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        return None, None
-    except OSError as exc:
-        return None, f"cannot be read ({exc.strerror or exc})"
+    data, problem = read_file(path)
+    if data is None:
+        return None, problem
     body, sep, _ = data.rpartition(_CHECK.encode())
     if not sep:
         return None, "has no checksum line (truncated, or not written by this version)"
@@ -263,19 +265,40 @@ def _read_program(path: Path) -> tuple[str | None, str | None]:
 
 
 def _write_program(path: Path, text: str, version: str) -> str | None:
-    """Write ``text`` and its checksum line atomically (a temporary file of a name of
-    its own, renamed over ``path``: processes racing write the same bytes) and read it
-    back: None when ``path`` then holds them, else what went wrong."""
+    """Write ``text`` and its checksum line (:func:`write_atomically`, after removing
+    the programs of other versions): None when ``path`` then holds them, else what went
+    wrong."""
     data = text.encode()
-    data += _checksum(path, data)
+    return write_atomically(path, data + _checksum(path, data),
+                            lambda: _remove_stale(path.parent, version), _MTIME)
+
+
+def read_file(path: Path) -> tuple[bytes | None, str | None]:
+    """``(its bytes, None)``; ``(None, None)`` when there is no file; ``(None, why it
+    cannot be read)``."""
+    try:
+        return path.read_bytes(), None
+    except FileNotFoundError:
+        return None, None
+    except OSError as exc:
+        return None, f"cannot be read ({exc.strerror or exc})"
+
+
+def write_atomically(path: Path, data: bytes, before=lambda: None,
+                     mtime: int | None = None) -> str | None:
+    """Write ``data`` to ``path`` atomically (a temporary file of a name of its own,
+    renamed over ``path``: processes racing write the same bytes; ``before()`` runs once
+    the folder exists, ``mtime`` the file's modification time) and read it back: None
+    when ``path`` then holds them, else what went wrong."""
     tmp = path.with_name(f".{path.stem}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        _remove_stale(path.parent, version)
+        before()
         fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
-        os.utime(tmp, (_MTIME, _MTIME))
+        if mtime is not None:
+            os.utime(tmp, (mtime, mtime))
         os.replace(tmp, path)
         if path.read_bytes() != data:
             return "does not read back as written"

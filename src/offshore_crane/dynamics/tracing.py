@@ -11,9 +11,11 @@ stops the trace (:class:`TraceError`; the caller keeps the per-sample kernel).
 
 Run as it is written, the program does the same IEEE operations in the same order as the
 compiled per-sample formulas, so it gives the same numbers bit for bit; written as the
-body of a loop over samples (:mod:`.lanes`), LLVM vectorises it. The robot's constants
-stay in the description's arrays: the trace reads them by index (``c_40`` is
-``flat[40]``), it copies no value.
+body of a loop over samples (:mod:`.lanes`), LLVM vectorises it; translated into LLVM's
+own text (:mod:`.native`), it compiles in a second where Numba's front end takes twenty.
+The robot's constants stay in the description's arrays: the trace reads them by index
+(``c_40`` is ``flat[40]``, or ``k3_5`` element 5 of the constants' field 3), it copies no
+value.
 """
 
 from __future__ import annotations
@@ -96,9 +98,11 @@ class Trace:
     trig: list
     outputs: list
     trig_input: object = None
+    #: Lines traced now are lanes' (named ``v…``, :func:`trace_explicit`).
+    lane: bool = False
 
     def line(self, expr: str) -> Symbol:
-        name = f"t{len(self.lines)}"
+        name = f"{'v' if self.lane else 't'}{len(self.lines)}"
         self.lines.append(f"{name} = {expr}")
         return Symbol(name)
 
@@ -142,7 +146,7 @@ def trace_kane(arrays, leg_model: int, inputs, trig_input, flat_name,
         TraceError: the formulas branched on a value.
     """
     from offshore_crane.dynamics.backends import bind
-    from offshore_crane.dynamics.constants import FIELDS, field_view
+    from offshore_crane.dynamics.layout import FIELDS, field_view
     from offshore_crane.dynamics.formulas import DIAG_ROWS, STORE_WIDTH, KaneConstants
 
     global _TRACE
@@ -179,3 +183,128 @@ def trace_kane(arrays, leg_model: int, inputs, trig_input, flat_name,
     finally:
         _TRACE = Trace([], [], [])
     return trace
+
+
+def trace_explicit(kane, want_mass: bool) -> tuple:
+    """The explicit Kane pass (:func:`~offshore_crane.dynamics.formulas.explicit_sample`)
+    of one sample, traced for the arm structure of ``kane`` (a
+    :class:`~offshore_crane.dynamics.formulas.KaneConstants`: its joint count and types;
+    no value of it is read).
+
+    Names in the lines: ``k{f}_{i}`` element ``i`` (C order) of the constants' field
+    ``f`` (its index in ``KaneConstants._fields``; a scalar field has ``i = 0``),
+    ``q_{j}``, ``qd_{j}``, ``qdd_{j}`` the inputs (n = 6 + n_arm each), ``g_{i}``
+    gravity [m/s²], ``s_{m}`` the m-th trigonometric value of an input (``trace.trig``).
+
+    The six legs (:func:`~offshore_crane.dynamics.formulas.explicit_leg`, which depends
+    on no other leg) are traced once, as *lanes*: lines named ``v…`` whose operands may
+    be ``V{f}_{j}``, element ``j`` of row l of a per-leg field ``f``, leg l being lane l;
+    ``e{l}_{x}`` is lane l of the value ``x`` (``x`` itself when it is no lane's). What
+    the legs give is then added in leg order, as the formulas do.
+
+    Returns:
+        ``(trace, outputs)``: ``outputs`` maps ``B`` (n,), ``J`` (6, 6), ``Mm`` (n, n)
+        (lower triangle; only with ``want_mass``), ``store`` (max(n_arm, 1), 27),
+        ``diag`` (7, 6) and ``mc`` (1, 3) to object arrays of operand texts: what the
+        pass leaves in the caller's arrays (the caller zeroes ``B`` and ``Mm``, as for
+        the compiled pass; ``Vw, Ww, Vs`` are its scratch, all zero before it).
+
+    Raises:
+        TraceError: the formulas branched on a value.
+    """
+    from offshore_crane.dynamics.backends import bind
+    from offshore_crane.dynamics.formulas import DIAG_ROWS, STORE_WIDTH, KaneConstants
+
+    global _TRACE
+    trace = _TRACE = Trace([], [], [], lambda m: f"s_{m}")
+    try:
+        F = bind({name: trace.function(name) for name in ("sqrt", "sin", "cos", "arctan2")})
+        fields = {}
+        for f, name in enumerate(KaneConstants._fields):
+            if name in ("n_arm", "arm_prism"):          # the structure: decided here
+                continue
+            shape = np.shape(getattr(kane, name))
+            if not shape:
+                fields[name] = Symbol(f"k{f}_0")
+                continue
+            out = np.empty(shape, dtype=object)
+            out.ravel()[:] = [Symbol(f"k{f}_{i}") for i in range(out.size)]
+            fields[name] = out
+        C = KaneConstants(**fields, n_arm=int(kane.n_arm),
+                          arm_prism=np.asarray(kane.arm_prism, dtype=bool))
+        n = 6 + C.n_arm
+        q = [Symbol(f"q_{j}", j) for j in range(n)]
+        qd, qdd = ([Symbol(f"{v}_{j}") for j in range(n)] for v in ("qd", "qdd"))
+        g = tuple(Symbol(f"g_{i}") for i in range(3))
+
+        work = {"B": _zeros(n), "J": _zeros(6, 6), "Mm": _zeros(n, n),
+                "store": _zeros(max(C.n_arm, 1), STORE_WIDTH), "diag": _zeros(DIAG_ROWS, 6),
+                "mc": _zeros(1, 3)}
+        scratch = [_zeros(n, 3) for _ in range(3)]
+        F.explicit_sample.__globals__["explicit_leg"] = _legs_as_lanes(trace, F, C)
+        F.explicit_sample(C, q, qd, qdd, g, bool(want_mass), work["B"], work["J"],
+                          work["Mm"], work["store"], *scratch, work["diag"], work["mc"])
+    finally:
+        _TRACE = Trace([], [], [])
+    if not want_mass:
+        del work["Mm"]
+    outputs = {name: np.vectorize(_operand, otypes=[object])(a) for name, a in work.items()}
+    return trace, outputs
+
+
+def _zeros(*shape):
+    out = np.empty(shape, dtype=object)
+    out.fill(0.0)
+    return out
+
+
+#: The constants' per-leg fields (first axis: the six legs), by their names' prefixes.
+PER_LEG = ("leg_", "lo_", "up_", "thin_")
+
+
+def _legs_as_lanes(trace: Trace, F, C):
+    """The stand-in for ``explicit_leg`` while :func:`trace_explicit` traces: its first
+    call traces leg 0 with lane constants (``V{f}_{j}``); each call returns and writes
+    leg l's lanes (``e{l}_…``) where the real function returns and writes leg l's values."""
+    from offshore_crane.dynamics.formulas import KaneConstants
+
+    lanes = {}
+    for f, name in enumerate(KaneConstants._fields):
+        if name.startswith(PER_LEG):
+            real = np.asarray(getattr(C, name))
+            out = np.empty(real.shape, dtype=object)           # rows 1..5: not read
+            if real.ndim == 1:
+                out[0] = Symbol(f"V{f}_0")
+            else:
+                out[0].ravel()[:] = [Symbol(f"V{f}_{j}") for j in range(out[0].size)]
+            lanes[name] = out
+    lane_C = C._replace(**lanes)
+    traced: list = []
+
+    def lane(x, l):
+        if isinstance(x, Symbol):
+            return Symbol(f"e{l}_{x.expr}")
+        return x
+
+    def explicit_leg(C_, l, p, R, v, a, omega, alpha, w4, w5, w6, g, want_mass, J, Vs, Ww,
+                     diag):
+        if not traced:
+            J0, Vs0, Ww0, diag0 = _zeros(*J.shape), _zeros(*Vs.shape), _zeros(*Ww.shape), \
+                _zeros(*diag.shape)
+            trace.lane = True
+            try:
+                out = F.explicit_leg(lane_C, 0, p, R, v, a, omega, alpha, w4, w5, w6, g,
+                                     want_mass, J0, Vs0, Ww0, diag0)
+            finally:
+                trace.lane = False
+            traced.append((out, J0, Vs0, Ww0, diag0))
+        (first, f_S, M_S), J0, Vs0, Ww0, diag0 = traced[0]
+        J[l, :] = [lane(x, l) for x in J0[0]]
+        diag[:, l] = [lane(x, l) for x in diag0[:, 0]]
+        for mine, theirs in ((Vs, Vs0), (Ww, Ww0)):
+            for idx in np.ndindex(mine.shape):
+                mine[idx] = lane(theirs[idx], l)
+        return (tuple(lane(x, l) for x in first), tuple(lane(x, l) for x in f_S),
+                tuple(tuple(lane(x, l) for x in row) for row in M_S))
+
+    return explicit_leg

@@ -1,0 +1,142 @@
+"""The explicit pass compiled by LLVM from its trace (:mod:`offshore_crane.dynamics.native`).
+
+Reference: the same formulas run on Python floats with :mod:`math`
+(``backends.PYTHON``): the same IEEE operations in the same order and the same libm
+calls, so the program must agree bit for bit (no tolerance: any reassociation, fused
+multiply-add or other library function would show). The golden simulation runs check
+the programs inside every compiled loop.
+"""
+
+import numpy as np
+import pytest
+
+import offshore_crane as oc
+from offshore_crane.dynamics import backends, native
+from offshore_crane.dynamics import compiled as c
+from offshore_crane.dynamics.constants import cable_arrays, pack, robot_arrays
+from offshore_crane.kernel_cache import GeneratedProgramWarning
+
+G = (0.0, 0.0, -9.81)
+
+
+def _states(n, count, seed):
+    """Random but reachable states: the platform near its home pose, the arm anywhere."""
+    rng = np.random.default_rng(seed)
+    q = np.zeros((count, n))
+    q[:, :3] = rng.normal(0.0, 0.05, (count, 3)) + np.array([0.0, 0.0, 1.3])
+    q[:, 3:6] = rng.normal(0.0, 0.1, (count, 3))
+    q[:, 6:] = rng.uniform(-1.0, 1.0, (count, n - 6))
+    return q, rng.normal(0.0, 0.5, (count, n)), rng.normal(0.0, 2.0, (count, n))
+
+
+def _run(f, C, q, qd, qdd, want_mass):
+    n = len(q)
+    out = (np.zeros(n), np.zeros((6, 6)), np.zeros((n, n)), np.zeros((max(C.n_arm, 1), 27)),
+           np.zeros((7, 6)), np.zeros((1, 3)))
+    B, J, Mm, store, diag, mc = out
+    f(C, q, qd, qdd, G, want_mass, B, J, Mm, store, np.zeros((n, 3)), np.zeros((n, 3)),
+      np.zeros((n, 3)), diag, mc)
+    return out
+
+
+def _structures():
+    arrays = robot_arrays(oc.load_robot())
+    flipped = arrays.kane._replace(arm_prism=~arrays.kane.arm_prism)   # other joint types
+    hanging = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 1.5})
+    return {"robot": arrays.kane, "no arm": robot_arrays(oc.load_robot(with_arm=0)).kane,
+            "joint types flipped": pack(flipped, arrays.limits).kane,
+            "hanging load": cable_arrays(hanging).kane}       # 5 joints, 11 speeds
+
+
+@pytest.mark.parametrize("name", ["robot", "no arm", "joint types flipped", "hanging load"])
+@pytest.mark.parametrize("want_mass", [False, True])
+def test_the_program_is_the_formulas_bit_for_bit(name, want_mass):
+    C = _structures()[name]
+    n = 6 + C.n_arm
+    q, qd, qdd = _states(n, 12, seed=7)
+    for k in range(len(q)):
+        got = _run(c.explicit_sample, C, q[k], qd[k], qdd[k], want_mass)
+        ref = _run(backends.PYTHON.explicit_sample, C, list(q[k]), list(qd[k]), list(qdd[k]),
+                   want_mass)
+        for a, b in zip(got, ref):
+            np.testing.assert_array_equal(a, b)
+
+
+def test_the_slot_index_is_one_to_one():
+    seen = set()
+    for n_arm in range(native.MAX_ARM + 1):
+        for bits in range(2 ** n_arm):
+            prism = [(bits >> j) & 1 == 1 for j in range(n_arm)]
+            for want_mass in (False, True):
+                i = native.program_index(n_arm, prism, want_mass)
+                assert 0 <= i < len(native.SLOTS) and i not in seen
+                seen.add(i)
+
+
+@pytest.fixture
+def kept_slots():
+    """Restore the slots and libraries a test empties or replaces."""
+    slots, libraries = native.SLOTS.copy(), dict(native._LIBRARIES)
+    yield
+    native.SLOTS[:] = slots
+    native._LIBRARIES.clear()
+    native._LIBRARIES.update(libraries)
+
+
+def test_a_structures_first_call_loads_its_programs(kept_slots):
+    """The slots are filled on a structure's first compiled call (not when its arrays
+    are made: a process that stays on NumPy loads nothing)."""
+    C = robot_arrays(oc.load_robot()).kane
+    index = [native.program_index(C.n_arm, C.arm_prism, m) for m in (False, True)]
+    q, qd, qdd = _states(9, 1, seed=1)
+    ref = _run(c.explicit_sample, C, q[0], qd[0], qdd[0], True)
+    native.SLOTS[index] = 0
+    for a, b in zip(_run(c.explicit_sample, C, q[0], qd[0], qdd[0], True), ref):
+        np.testing.assert_array_equal(a, b)
+    assert native.SLOTS[index[1]] != 0 and native.SLOTS[index[0]] != 0
+
+
+def test_making_a_robots_arrays_loads_no_compiler():
+    import subprocess
+    import sys
+
+    code = ("import sys, offshore_crane as oc\n"
+            "from offshore_crane.dynamics.constants import robot_arrays\n"
+            "robot_arrays(oc.load_robot())\n"
+            "print(sorted(m for m in ('numba', 'llvmlite') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "[]"
+
+
+def test_a_damaged_program_file_is_compiled_again(kept_slots, tmp_path, monkeypatch):
+    monkeypatch.setattr(native, "_cache_folder", lambda: tmp_path / "native")
+    C = robot_arrays(oc.load_robot()).kane
+    q, qd, qdd = _states(9, 1, seed=2)
+    ref = _run(c.explicit_sample, C, q[0], qd[0], qdd[0], True)
+    index = [native.program_index(C.n_arm, C.arm_prism, m) for m in (False, True)]
+    native.SLOTS[index] = 0
+    stale = tmp_path / "native" / "offshore_crane_explicit_0123456789abcdef_19_x.bin"
+    stale.parent.mkdir()
+    stale.write_bytes(b"another version of the programs' text")
+    native.ensure(C)                                    # compiled, written
+    files = sorted((tmp_path / "native").glob("*.bin"))
+    assert len(files) == 2 and not stale.exists()
+    native.SLOTS[index] = 0
+    native.ensure(C)                                    # read back: no warning
+    data = bytearray(files[1].read_bytes())
+    data[-100] ^= 0xFF
+    files[1].write_bytes(bytes(data))
+    native.SLOTS[index] = 0
+    with pytest.warns(GeneratedProgramWarning, match="does not match its checksum"):
+        native.ensure(C)
+    for a, b in zip(_run(c.explicit_sample, C, q[0], qd[0], qdd[0], True), ref):
+        np.testing.assert_array_equal(a, b)
+    assert native._read(files[1])[1] is None            # rewritten whole
+
+
+def test_an_arm_beyond_the_table_is_refused():
+    from types import SimpleNamespace
+
+    with pytest.raises(oc.ModelError, match="an arm of 9 joints.*at most 8"):
+        native.ensure(SimpleNamespace(n_arm=9, arm_prism=np.zeros(9, dtype=bool)))
