@@ -1,4 +1,4 @@
-"""The explicit pass compiled by LLVM from its trace (:mod:`offshore_crane.dynamics.native`).
+"""The Kane passes compiled by LLVM from their trace (:mod:`offshore_crane.dynamics.native`).
 
 Reference: the same formulas run on Python floats with :mod:`math`
 (``backends.PYTHON``): the same IEEE operations in the same order and the same libm
@@ -14,6 +14,7 @@ import offshore_crane as oc
 from offshore_crane.dynamics import backends, native
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.constants import cable_arrays, pack, robot_arrays
+from offshore_crane.dynamics.tracing import VARIANTS
 from offshore_crane.kernel_cache import GeneratedProgramWarning
 
 G = (0.0, 0.0, -9.81)
@@ -62,15 +63,63 @@ def test_the_program_is_the_formulas_bit_for_bit(name, want_mass):
             np.testing.assert_array_equal(a, b)
 
 
+def _fused(f, C, q, qd, qdd, *flags, pull=None):
+    na = C.n_arm
+    out = (np.full(max(na, 1), 7.0), np.full((6, 6), 7.0), np.full(6, 7.0),
+           np.full((7, 6), 7.0), np.full((max(na, 1), 27), 7.0))  # 7: what it leaves
+    if pull is None:
+        f(C, q, qd, qdd, G, *flags, *out)
+    else:
+        f(C, q, qd, qdd, G, *pull, *out)
+    return out
+
+
+@pytest.mark.parametrize("name", ["robot", "no arm", "hanging load"])
+@pytest.mark.parametrize("static", [False, True])
+@pytest.mark.parametrize("leg_model", [0, 1, 2])
+@pytest.mark.parametrize("want_legs", [False, True])
+def test_the_fused_pass_is_the_formulas_bit_for_bit(name, static, leg_model, want_legs):
+    """Every variant of the fused pass, and the arrays it does not write are left as
+    they were (the 7s)."""
+    C = _structures()[name]
+    n = 6 + C.n_arm
+    q, qd, qdd = _states(n, 4, seed=9)
+    if static:
+        qd[:, :6] = qdd[:, :6] = 0.0
+    flags = (static, leg_model, want_legs)
+    for k in range(len(q)):
+        got = _fused(c.kane_pass, C, q[k], qd[k], qdd[k], *flags)
+        ref = _fused(backends.PYTHON.kane_sample, C, list(q[k]), list(qd[k]), list(qdd[k]),
+                     *flags)
+        for a, b in zip(got, ref):
+            np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("name", ["robot", "hanging load"])
+def test_the_pass_with_a_pull_is_the_formulas_bit_for_bit(name):
+    C = _structures()[name]
+    n = 6 + C.n_arm
+    q, qd, qdd = _states(n, 6, seed=10)
+    rng = np.random.default_rng(11)
+    for k in range(len(q)):
+        pull = (tuple(rng.normal(0.0, 50.0, 3)), tuple(rng.normal(0.0, 1.0, 3)))
+        got = _fused(c.kane_pull_pass, C, q[k], qd[k], qdd[k], pull=pull)
+        ref = _fused(backends.PYTHON.kane_sample_pull, C, list(q[k]), list(qd[k]),
+                     list(qdd[k]), pull=pull)
+        for a, b in zip(got, ref):
+            np.testing.assert_array_equal(a, b)
+
+
 def test_the_slot_index_is_one_to_one():
     seen = set()
     for n_arm in range(native.MAX_ARM + 1):
         for bits in range(2 ** n_arm):
             prism = [(bits >> j) & 1 == 1 for j in range(n_arm)]
-            for want_mass in (False, True):
-                i = native.program_index(n_arm, prism, want_mass)
-                assert 0 <= i < len(native.SLOTS) and i not in seen
-                seen.add(i)
+            for kind, variants in enumerate(VARIANTS.values()):
+                for variant in range(variants):
+                    i = native.program_index(kind, n_arm, prism, variant)
+                    assert 0 <= i < len(native.SLOTS) and i not in seen
+                    seen.add(i)
 
 
 @pytest.fixture
@@ -84,16 +133,16 @@ def kept_slots():
 
 
 def test_a_structures_first_call_loads_its_programs(kept_slots):
-    """The slots are filled on a structure's first compiled call (not when its arrays
-    are made: a process that stays on NumPy loads nothing)."""
+    """A program is loaded on its first compiled call (not when the robot's arrays are
+    made: a process that stays on NumPy loads nothing), and only the variant called."""
     C = robot_arrays(oc.load_robot()).kane
-    index = [native.program_index(C.n_arm, C.arm_prism, m) for m in (False, True)]
+    index = [native.program_index(0, C.n_arm, C.arm_prism, m) for m in (0, 1)]
     q, qd, qdd = _states(9, 1, seed=1)
     ref = _run(c.explicit_sample, C, q[0], qd[0], qdd[0], True)
     native.SLOTS[index] = 0
     for a, b in zip(_run(c.explicit_sample, C, q[0], qd[0], qdd[0], True), ref):
         np.testing.assert_array_equal(a, b)
-    assert native.SLOTS[index[1]] != 0 and native.SLOTS[index[0]] != 0
+    assert native.SLOTS[index[1]] != 0 and native.SLOTS[index[0]] == 0   # only what ran
 
 
 def test_making_a_robots_arrays_loads_no_compiler():
@@ -114,29 +163,31 @@ def test_a_damaged_program_file_is_compiled_again(kept_slots, tmp_path, monkeypa
     C = robot_arrays(oc.load_robot()).kane
     q, qd, qdd = _states(9, 1, seed=2)
     ref = _run(c.explicit_sample, C, q[0], qd[0], qdd[0], True)
-    index = [native.program_index(C.n_arm, C.arm_prism, m) for m in (False, True)]
+    index = [native.program_index(0, C.n_arm, C.arm_prism, m) for m in (0, 1)]
     native.SLOTS[index] = 0
     stale = tmp_path / "native" / "offshore_crane_explicit_0123456789abcdef_19_x.bin"
     stale.parent.mkdir()
     stale.write_bytes(b"another version of the programs' text")
-    native.ensure(C)                                    # compiled, written
+    for m in (0, 1):
+        native.ensure("explicit", C, m)                 # compiled, written
     files = sorted((tmp_path / "native").glob("*.bin"))
     assert len(files) == 2 and not stale.exists()
     native.SLOTS[index] = 0
-    native.ensure(C)                                    # read back: no warning
+    for m in (0, 1):
+        native.ensure("explicit", C, m)                 # read back: no warning
     data = bytearray(files[1].read_bytes())
     data[-100] ^= 0xFF
     files[1].write_bytes(bytes(data))
     native.SLOTS[index] = 0
     with pytest.warns(GeneratedProgramWarning, match="does not match its checksum"):
-        native.ensure(C)
+        native.ensure("explicit", C, 1)
     for a, b in zip(_run(c.explicit_sample, C, q[0], qd[0], qdd[0], True), ref):
         np.testing.assert_array_equal(a, b)
     assert native._read(files[1])[1] is None            # rewritten whole
 
 
-def test_an_arm_beyond_the_table_is_refused():
-    from types import SimpleNamespace
-
+def test_an_arm_beyond_the_table_is_refused_when_packed():
+    arrays = robot_arrays(oc.load_robot())
+    nine = arrays.kane._replace(n_arm=9, arm_prism=np.zeros(9, bool))
     with pytest.raises(oc.ModelError, match="an arm of 9 joints.*at most 8"):
-        native.ensure(SimpleNamespace(n_arm=9, arm_prism=np.zeros(9, dtype=bool)))
+        pack(nine, arrays.limits)

@@ -22,8 +22,10 @@ from offshore_crane.kernel_cache import njit
 
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.dynamics import backends
-from offshore_crane.dynamics.explicit_pass import (EXPLICIT, call_explicit,  # noqa: F401
-                                                  explicit_sample, kane_constants_type)
+from offshore_crane.dynamics.passes import (EXPLICIT, KANE, KANE_PULL,  # noqa: F401
+                                           call_explicit, call_kane, call_kane_pull,
+                                           explicit_sample, kane_constants_type, kane_pass,
+                                           kane_pull_pass)
 from offshore_crane.dynamics.constants import FIELDS
 from offshore_crane.dynamics.formulas import KaneConstants
 from offshore_crane.dynamics.linear import (actuation_minus_bias, cholesky_solve,  # noqa: F401
@@ -45,45 +47,11 @@ _kane_sample = K.kane_sample
 #: The formulas compiled without inlining, each built once, for the paths that call a
 #: formula now and then (the actuators' coordinates, the hanging load's Kane passes):
 #: ~2x the run time of the inlined build. The explicit form itself is
-#: :func:`.explicit_pass.explicit_sample`: one program, called by address.
+#: :func:`.passes.explicit_sample`: one program, called by address.
 KE = backends.bind({}, njit(**JIT))
 STAMP = backends.source_stamp()
 
 
-def _passes(stamp):
-    @njit(**JIT)
-    def kane_pass(C, q, qd, qdd, g, static, leg_model, want_legs, rows, A, rhs, diag,
-                  store):
-        """:func:`~offshore_crane.dynamics.formulas.kane_sample` inlined, compiled once
-        and called by address (:data:`call_kane`)."""
-        if len(stamp) == 0:
-            return
-        _kane_sample(C, q, qd, qdd, g, static, leg_model, want_legs, rows, A, rhs, diag,
-                     store)
-
-    @njit(**JIT)
-    def kane_pull_pass(C, q, qd, qdd, g, pull, at, rows, A, rhs, diag, store):
-        """:func:`~offshore_crane.dynamics.formulas.kane_sample_pull` inlined, compiled
-        once and called by address (:data:`call_kane_pull`)."""
-        if len(stamp) == 0:
-            return
-        _kane_sample_pull(C, q, qd, qdd, g, pull, at, rows, A, rhs, diag, store)
-
-    return kane_pass, kane_pull_pass
-
-
-_kane_sample_pull = K.kane_sample_pull              # reached as a global: cacheable
-kane_pass, kane_pull_pass = _passes(STAMP)
-#: The fused Kane pass and the one with a pull at the tip, called by address by the
-#: hanging load's and the elastic cable's kernels (compiled once, not in each kernel).
-KANE = kernel_calls.Entry.typed(
-    "kane_sample", lambda: kane_pass,
-    "none(C, V, V, V, T3, boolean, int64, boolean, V, M, V, M, M)", STAMP,
-    C=kane_constants_type())
-KANE_PULL = kernel_calls.Entry.typed(
-    "kane_sample_pull", lambda: kane_pull_pass,
-    "none(C, V, V, V, T3, T3, T3, V, M, V, M, M)", STAMP, C=kane_constants_type())
-call_kane, call_kane_pull = KANE.call, KANE_PULL.call
 
 _BAD_INPUT, _VIOLATION, _BAD_OUTPUT, _KAPPA = ws.BAD_INPUT, ws.VIOLATION, ws.BAD_OUTPUT, ws.KAPPA
 #: A clean health record, and the slots that hold the first sample of something found.

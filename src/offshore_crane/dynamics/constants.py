@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from offshore_crane.dynamics import native
 from offshore_crane.dynamics.formulas import KaneConstants
 from offshore_crane.dynamics.layout import FIELDS, field_view  # noqa: F401 (re-exported)
 from offshore_crane.robot.kinematics.workspace import Limits, limits_of
@@ -85,6 +86,7 @@ def pack(kane: KaneConstants, limits: Limits) -> RobotArrays:
              for name, x, (o, *_) in zip(FIELDS, parts, layout)}
     kane = kane._replace(**{k: v for k, v in views.items() if k in KaneConstants._fields})
     limits = Limits(views["lim_arm"], views["lim_stroke"], views["lim_ujoint"])
+    native.remember(kane)            # its structure's template for the compiled passes
     return RobotArrays(kane, limits, flat, layout, kane.arm_prism)
 
 

@@ -272,18 +272,27 @@ def legs_and_platform(C, R, p, v, a, omega, alpha, g, static, leg_model, F, M, A
     M = add(M, Mp)
     iL = 1.0 / C.L
     for l in range(6):
-        r, u, length, dx, dy, dz, h, height, f_S = leg_force(
-            leg_constants(C, l), R, p, v, a, omega, alpha, g, static, leg_model)
+        f_S, m_S = stewart_leg(C, l, R, p, v, a, omega, alpha, g, static, leg_model, iL, A,
+                               diag)
         F = add(F, f_S)
-        M = add(M, cross(r, f_S))
-        rxu = cross(r, u)
-        for i in range(3):
-            A[i, l] = u[i]
-            A[3 + i, l] = rxu[i] * iL
-        leg_diagnostics(diag, l, length, h, height, dx, dy, dz)
+        M = add(M, m_S)
     for i in range(3):
         rhs[i] = F[i]
         rhs[3 + i] = M[i] * iL
+
+
+def stewart_leg(C, l, R, p, v, a, omega, alpha, g, static, leg_model, iL, A, diag):
+    """Leg ``l``'s part of :func:`legs_and_platform`, which depends on no other leg: its
+    column of ``A`` (``iL`` = 1 / L [1/m]) and of ``diag``; returns its force on the
+    platform at S, ``f_S`` [N], and that force's moment about O2, ``r × f_S`` [N·m]."""
+    r, u, length, dx, dy, dz, h, height, f_S = leg_force(
+        leg_constants(C, l), R, p, v, a, omega, alpha, g, static, leg_model)
+    rxu = cross(r, u)
+    for i in range(3):
+        A[i, l] = u[i]
+        A[3 + i, l] = rxu[i] * iL
+    leg_diagnostics(diag, l, length, h, height, dx, dy, dz)
+    return f_S, cross(r, f_S)
 
 
 # --------------------------------------------------------------------------- explicit

@@ -1,50 +1,52 @@
-"""The explicit Kane pass as straight-line programs compiled by LLVM, not by Numba.
+"""The Kane passes as straight-line programs compiled by LLVM, not by Numba.
 
 Numba's front end types and lowers every operation of a function on its own, about
 1.7 ms each (profiled: ``get_call_type``, ``lower_binop``): the explicit pass, its formulas
-inlined, compiled in 20 s; traced into a straight-line Python program, in 21 s. The same
-trace (:func:`.tracing.trace_explicit`) written in LLVM's own text compiles in under a
-second. Straight-line code is also long (13 600 instructions with the mass matrix, all
-run once: the processor's front end, not its arithmetic, then sets the pace, 2.3 µs a
-call against 1.87 µs for Numba's looped code), so the six legs, whose formulas
-(:func:`~offshore_crane.dynamics.formulas.explicit_leg`) depend on no other leg, are
-traced once and run as the :data:`LANES` lanes of vectors, leg l in lane l: 8 300
-instructions and 1.52 µs a call (0.70 µs without the mass matrix, against 1.24 µs).
+inlined, compiled in 20 s (the fused pass 14 s, the one with a pull 15 s); traced into a
+straight-line Python program, in 21 s. The same trace (:func:`.tracing.trace_pass`)
+written in LLVM's own text (:mod:`.llvm_program`) compiles in under a second. Straight,
+the code is long (13 600 instructions for the explicit pass with the mass matrix, all run
+once: the processor's front end, not its arithmetic, then sets the pace, 2.3 µs a call
+against 1.87 µs for Numba's looped code), so the six legs, whose formulas
+(:func:`~offshore_crane.dynamics.formulas.explicit_leg`,
+:func:`~offshore_crane.dynamics.formulas.stewart_leg`) depend on no other leg, are traced
+once and run as the lanes of vectors, leg l in lane l: 8 300 instructions and 1.52 µs a
+call (0.70 µs without the mass matrix, against 1.24 µs).
 
-For each arm structure (joint count and types) and with or without the mass matrix, one
-function ``void offshore_crane_explicit_<stamp>_<index>(<the constants' fields>, q, qd,
-qdd, g0, g1, g2, B, J, Mm, m_stride, store, diag, mc)`` (arrays by their data pointers, C
-order; ``m_stride`` Mm's row length) does the operations of
-:func:`~offshore_crane.dynamics.formulas.explicit_sample` in the formulas' order, with
-the instructions Numba emits for them (``fadd``, ``fmul``, …, no fast-math flag: nothing
-is reassociated or fused; a vector instruction does in each lane what the scalar one does)
-and the same library calls (``llvm.sin``, ``llvm.cos``, ``atan2``; ``llvm.sqrt``, correctly
-rounded as ``sqrt`` is): the same numbers bit for bit (tested against the Python-float
-backend, and every golden run is unchanged). The legs' sums stay in leg order.
+A program does the operations of its formula in the formulas' order, with the
+instructions Numba emits for them (no fast-math flag: nothing is reassociated or fused;
+a vector instruction does in each lane what the scalar one does), the same library calls
+and the legs' sums in leg order: the same numbers bit for bit (tested against the
+Python-float backend for every pass and variant; every golden run is unchanged). Its
+parameters are the constants' fields and the pass's arguments as :func:`caller` passes
+them (an array by its data pointer, a matrix followed by its row length).
 
-A program's address goes into :data:`SLOTS` at :func:`program_index` (the structure and
-``want_mass``); the compiled wrapper :func:`~offshore_crane.dynamics.explicit_pass.
-explicit_sample` reads it there at each call, and on a structure's first call loads or
-compiles its programs (:func:`ensure`): a process that stays on NumPy loads nothing.
+There is one program per arm structure (joint count and types), pass and variant (the
+explicit pass with or without the mass matrix, the fused pass's flags): its address goes
+into :data:`SLOTS` at :func:`program_index`, where the compiled wrappers
+(:mod:`.passes`) read it at each call. A call finding its slot empty calls back into
+Python (:func:`ensure_slot`: the structure's constants kept when the robot was packed,
+:func:`remember`), which loads or compiles the program: only what runs is loaded, and a
+process that stays on NumPy loads nothing.
 
 Compiled objects are kept beside the package's Numba cache (:func:`~.lanes.
 package_cache`), named by the SHA-256 of the program's text and of the compiler's target
 (CPU and its features), with the SHA-256 of their content in front: a damaged file is
 reported in one line (:class:`~offshore_crane.kernel_cache.GeneratedProgramWarning`) and
-compiled again.
+compiled again; files of another version of the text are removed.
 """
 
 from __future__ import annotations
 
 import contextlib
 import hashlib
-import re
 import struct
 import threading
 
 import numpy as np
 
 from offshore_crane.dynamics.lanes import package_cache, read_file, write_atomically
+from offshore_crane.dynamics.llvm_program import program_ir
 
 #: The largest arm (joints, sway joints included) whose programs have a slot.
 MAX_ARM = 8
@@ -52,33 +54,26 @@ _LOCK = threading.Lock()
 #: Per slot index, the compiled library (kept alive: its code is what the slot points at).
 _LIBRARIES: dict = {}
 _MAGIC = b"offshore-crane native program 1\n"
-_BINARY = {"+": "fadd", "-": "fsub", "*": "fmul", "/": "fdiv"}
-#: The library calls, as Numba lowers np.sqrt, np.sin, np.cos and np.arctan2 of a float
-#: (its ``sqrt`` is declared without side effects, so LLVM makes it the instruction:
-#: correctly rounded, as ``llvm.sqrt`` is; a plain call would spill every live register).
-_CALLS = {"sqrt": ("@llvm.sqrt.f64", 1), "sin": ("@llvm.sin.f64", 1), "cos": ("@llvm.cos.f64", 1),
-          "arctan2": ("@atan2", 2)}
-_VECTOR_CALLS = {"@llvm.sqrt.f64": "@llvm.sqrt.v8f64", "@llvm.fabs.f64": "@llvm.fabs.v8f64"}
-_DECLARE = ("declare double @llvm.sin.f64(double)\ndeclare double @llvm.cos.f64(double)\n"
-            "declare double @llvm.fabs.f64(double)\ndeclare double @llvm.sqrt.f64(double)\n"
-            "declare double @atan2(double, double) nounwind memory(none)\n"
-            "declare <8 x double> @llvm.sqrt.v8f64(<8 x double>)\n"
-            "declare <8 x double> @llvm.fabs.v8f64(<8 x double>)\n")
+#: The passes, in slot order (:func:`~.tracing.trace_pass`'s kinds).
+KINDS = ("explicit", "kane", "kane_pull")
+#: Variants a pass may have (:data:`~.tracing.VARIANTS`: the fused pass's 12).
+_VARIANTS = 12
 
 
-def program_index(n_arm, arm_prism, want_mass):
-    """The slot of the program of an arm of ``n_arm`` joints whose types are
-    ``arm_prism`` (True: prismatic), with (``want_mass``) or without the mass matrix:
-    ``2 · (binary 1 p_0 p_1 … p_{n−1}) + want_mass``, below ``2 ** (MAX_ARM + 2)``.
-    Plain arithmetic: compiled into the wrapper as it is run here."""
+def program_index(kind, n_arm, arm_prism, variant):
+    """The slot of pass ``kind`` (its index in :data:`KINDS`), ``variant``, for an arm
+    of ``n_arm`` joints whose types are ``arm_prism`` (True: prismatic): the structure's
+    code ``binary 1 p_0 p_1 … p_{n−1}``, then the kind, then the variant, below
+    ``2 ** (MAX_ARM + 1) · 3 · 12``. Plain arithmetic: compiled into the wrappers as it
+    is run here."""
     code = 1
     for j in range(n_arm):
         code = 2 * code + (1 if arm_prism[j] else 0)
-    return 2 * code + (1 if want_mass else 0)
+    return (code * 3 + kind) * 12 + variant
 
 
 #: The programs' addresses by :func:`program_index` (0: not loaded).
-SLOTS = np.zeros(2 ** (MAX_ARM + 2), dtype=np.int64)
+SLOTS = np.zeros(2 ** (MAX_ARM + 1) * len(KINDS) * _VARIANTS, dtype=np.int64)
 
 
 def stamp() -> str:
@@ -103,225 +98,92 @@ _STAMP: list = []
 SYMBOL = "offshore_crane_native_slots"
 
 
-def register() -> str:
-    """Make :data:`SLOTS` known to LLVM under its symbol (once); the symbol."""
+def register() -> tuple:
+    """Make :data:`SLOTS` and the loader known to LLVM under their symbols (once):
+    ``(slots' symbol, loader's symbol)``. The loader is :func:`ensure_slot` behind a C
+    function pointer: a compiled call finding its slot empty calls it (taking the GIL),
+    so the passes need no call of their own on that path (a Numba call there, even one
+    never made, cost them their arrays' reference counts: 0.67 → 1.1 µs a call)."""
+    import ctypes
+
     from llvmlite import binding
 
-    name = f"{SYMBOL}_{stamp()}"
     if not _REGISTERED:
-        binding.add_symbol(name, SLOTS.ctypes.data)
-        _REGISTERED.append(name)
-    return name
+        names = (f"{SYMBOL}_{stamp()}", f"offshore_crane_native_load_{stamp()}")
+
+        def load(index):
+            try:
+                ensure_slot(index)
+            except Exception:                          # noqa: BLE001 (a C caller)
+                import traceback
+
+                traceback.print_exc()                  # the pass then raises
+
+        callback = ctypes.CFUNCTYPE(None, ctypes.c_int64)(load)
+        binding.add_symbol(names[0], SLOTS.ctypes.data)
+        binding.add_symbol(names[1], ctypes.cast(callback, ctypes.c_void_p).value)
+        _REGISTERED.extend([names, callback])             # the callback kept alive
+    return _REGISTERED[0]
 
 
 _REGISTERED: list = []
 
 
-def _literal(x: float) -> str:
-    """A double in LLVM's text: its bits, exactly."""
-    return "0x%016X" % struct.unpack("<Q", struct.pack("<d", x))[0]
-
-
-def _fields(kane) -> list:
-    """``(field index, name, kind)`` of the constants' fields in order, ``kind`` one of
-    ``"i64"`` (n_arm), ``"ptr"`` (an array, arm_prism too) or ``"double"``."""
-    from offshore_crane.dynamics.formulas import KaneConstants
-
-    out = []
-    for f, name in enumerate(KaneConstants._fields):
-        value = getattr(kane, name)
-        kind = ("i64" if name == "n_arm" else "ptr" if np.ndim(value) or name == "arm_prism"
-                else "double")
-        out.append((f, name, kind))
-    return out
-
-
-#: Lanes of the legs' vectors (6 legs; lanes 6 and 7 repeat leg 0): the width of an
-#: AVX-512 register, two AVX2 registers.
-LANES = 8
-_VEC = f"<{LANES} x double>"
-
-
-def explicit_ir(kane, want_mass: bool) -> tuple:
-    """``(name, text)``: the LLVM function of the explicit pass for the structure of
-    ``kane`` (module docstring), from :func:`~.tracing.trace_explicit`: the legs' lines
-    as vectors of :data:`LANES` lanes, leg l in lane l."""
-    from offshore_crane.dynamics.tracing import trace_explicit
-
-    trace, outputs = trace_explicit(kane, want_mass)
-    index = program_index(int(kane.n_arm), np.asarray(kane.arm_prism), want_mass)
-    name = f"offshore_crane_explicit_{stamp()}_{index}"
-    fields = _fields(kane)
-    body, known, vectors, splats = [], {}, set(), {}
-
-    def load(value, pointer, i):
-        known[value] = f"%{value}"
-        body.append(f"  %{value}.p = getelementptr double, ptr {pointer}, i64 {i}")
-        body.append(f"  %{value} = load double, ptr %{value}.p")
-        return known[value]
-
-    def gather(x, f, j):
-        """The lanes of element j of a per-leg field f's rows (lane l: leg l)."""
-        row = int(np.prod(np.shape(getattr(kane, fields[f][1]))[1:], dtype=int))
-        prev = "poison"
-        for lane in range(LANES):
-            leg = lane if lane < 6 else 0
-            loaded = load(f"{x}.{lane}", f"%c{f}", leg * row + j)
-            body.append(f"  %{x}.i{lane} = insertelement {_VEC} {prev}, double {loaded}, "
-                        f"i32 {lane}")
-            prev = f"%{x}.i{lane}"
-        known[x] = prev
-        vectors.add(x)
-        return prev
-
-    def scalar(x: str) -> str:
-        if x in known:
-            return known[x]
-        if re.fullmatch(r"[tv]\d+", x):
-            return f"%{x}"
-        m = re.fullmatch(r"e(\d)_(.+)", x)
-        if m:
-            inner = m[2]
-            if inner in vectors or inner.startswith("V"):
-                vec = vector(inner)
-                body.append(f"  %{x} = extractelement {_VEC} {vec}, i32 {m[1]}")
-                known[x] = f"%{x}"
-                return known[x]
-            return scalar(inner)
-        m = re.fullmatch(r"k(\d+)_(\d+)", x)
-        if m:
-            f, i = int(m[1]), int(m[2])
-            if fields[f][2] == "double":
-                return f"%c{f}"
-            return load(x, f"%c{f}", i)
-        m = re.fullmatch(r"(q|qd|qdd)_(\d+)", x)
-        if m:
-            return load(x, f"%{m[1]}", int(m[2]))
-        if re.fullmatch(r"g_\d", x):
-            return f"%{x}"
-        special = {"np.nan": "0x7FF8000000000000", "np.inf": "0x7FF0000000000000",
-                   "-np.inf": "0xFFF0000000000000"}
-        return special[x] if x in special else _literal(float(x))
-
-    def is_vector(x: str) -> bool:
-        return x in vectors or x.startswith("V")
-
-    def vector(x: str) -> str:
-        if x in vectors:
-            return known.get(x, f"%{x}")
-        m = re.fullmatch(r"V(\d+)_(\d+)", x)
-        if m:
-            return gather(x, int(m[1]), int(m[2]))
-        if x not in splats:                   # a scalar or a literal in every lane
-            value = scalar(x)
-            if value.startswith("%"):
-                tag = f"%splat.{len(splats)}"
-                body.append(f"  {tag}.i = insertelement {_VEC} poison, double {value}, i32 0")
-                body.append(f"  {tag} = shufflevector {_VEC} {tag}.i, {_VEC} poison, "
-                            f"<{LANES} x i32> zeroinitializer")
-                splats[x] = tag
-            else:
-                splats[x] = "<" + ", ".join([f"double {value}"] * LANES) + ">"
-        return splats[x]
-
-    for m, (f, col) in enumerate(trace.trig):
-        body.append(f"  %s_{m} = call double @llvm.{f}.f64(double {scalar(f'q_{col}')})")
-        known[f"s_{m}"] = f"%s_{m}"
-    stores: dict = {}               # each output stored right after its value's line
-    for out, array in outputs.items():
-        for idx in np.ndindex(array.shape):
-            if out == "Mm" and idx[1] > idx[0]:
-                continue                                 # the lower triangle only
-            x = array[idx]
-            after = int(x[1:]) if re.fullmatch(r"t\d+", x) else -1
-            stores.setdefault(after, []).append((out, idx, x))
-
-    def store(out, idx, x):
-        tag = f"{out}.{'.'.join(map(str, idx))}"
-        if out == "Mm":
-            body.append(f"  %{tag}.r = mul i64 %m_stride, {idx[0]}")
-            body.append(f"  %{tag}.i = add i64 %{tag}.r, {idx[1]}")
-            at = f"%{tag}.i"
-        else:
-            at = str(int(np.ravel_multi_index(idx, outputs[out].shape)))
-        body.append(f"  %{tag}.p = getelementptr double, ptr %{out}, i64 {at}")
-        body.append(f"  store double {scalar(x)}, ptr %{tag}.p")
-
-    late = [item for item in stores.get(-1, ()) if item[2].startswith("e")]  # lanes'
-    for item in stores.get(-1, ()):
-        if not item[2].startswith("e"):
-            store(*item)
-    for n, line in enumerate(trace.lines):
-        lhs, rhs = line.split(" = ", 1)
-        call = re.fullmatch(r"(np\.(\w+)|abs)\((.*)\)", rhs)
-        parts = rhs.split(" ")
-        if call:
-            fn, arity = _CALLS[call[2]] if call[2] else ("@llvm.fabs.f64", 1)
-            args = call[3].split(", ")
-            assert len(args) == arity, line
-        elif len(parts) == 3:
-            args = [parts[0], parts[2]]
-        else:
-            assert len(parts) == 1 and rhs.startswith("-"), line
-            args = [rhs[1:]]
-        if any(is_vector(x) for x in args):
-            vectors.add(lhs)
-            if call and fn not in _VECTOR_CALLS:
-                raise ValueError(f"{line}: no vector form of {fn}")
-            ops = [vector(x) for x in args]
-            kind = _VEC
-            fn = _VECTOR_CALLS.get(fn, fn) if call else None
-        else:
-            ops = [scalar(x) for x in args]
-            kind = "double"
-        if call:
-            body.append(f"  %{lhs} = call {kind} {fn}("
-                        + ", ".join(f"{kind} {o}" for o in ops) + ")")
-        elif len(parts) == 3:
-            body.append(f"  %{lhs} = {_BINARY[parts[1]]} {kind} {ops[0]}, {ops[1]}")
-        else:
-            body.append(f"  %{lhs} = fneg {kind} {ops[0]}")
-        for item in stores.get(n, ()):
-            store(*item)
-    for item in late:
-        store(*item)
-    inp, out = "ptr noalias readonly", "ptr noalias"
-    params = [f"{inp if kind == 'ptr' else kind} %c{f}" for f, _, kind in fields]
-    params += [f"{inp} %q", f"{inp} %qd", f"{inp} %qdd", "double %g_0", "double %g_1",
-               "double %g_2", f"{out} %B", f"{out} %J", f"{out} %Mm", "i64 %m_stride",
-               f"{out} %store", f"{out} %diag", f"{out} %mc"]
-    text = (_DECLARE + f"define void @{name}({', '.join(params)}) nounwind {{\n"
-            + "\n".join(body) + "\n  ret void\n}\n")
-    return name, text
-
-
-def ensure(kane) -> None:
-    """Load or compile the explicit pass's two programs (with and without the mass
-    matrix) for the arm structure of ``kane`` into :data:`SLOTS`; nothing when they are
-    there. Imports Numba's code generator.
-
-    Raises:
-        ModelError: an arm of more than :data:`MAX_ARM` joints.
+def ensure(kind: str, kane, variant: int) -> None:
+    """Load or compile the program of pass ``kind``'s ``variant`` for the arm structure
+    of ``kane`` into :data:`SLOTS`; nothing when it is there. Imports Numba's code
+    generator (a structure's arm has at most :data:`MAX_ARM` joints: :func:`remember`
+    refuses more).
     """
     n_arm, prism = int(kane.n_arm), np.asarray(kane.arm_prism)
+    index = program_index(KINDS.index(kind), n_arm, prism, variant)
+    if SLOTS[index]:
+        return
+    with _LOCK:
+        if not SLOTS[index]:
+            name = f"offshore_crane_{kind}_{stamp()}_{index}"
+            text = program_ir(kind, kane, variant, name)
+            library = _library(name, text)
+            _LIBRARIES[index] = library
+            SLOTS[index] = library.get_pointer_to_function(name)
+
+
+def remember(kane) -> None:
+    """Keep ``kane`` (a robot's constants: :func:`~.constants.pack` calls this) as its
+    arm structure's template: :func:`ensure_slot` traces from it. Imports nothing; a
+    serial chain (no leg) has no Kane pass and is not kept.
+
+    Raises:
+        ModelError: a hybrid robot whose arm has more than :data:`MAX_ARM` joints.
+    """
+    if not len(kane.leg_s):
+        return
+    n_arm = int(kane.n_arm)
     if n_arm > MAX_ARM:
         from offshore_crane.errors import ModelError
 
         raise ModelError(f"an arm of {n_arm} joints: the compiled passes handle at most "
                          f"{MAX_ARM} (offshore_crane.dynamics.native.MAX_ARM); use fewer "
                          "joints")
-    wanted = [m for m in (False, True) if not SLOTS[program_index(n_arm, prism, m)]]
-    if not wanted:
-        return
-    with _LOCK:
-        register()
-        for want_mass in wanted:
-            index = program_index(n_arm, prism, want_mass)
-            if not SLOTS[index]:
-                name, text = explicit_ir(kane, want_mass)
-                library = _library(name, text)
-                _LIBRARIES[index] = library
-                SLOTS[index] = library.get_pointer_to_function(name)
+    code = program_index(0, n_arm, np.asarray(kane.arm_prism), 0) // (len(KINDS) * _VARIANTS)
+    _TEMPLATES.setdefault(code, kane)
+
+
+#: Per arm-structure code, the constants of a robot of that structure (:func:`remember`).
+_TEMPLATES: dict = {}
+
+
+def ensure_slot(index: int) -> None:
+    """:func:`ensure` the program of slot ``index``: its structure's template (a robot
+    of that structure packed in this process), its pass and variant."""
+    code, rest = divmod(int(index), len(KINDS) * _VARIANTS)
+    kind, variant = divmod(rest, _VARIANTS)
+    kane = _TEMPLATES.get(code)
+    if kane is None:
+        raise RuntimeError(f"no robot of the arm structure of slot {index} was packed in "
+                           "this process (offshore_crane.dynamics.constants.pack): report "
+                           "this as a bug")
+    ensure(KINDS[kind], kane, variant)
 
 
 def _cache_folder():
@@ -408,44 +270,45 @@ def _warn(message: str) -> None:
     warnings.warn(GeneratedProgramWarning(message), stacklevel=4)
 
 
-def caller():
-    """The intrinsic ``call(index, C, q, qd, qdd, g, B, J, Mm, store, diag, mc)`` that
-    calls the program in slot ``index`` (the arrays by their data pointers, C order;
-    ``g`` a tuple of three floats) and returns True; False, calling nothing, when the
-    slot is empty (:func:`ensure` fills it)."""
+def caller(arity: int):
+    """The intrinsic ``call(index, *args)`` (``arity`` arguments after the index) that
+    calls the program in slot ``index`` with ``args`` flattened (an array by its data
+    pointer, C order, followed by its row length when it has two axes and is not inside
+    a tuple; a tuple by its elements; numbers as int64 or double) and returns True;
+    False, calling nothing, when the slot is empty (:func:`ensure` fills it)."""
     from llvmlite import ir
     from numba.core import cgutils, types
     from numba.core.errors import TypingError
     from numba.extending import intrinsic
 
-    symbol = register()
+    symbol, loader = register()
 
-    def flatten(context, builder, typ, value, out):
+    def flatten(context, builder, typ, value, out, top=False):
         if isinstance(typ, types.Array):
-            if typ.layout != "C":
-                raise TypingError(f"the native explicit pass takes C-contiguous arrays, "
-                                  f"given {typ}")
+            if typ.layout != "C" or typ.ndim > 2 and top:
+                raise TypingError(f"a compiled pass takes C-contiguous arrays of one or "
+                                  f"two axes, given {typ}")
             if value is not None:
-                data = context.make_array(typ)(context, builder, value).data
-                out.append(data)
+                array = context.make_array(typ)(context, builder, value)
+                out.append(array.data)
+                if top and typ.ndim == 2:
+                    out.append(cgutils.unpack_tuple(builder, array.shape, 2)[1])
         elif isinstance(typ, types.BaseTuple):
             for i, t in enumerate(typ):
                 flatten(context, builder, t, None if value is None
                         else builder.extract_value(value, i), out)
-        elif isinstance(typ, types.Integer):
+        elif isinstance(typ, (types.Integer, types.Boolean)):
             if value is not None:
                 out.append(context.cast(builder, value, typ, types.int64))
         elif isinstance(typ, types.Float):
             if value is not None:
                 out.append(context.cast(builder, value, typ, types.float64))
         else:
-            raise TypingError(f"the native explicit pass cannot take {typ}")
+            raise TypingError(f"a compiled pass cannot take {typ}")
 
-    def call_explicit_program(typingctx, index, C, q, qd, qdd, g, B, J, Mm, store, diag,
-                              mc):
-        args = (C, q, qd, qdd, g, B, J, Mm, store, diag, mc)
+    def call(typingctx, index, *args):
         for a in args:
-            flatten(None, None, a, None, [])
+            flatten(None, None, a, None, [], top=True)
         sig = types.boolean(index, *args)
 
         def codegen(context, builder, signature, values):
@@ -454,23 +317,31 @@ def caller():
                 table = ir.GlobalVariable(builder.module, ir.IntType(64), symbol)
                 table.linkage = "external"
             i = context.cast(builder, values[0], signature.args[0], types.int64)
-            address = builder.load(builder.gep(table, [i]))
+            slot = builder.gep(table, [i])
+            with builder.if_then(cgutils.is_null(builder, builder.load(slot)), likely=False):
+                load = cgutils.get_or_insert_function(
+                    builder.module, ir.FunctionType(ir.VoidType(), [ir.IntType(64)]),
+                    loader)
+                builder.call(load, [i])                 # Python: ensure_slot(i)
+            address = builder.load(slot)
             loaded = builder.not_(cgutils.is_null(builder, address))
             with builder.if_then(loaded, likely=True):
                 flat = []
-                for k, (t, v) in enumerate(zip(signature.args[1:], values[1:])):
-                    flatten(context, builder, t, v, flat)
-                    if k == 7:                               # Mm's row length
-                        shape = cgutils.unpack_tuple(
-                            builder, context.make_array(t)(context, builder, v).shape,
-                            t.ndim)
-                        flat.append(shape[1])
+                for t, v in zip(signature.args[1:], values[1:]):
+                    flatten(context, builder, t, v, flat, top=True)
                 fnty = ir.FunctionType(ir.VoidType(), [a.type for a in flat])
                 builder.call(builder.inttoptr(address, fnty.as_pointer()), flat)
             return loaded
 
         return sig, codegen
 
-    call_explicit_program.__qualname__ = f"call_explicit_program_{stamp()}"
-    globals()[call_explicit_program.__qualname__] = call_explicit_program
-    return intrinsic(call_explicit_program)
+    # a fixed arity: Numba lowers an intrinsic's *args as one packed argument
+    names = ", ".join(f"a{i}" for i in range(arity))
+    scope = {"call": call}
+    exec(f"def call_program(typingctx, index, {names}):\n"
+         f"    return call(typingctx, index, {names})\n", scope)
+    fn = scope["call_program"]
+    # importable by name: a caller's cache key pickles what it references, by reference
+    fn.__module__, fn.__qualname__ = __name__, f"call_program_{arity}_{stamp()}"
+    globals()[fn.__qualname__] = fn
+    return intrinsic(fn)

@@ -185,32 +185,74 @@ def trace_kane(arrays, leg_model: int, inputs, trig_input, flat_name,
     return trace
 
 
-def trace_explicit(kane, want_mass: bool) -> tuple:
-    """The explicit Kane pass (:func:`~offshore_crane.dynamics.formulas.explicit_sample`)
-    of one sample, traced for the arm structure of ``kane`` (a
+#: The passes :func:`trace_pass` traces, and how many variants each has: the explicit
+#: pass with or without the mass matrix (``want_mass``), the fused pass for each
+#: ``static`` x ``leg_model`` x ``want_legs`` (:func:`kane_variant`), the pass with a pull.
+VARIANTS = {"explicit": 2, "kane": 12, "kane_pull": 1}
+
+
+def kane_variant(static, leg_model, want_legs):
+    """The fused pass's variant number of its flags (``leg_model`` 0, 1 or 2)."""
+    return (6 if static else 0) + 2 * leg_model + (1 if want_legs else 0)
+
+
+class _Unwritten:
+    """What a pass's output holds until the pass writes it (any use of it stops the
+    trace: the formulas read it before writing it)."""
+
+    def __repr__(self):
+        return "unwritten"
+
+
+UNWRITTEN = _Unwritten()
+
+
+def _unwritten(*shape):
+    out = np.empty(shape, dtype=object)
+    out.fill(UNWRITTEN)
+    return out
+
+
+def _zeros(*shape):
+    out = np.empty(shape, dtype=object)
+    out.fill(0.0)
+    return out
+
+
+def trace_pass(kind: str, kane, variant: int) -> tuple:
+    """One sample of a Kane pass, traced for the arm structure of ``kane`` (a
     :class:`~offshore_crane.dynamics.formulas.KaneConstants`: its joint count and types;
-    no value of it is read).
+    no value of it is read): ``kind`` ``"explicit"``
+    (:func:`~offshore_crane.dynamics.formulas.explicit_sample`, ``variant`` =
+    ``want_mass``), ``"kane"`` (:func:`~offshore_crane.dynamics.formulas.kane_sample`,
+    ``variant`` = :func:`kane_variant` of its flags) or ``"kane_pull"``
+    (:func:`~offshore_crane.dynamics.formulas.kane_sample_pull`).
 
     Names in the lines: ``k{f}_{i}`` element ``i`` (C order) of the constants' field
     ``f`` (its index in ``KaneConstants._fields``; a scalar field has ``i = 0``),
     ``q_{j}``, ``qd_{j}``, ``qdd_{j}`` the inputs (n = 6 + n_arm each), ``g_{i}``
-    gravity [m/s²], ``s_{m}`` the m-th trigonometric value of an input (``trace.trig``).
+    gravity [m/s²], ``pull_{i}`` [N] and ``at_{i}`` [m] the pull and its point,
+    ``s_{m}`` the m-th trigonometric value of an input (``trace.trig``).
 
-    The six legs (:func:`~offshore_crane.dynamics.formulas.explicit_leg`, which depends
-    on no other leg) are traced once, as *lanes*: lines named ``v…`` whose operands may
-    be ``V{f}_{j}``, element ``j`` of row l of a per-leg field ``f``, leg l being lane l;
-    ``e{l}_{x}`` is lane l of the value ``x`` (``x`` itself when it is no lane's). What
-    the legs give is then added in leg order, as the formulas do.
+    The six legs (:func:`~offshore_crane.dynamics.formulas.explicit_leg`,
+    :func:`~offshore_crane.dynamics.formulas.stewart_leg`: each depends on no other leg)
+    are traced once, as *lanes*: lines named ``v…`` whose operands may be ``V{f}_{j}``,
+    element ``j`` of row l of a per-leg field ``f``, leg l being lane l; ``e{l}_{x}`` is
+    lane l of the value ``x`` (``x`` itself when it is no lane's). What the legs give is
+    then added in leg order, as the formulas do.
 
     Returns:
-        ``(trace, outputs)``: ``outputs`` maps ``B`` (n,), ``J`` (6, 6), ``Mm`` (n, n)
-        (lower triangle; only with ``want_mass``), ``store`` (max(n_arm, 1), 27),
-        ``diag`` (7, 6) and ``mc`` (1, 3) to object arrays of operand texts: what the
-        pass leaves in the caller's arrays (the caller zeroes ``B`` and ``Mm``, as for
-        the compiled pass; ``Vw, Ww, Vs`` are its scratch, all zero before it).
+        ``(trace, outputs)``: ``outputs`` maps each array the pass writes (explicit:
+        ``B`` (n,), ``J`` (6, 6), ``Mm`` (n, n) with ``want_mass``, ``store``
+        (max(n_arm, 1), 27), ``diag`` (7, 6), ``mc`` (1, 3); fused: ``rows``
+        (max(n_arm, 1),), ``A`` (6, 6), ``rhs`` (6,), ``diag``, ``store``) to an object
+        array of operand texts, ``None`` where the pass leaves the element as it was
+        (the explicit pass adds to ``B`` and ``Mm``, which the caller zeroes; ``Vw, Ww,
+        Vs`` are its scratch, all zero before it).
 
     Raises:
-        TraceError: the formulas branched on a value.
+        TraceError: the formulas branched on a value, or read an output before
+            writing it.
     """
     from offshore_crane.dynamics.backends import bind
     from offshore_crane.dynamics.formulas import DIAG_ROWS, STORE_WIDTH, KaneConstants
@@ -232,79 +274,98 @@ def trace_explicit(kane, want_mass: bool) -> tuple:
             fields[name] = out
         C = KaneConstants(**fields, n_arm=int(kane.n_arm),
                           arm_prism=np.asarray(kane.arm_prism, dtype=bool))
-        n = 6 + C.n_arm
+        n, r = 6 + C.n_arm, max(C.n_arm, 1)
         q = [Symbol(f"q_{j}", j) for j in range(n)]
         qd, qdd = ([Symbol(f"{v}_{j}") for j in range(n)] for v in ("qd", "qdd"))
-        g = tuple(Symbol(f"g_{i}") for i in range(3))
-
-        work = {"B": _zeros(n), "J": _zeros(6, 6), "Mm": _zeros(n, n),
-                "store": _zeros(max(C.n_arm, 1), STORE_WIDTH), "diag": _zeros(DIAG_ROWS, 6),
-                "mc": _zeros(1, 3)}
-        scratch = [_zeros(n, 3) for _ in range(3)]
-        F.explicit_sample.__globals__["explicit_leg"] = _legs_as_lanes(trace, F, C)
-        F.explicit_sample(C, q, qd, qdd, g, bool(want_mass), work["B"], work["J"],
-                          work["Mm"], work["store"], *scratch, work["diag"], work["mc"])
+        g, pull, at = (tuple(Symbol(f"{v}_{i}") for i in range(3))
+                       for v in ("g", "pull", "at"))
+        ns = F.explicit_sample.__globals__           # the formulas' bound namespace
+        ns["explicit_leg"] = _legs_as_lanes(trace, F, C, "explicit_leg",
+                                            {13: "row", 14: "all", 15: "all", 16: "column"})
+        ns["stewart_leg"] = _legs_as_lanes(trace, F, C, "stewart_leg",
+                                           {12: "column", 13: "column"})
+        if kind == "explicit":
+            work = {"B": _zeros(n), "J": _unwritten(6, 6), "Mm": _zeros(n, n),
+                    "store": _unwritten(r, STORE_WIDTH), "diag": _unwritten(DIAG_ROWS, 6),
+                    "mc": _unwritten(1, 3)}
+            F.explicit_sample(C, q, qd, qdd, g, bool(variant), work["B"], work["J"],
+                              work["Mm"], work["store"], *(_zeros(n, 3) for _ in range(3)),
+                              work["diag"], work["mc"])
+            if not variant:                     # not touched: nothing is stored into it
+                work["Mm"] = _unwritten(n, n)
+        else:
+            work = {"rows": _unwritten(r), "A": _unwritten(6, 6), "rhs": _unwritten(6),
+                    "diag": _unwritten(DIAG_ROWS, 6), "store": _unwritten(r, STORE_WIDTH)}
+            if kind == "kane":
+                F.kane_sample(C, q, qd, qdd, g, variant >= 6, (variant % 6) // 2,
+                              variant % 2 == 1, *work.values())
+            else:
+                F.kane_sample_pull(C, q, qd, qdd, g, pull, at, *work.values())
     finally:
         _TRACE = Trace([], [], [])
-    if not want_mass:
-        del work["Mm"]
-    outputs = {name: np.vectorize(_operand, otypes=[object])(a) for name, a in work.items()}
+
+    def text(x):
+        return None if x is UNWRITTEN else _operand(x)
+
+    outputs = {name: np.vectorize(text, otypes=[object])(a) for name, a in work.items()}
     return trace, outputs
-
-
-def _zeros(*shape):
-    out = np.empty(shape, dtype=object)
-    out.fill(0.0)
-    return out
 
 
 #: The constants' per-leg fields (first axis: the six legs), by their names' prefixes.
 PER_LEG = ("leg_", "lo_", "up_", "thin_")
 
 
-def _legs_as_lanes(trace: Trace, F, C):
-    """The stand-in for ``explicit_leg`` while :func:`trace_explicit` traces: its first
-    call traces leg 0 with lane constants (``V{f}_{j}``); each call returns and writes
-    leg l's lanes (``e{l}_…``) where the real function returns and writes leg l's values."""
+def _legs_as_lanes(trace: Trace, F, C, name: str, writes: dict):
+    """The stand-in for the per-leg formula ``name`` while :func:`trace_pass` traces:
+    its first call traces leg 0 with lane constants (``V{f}_{j}``); each call returns
+    leg l's lanes (``e{l}_…``) where the real function returns leg l's values, and
+    writes them where it writes: ``writes`` maps the index of each array argument to
+    ``"row"`` (the function writes row l), ``"column"`` (column l) or ``"all"``."""
     from offshore_crane.dynamics.formulas import KaneConstants
 
     lanes = {}
-    for f, name in enumerate(KaneConstants._fields):
-        if name.startswith(PER_LEG):
-            real = np.asarray(getattr(C, name))
+    for f, field in enumerate(KaneConstants._fields):
+        if field.startswith(PER_LEG):
+            real = np.asarray(getattr(C, field))
             out = np.empty(real.shape, dtype=object)           # rows 1..5: not read
             if real.ndim == 1:
                 out[0] = Symbol(f"V{f}_0")
             else:
                 out[0].ravel()[:] = [Symbol(f"V{f}_{j}") for j in range(out[0].size)]
-            lanes[name] = out
+            lanes[field] = out
     lane_C = C._replace(**lanes)
     traced: list = []
 
     def lane(x, l):
         if isinstance(x, Symbol):
             return Symbol(f"e{l}_{x.expr}")
+        if isinstance(x, tuple):
+            return tuple(lane(y, l) for y in x)
         return x
 
-    def explicit_leg(C_, l, p, R, v, a, omega, alpha, w4, w5, w6, g, want_mass, J, Vs, Ww,
-                     diag):
+    def per_leg(*args):
+        l = args[1]
         if not traced:
-            J0, Vs0, Ww0, diag0 = _zeros(*J.shape), _zeros(*Vs.shape), _zeros(*Ww.shape), \
-                _zeros(*diag.shape)
+            mine = list(args)
+            mine[0], mine[1] = lane_C, 0
+            for i, how in writes.items():
+                mine[i] = (_zeros if how == "all" else _unwritten)(*np.shape(args[i]))
             trace.lane = True
             try:
-                out = F.explicit_leg(lane_C, 0, p, R, v, a, omega, alpha, w4, w5, w6, g,
-                                     want_mass, J0, Vs0, Ww0, diag0)
+                out = getattr(F, name)(*mine)
             finally:
                 trace.lane = False
-            traced.append((out, J0, Vs0, Ww0, diag0))
-        (first, f_S, M_S), J0, Vs0, Ww0, diag0 = traced[0]
-        J[l, :] = [lane(x, l) for x in J0[0]]
-        diag[:, l] = [lane(x, l) for x in diag0[:, 0]]
-        for mine, theirs in ((Vs, Vs0), (Ww, Ww0)):
-            for idx in np.ndindex(mine.shape):
-                mine[idx] = lane(theirs[idx], l)
-        return (tuple(lane(x, l) for x in first), tuple(lane(x, l) for x in f_S),
-                tuple(tuple(lane(x, l) for x in row) for row in M_S))
+            traced.append((out, mine))
+        out, mine = traced[0]
+        for i, how in writes.items():
+            theirs, dest = mine[i], args[i]
+            for idx in np.ndindex(theirs.shape):
+                x = theirs[idx]
+                if x is UNWRITTEN:
+                    continue
+                at = ((l,) + idx[1:] if how == "row" else idx[:-1] + (l,) if how == "column"
+                      else idx)
+                dest[at] = lane(x, l)
+        return lane(out, l)
 
-    return explicit_leg
+    return per_leg

@@ -1,0 +1,214 @@
+"""A traced Kane pass written as LLVM's own text (:mod:`.native` compiles it).
+
+Each line of the trace (:func:`~.tracing.trace_pass`) becomes one instruction: ``fadd``,
+``fsub``, ``fmul``, ``fdiv``, ``fneg`` with no fast-math flag, ``llvm.sqrt``,
+``llvm.fabs``, ``llvm.sin``, ``llvm.cos`` and ``atan2`` (what Numba emits for the same
+operations of a float), in the trace's order; the legs' lines (``v…``) on vectors of
+:data:`LANES` lanes, leg l in lane l, a leg constant gathered from its six rows, a value
+common to the legs splatted, a leg's value extracted where the formulas use it. Every
+output is stored right after the line that makes it.
+"""
+
+from __future__ import annotations
+
+import re
+import struct
+
+import numpy as np
+
+_BINARY = {"+": "fadd", "-": "fsub", "*": "fmul", "/": "fdiv"}
+#: The library calls, as Numba lowers np.sqrt, np.sin, np.cos and np.arctan2 of a float
+#: (its ``sqrt`` is declared without side effects, so LLVM makes it the instruction:
+#: correctly rounded, as ``llvm.sqrt`` is; a plain call would spill every live register).
+_CALLS = {"sqrt": ("@llvm.sqrt.f64", 1), "sin": ("@llvm.sin.f64", 1), "cos": ("@llvm.cos.f64", 1),
+          "arctan2": ("@atan2", 2)}
+_VECTOR_CALLS = {"@llvm.sqrt.f64": "@llvm.sqrt.v8f64", "@llvm.fabs.f64": "@llvm.fabs.v8f64"}
+_DECLARE = ("declare double @llvm.sin.f64(double)\ndeclare double @llvm.cos.f64(double)\n"
+            "declare double @llvm.fabs.f64(double)\ndeclare double @llvm.sqrt.f64(double)\n"
+            "declare double @atan2(double, double) nounwind memory(none)\n"
+            "declare <8 x double> @llvm.sqrt.v8f64(<8 x double>)\n"
+            "declare <8 x double> @llvm.fabs.v8f64(<8 x double>)\n")
+
+
+def _literal(x: float) -> str:
+    """A double in LLVM's text: its bits, exactly."""
+    return "0x%016X" % struct.unpack("<Q", struct.pack("<d", x))[0]
+
+
+def _fields(kane) -> list:
+    """``(field index, name, kind)`` of the constants' fields in order, ``kind`` one of
+    ``"i64"`` (n_arm), ``"ptr"`` (an array, arm_prism too) or ``"double"``."""
+    from offshore_crane.dynamics.formulas import KaneConstants
+
+    out = []
+    for f, name in enumerate(KaneConstants._fields):
+        value = getattr(kane, name)
+        kind = ("i64" if name == "n_arm" else "ptr" if np.ndim(value) or name == "arm_prism"
+                else "double")
+        out.append((f, name, kind))
+    return out
+
+
+#: Lanes of the legs' vectors (6 legs; lanes 6 and 7 repeat leg 0): the width of an
+#: AVX-512 register, two AVX2 registers.
+LANES = 8
+_VEC = f"<{LANES} x double>"
+
+
+def program_ir(kind: str, kane, variant: int, name: str) -> str:
+    """The LLVM function ``name`` of pass ``kind``'s ``variant`` for the arm structure
+    of ``kane`` (:mod:`.native`), from :func:`~.tracing.trace_pass`: the
+    legs' lines as vectors of :data:`LANES` lanes, leg l in lane l. Its parameters: the
+    constants' fields, then the pass's arguments as :func:`caller` passes them (an array
+    by its data pointer, followed by its row length when it has two axes; a tuple by its
+    elements)."""
+    from offshore_crane.dynamics.tracing import trace_pass
+
+    trace, outputs = trace_pass(kind, kane, variant)
+    fields = _fields(kane)
+    body, known, vectors, splats = [], {}, set(), {}
+
+    def load(value, pointer, i):
+        known[value] = f"%{value}"
+        body.append(f"  %{value}.p = getelementptr double, ptr {pointer}, i64 {i}")
+        body.append(f"  %{value} = load double, ptr %{value}.p")
+        return known[value]
+
+    def gather(x, f, j):
+        """The lanes of element j of a per-leg field f's rows (lane l: leg l)."""
+        row = int(np.prod(np.shape(getattr(kane, fields[f][1]))[1:], dtype=int))
+        prev = "poison"
+        for lane in range(LANES):
+            leg = lane if lane < 6 else 0
+            loaded = load(f"{x}.{lane}", f"%c{f}", leg * row + j)
+            body.append(f"  %{x}.i{lane} = insertelement {_VEC} {prev}, double {loaded}, "
+                        f"i32 {lane}")
+            prev = f"%{x}.i{lane}"
+        known[x] = prev
+        vectors.add(x)
+        return prev
+
+    def scalar(x: str) -> str:
+        if x in known:
+            return known[x]
+        if re.fullmatch(r"[tv]\d+", x):
+            return f"%{x}"
+        m = re.fullmatch(r"e(\d)_(.+)", x)
+        if m:
+            inner = m[2]
+            if inner in vectors or inner.startswith("V"):
+                vec = vector(inner)
+                body.append(f"  %{x} = extractelement {_VEC} {vec}, i32 {m[1]}")
+                known[x] = f"%{x}"
+                return known[x]
+            return scalar(inner)
+        m = re.fullmatch(r"k(\d+)_(\d+)", x)
+        if m:
+            f, i = int(m[1]), int(m[2])
+            if fields[f][2] == "double":
+                return f"%c{f}"
+            return load(x, f"%c{f}", i)
+        m = re.fullmatch(r"(q|qd|qdd)_(\d+)", x)
+        if m:
+            return load(x, f"%{m[1]}", int(m[2]))
+        if re.fullmatch(r"(g|pull|at)_\d", x):
+            return f"%{x}"
+        special = {"np.nan": "0x7FF8000000000000", "np.inf": "0x7FF0000000000000",
+                   "-np.inf": "0xFFF0000000000000"}
+        return special[x] if x in special else _literal(float(x))
+
+    def is_vector(x: str) -> bool:
+        return x in vectors or x.startswith("V")
+
+    def vector(x: str) -> str:
+        if x in vectors:
+            return known.get(x, f"%{x}")
+        m = re.fullmatch(r"V(\d+)_(\d+)", x)
+        if m:
+            return gather(x, int(m[1]), int(m[2]))
+        if x not in splats:                   # a scalar or a literal in every lane
+            value = scalar(x)
+            if value.startswith("%"):
+                tag = f"%splat.{len(splats)}"
+                body.append(f"  {tag}.i = insertelement {_VEC} poison, double {value}, i32 0")
+                body.append(f"  {tag} = shufflevector {_VEC} {tag}.i, {_VEC} poison, "
+                            f"<{LANES} x i32> zeroinitializer")
+                splats[x] = tag
+            else:
+                splats[x] = "<" + ", ".join([f"double {value}"] * LANES) + ">"
+        return splats[x]
+
+    for m, (f, col) in enumerate(trace.trig):
+        body.append(f"  %s_{m} = call double @llvm.{f}.f64(double {scalar(f'q_{col}')})")
+        known[f"s_{m}"] = f"%s_{m}"
+    stores: dict = {}               # each output stored right after its value's line
+    for out, array in outputs.items():
+        for idx in np.ndindex(array.shape):
+            x = array[idx]
+            if x is None or (out == "Mm" and idx[1] > idx[0]):
+                continue                # left as it was; the mass matrix's lower triangle
+            after = int(x[1:]) if re.fullmatch(r"t\d+", x) else -1
+            stores.setdefault(after, []).append((out, idx, x))
+
+    def store(out, idx, x):
+        tag = f"{out}.{'.'.join(map(str, idx))}"
+        if len(idx) == 2:
+            body.append(f"  %{tag}.r = mul i64 %{out}.stride, {idx[0]}")
+            body.append(f"  %{tag}.i = add i64 %{tag}.r, {idx[1]}")
+            at = f"%{tag}.i"
+        else:
+            at = str(idx[0])
+        body.append(f"  %{tag}.p = getelementptr double, ptr %{out}, i64 {at}")
+        body.append(f"  store double {scalar(x)}, ptr %{tag}.p")
+
+    late = [item for item in stores.get(-1, ()) if item[2].startswith("e")]  # lanes'
+    for item in stores.get(-1, ()):
+        if not item[2].startswith("e"):
+            store(*item)
+    for n, line in enumerate(trace.lines):
+        lhs, rhs = line.split(" = ", 1)
+        call = re.fullmatch(r"(np\.(\w+)|abs)\((.*)\)", rhs)
+        parts = rhs.split(" ")
+        if call:
+            fn, arity = _CALLS[call[2]] if call[2] else ("@llvm.fabs.f64", 1)
+            args = call[3].split(", ")
+            assert len(args) == arity, line
+        elif len(parts) == 3:
+            args = [parts[0], parts[2]]
+        else:
+            assert len(parts) == 1 and rhs.startswith("-"), line
+            args = [rhs[1:]]
+        if any(is_vector(x) for x in args):
+            vectors.add(lhs)
+            if call and fn not in _VECTOR_CALLS:
+                raise ValueError(f"{line}: no vector form of {fn}")
+            ops = [vector(x) for x in args]
+            ty = _VEC
+            fn = _VECTOR_CALLS.get(fn, fn) if call else None
+        else:
+            ops = [scalar(x) for x in args]
+            ty = "double"
+        if call:
+            body.append(f"  %{lhs} = call {ty} {fn}("
+                        + ", ".join(f"{ty} {o}" for o in ops) + ")")
+        elif len(parts) == 3:
+            body.append(f"  %{lhs} = {_BINARY[parts[1]]} {ty} {ops[0]}, {ops[1]}")
+        else:
+            body.append(f"  %{lhs} = fneg {ty} {ops[0]}")
+        for item in stores.get(n, ()):
+            store(*item)
+    for item in late:
+        store(*item)
+    inp = "ptr noalias readonly"
+    params = [f"{inp if kind == 'ptr' else kind} %c{f}" for f, _, kind in fields]
+    params += [f"{inp} %q", f"{inp} %qd", f"{inp} %qdd", "double %g_0", "double %g_1",
+               "double %g_2"]
+    if kind == "kane_pull":
+        params += [f"double %{v}_{i}" for v in ("pull", "at") for i in range(3)]
+    for out, array in outputs.items():
+        params.append(f"ptr noalias %{out}")
+        if array.ndim == 2:
+            params.append(f"i64 %{out}.stride")
+    text = (_DECLARE + f"define void @{name}({', '.join(params)}) nounwind {{\n"
+            + "\n".join(body) + "\n  ret void\n}\n")
+    return text
