@@ -43,7 +43,6 @@ def _jit_formula(f):
 
 
 K = backends.bind({}, _jit_formula)
-_kane_sample = K.kane_sample
 #: The formulas compiled without inlining, each built once, for the paths that call a
 #: formula now and then (the actuators' coordinates, the hanging load's Kane passes):
 #: ~2x the run time of the inlined build. The explicit form itself is
@@ -281,8 +280,8 @@ def _make(stamp):
                 for j in range(9):
                     X[k, j] = np.nan
                 continue
-            _kane_sample(C, q[k], qd[k], qdd[k], gt, static, leg_model, want_legs, rows, A, rhs,
-                         diag, store)
+            call_kane(C, q[k], qd[k], qdd[k], gt, static, leg_model, want_legs, rows, A, rhs,
+                      diag, store)
             for b in range(na):
                 X[k, b] = rows[b]
             _post(k, q, na, A, rhs, diag, want_legs, want_cond, want_limits, warn, error,

@@ -42,7 +42,7 @@ actuation_minus_bias = c.actuation_minus_bias
 #: :func:`kane_pulled`'s.
 kane_sample_call, kane_sample_pull_call = c.call_kane, c.call_kane_pull
 finite_inputs = c._finite_inputs
-kane_sample, unpack, post, tangent_bounds = c.K.kane_sample, c.unpack, c._post, c.tangent_bounds
+unpack, post, tangent_bounds = c.unpack, c._post, c.tangent_bounds
 jit = njit(**c.JIT)
 #: Stop codes of :func:`integrate` (``status[0]``, :class:`~offshore_crane.stops.
 #: StopCause`); STOPPED: asked to (its flag set by
@@ -266,8 +266,8 @@ def _make(stamp):
                 for j in range(9):
                     X[k, j] = np.nan
                 continue
-            kane_sample(C, q[k], qd[k], qdd[k], gt, False, 0, True, rows, A, rhs6, diag,
-                        store)
+            kane_sample_call(C, q[k], qd[k], qdd[k], gt, False, 0, True, rows, A, rhs6, diag,
+                             store)
             for b in range(3):
                 X[k, b] = rows[b]
             f, tension = cable_force(C, store)
