@@ -265,6 +265,24 @@ def roofline_rows(r: dict) -> dict:
     return out
 
 
+def passes_rows(r: dict) -> dict:
+    """benchmarks/passes.py's figures: docs/simulation.md's table of the per-sample Kane
+    passes, LLVM programs against the formulas inlined by Numba."""
+    lines = ["| pass | program (LLVM, legs as lanes) | formulas inlined by Numba | ÷ | "
+             "instructions | compile: program / Numba's loop | same numbers |",
+             "| --- | --- | --- | --- | --- | --- | --- |"]
+    for label, x in r["passes"].items():
+        numba = (f"{x['numba_first_call_s']:.1f} s" if x["numba_first_call_s"] > 1.0
+                 else "(compiled above)")
+        lines.append(f"| {label} | {x['program_s'] * 1e6:.2f} µs | {x['numba_s'] * 1e6:.2f} µs "
+                     f"| {x['program_s'] / x['numba_s']:.2f} | {x['instructions']} | "
+                     f"{x['program_compile_s']:.2f} s / {numba} | {x['same_numbers']} |")
+    text = (f"A call, in a compiled loop over the {r['samples']} samples of Table 1, "
+            f"{r['cpu']}; `benchmarks/passes.py`, {r['date']}.")
+    return {("docs/simulation.md", "figure passes"):
+            "\n\n" + "\n".join(lines) + "\n\n" + text + "\n\n"}
+
+
 def compile_rows(r: dict) -> dict:
     """benchmarks/compile.py's figures: the cold compile in one process and in parallel."""
     one, par, cores = r["one_process"], r["parallel"], r["cores"]
