@@ -13,7 +13,13 @@ core, one session). :func:`stage` is handed the packed arrays and that buffer an
 its views itself: handed the views (the two robots' constants and the two work tuples,
 about 80 array structures copied at each of its three calls a step), the loop ran at
 68.2 against 77.2; inlined into the loop, at 81.0, but the loop's compile took 27.5 s
-against 22.6 s (one core, one session).
+against 22.6 s (one core, one session). It is called by address (:data:`STAGE`), so a
+first ``simulate`` compiles it in a helper process while this one compiles the loop; and
+the loop writes its (9,) copies out and views q as (1, 9) without ``reshape``: their
+shape checks brought Numba's error-message formatting into the loop's compile. The
+loop's own cold compile went 16.8 → 11.7 s with the two (Numba's compile events, one
+process), a first ``simulate`` of the rigid robot 23.0 → 16.4 s (the real-time factor
+within 1 %, interleaved A/B, one core).
 """
 
 from __future__ import annotations
@@ -203,6 +209,25 @@ def _helpers(stamp):
 law, accel, equations, solve, ct, energy, stage = _helpers(STAMP)
 
 
+def _packed_type():
+    """The Numba type of :class:`~offshore_crane.simulation.record.Packed`."""
+    from numba import types
+
+    from offshore_crane.simulation.record import Packed
+
+    return types.NamedTuple(list(kernel_calls.short_names()["PACKED"]), Packed)
+
+
+#: :func:`stage` called by address (:mod:`offshore_crane.kernel_calls`) by :func:`run`:
+#: compiled in its own library, in a helper process while a first ``simulate`` compiles
+#: the loop (:mod:`offshore_crane.compile_beside`), not again inside the loop.
+STAGE = kernel_calls.Entry.typed(
+    "rigid_stage", lambda: stage,
+    "boolean(boolean, P, P, T3, int64, int64, V, V, int64, V, V, V, V, V, V, V, V, V, V, V)",
+    STAMP, P=_packed_type())
+call_stage = STAGE.call
+
+
 def workspaces(na: int) -> tuple:
     """The equations' (``ws``) and the law's (``wl``) work tuples of :func:`accel`,
     :func:`law` for an arm of ``na`` joints, as owned zeroed arrays (:data:`_WS`,
@@ -271,6 +296,15 @@ def carve(w, na):
           c_view(w, o[28], (9,)), c_view(w, o[29], (9,)), c_view(w, o[30], (9,)),
           c_view(w, o[31], (9,)))
     return ws, wl
+
+
+@inline
+def copy9(src, dst):
+    """``dst[:] = src`` for the loop's (9,) arrays, written out: the slice assignment's
+    shape check brings Numba's error-message formatting into the loop (measured: about
+    2 s of its cold compile, with the 2-D view ``check`` was once given by ``reshape``)."""
+    for j in range(9):
+        dst[j] = src[j]
 
 
 def _runner(stamp):
@@ -349,7 +383,7 @@ def _runner(stamp):
             for j in range(9):
                 finite = finite and np.isfinite(q[j]) and np.isfinite(qd[j])
             if want_limits:
-                check(0, q.reshape((1, 9)), na, diag, np.nan, True, False, True, np.inf,
+                check(0, c_view(q, 0, (1, 9)), na, diag, np.nan, True, False, True, np.inf,
                       np.inf, lim_arm, lim_stroke, lim_ujoint, tb, kap, health)
             stop = OK if finite else (SINGULAR if not ok else DIVERGED)
             if want_limits and stop == OK:
@@ -386,21 +420,21 @@ def _runner(stamp):
             if step == n_steps:
                 break
             # RK4 stages
-            k1q[:] = qd
+            copy9(qd, k1q)
             rk4_stage(q, k1q, 0.5 * h, qs)
             rk4_stage(qd, k1v, 0.5 * h, qds)
-            stage(shared, plant, model, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 1],
-                  qdr[i0 + 1], qddr[i0 + 1], lo, hi, Xc, Xa, k2v, work)
-            k2q[:] = qds
+            call_stage(shared, plant, model, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 1],
+                       qdr[i0 + 1], qddr[i0 + 1], lo, hi, Xc, Xa, k2v, work)
+            copy9(qds, k2q)
             rk4_stage(q, k2q, 0.5 * h, qs)
             rk4_stage(qd, k2v, 0.5 * h, qds)
-            stage(shared, plant, model, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 1],
-                  qdr[i0 + 1], qddr[i0 + 1], lo, hi, Xc, Xa, k3v, work)
-            k3q[:] = qds
+            call_stage(shared, plant, model, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 1],
+                       qdr[i0 + 1], qddr[i0 + 1], lo, hi, Xc, Xa, k3v, work)
+            copy9(qds, k3q)
             rk4_stage(q, k3q, h, qs)
             rk4_stage(qd, k3v, h, qds)
-            stage(shared, plant, model, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 2],
-                  qdr[i0 + 2], qddr[i0 + 2], lo, hi, Xc, Xa, k4v, work)
+            call_stage(shared, plant, model, gt, n, kind, kp, kd, hold, qs, qds, qr[i0 + 2],
+                       qdr[i0 + 2], qddr[i0 + 2], lo, hi, Xc, Xa, k4v, work)
             rk4_combine(q, h, k1q, k2q, k3q, qds)              # k4 of q is the stage's q̇
             rk4_combine(qd, h, k1v, k2v, k3v, k4v)
 
