@@ -15,8 +15,9 @@ about 80 array structures copied at each of its three calls a step), the loop ra
 68.2 against 77.2; inlined into the loop, at 81.0, but the loop's compile took 27.5 s
 against 22.6 s (one core, one session). It is called by address (:data:`STAGE`), so a
 first ``simulate`` compiles it in a helper process while this one compiles the loop; and
-the loop writes its (9,) copies out and views q as (1, 9) without ``reshape``: their
-shape checks brought Numba's error-message formatting into the loop's compile. The
+the loop writes its (9,) copies out and copies q into a (1, 9) array for the checks
+instead of ``reshape``: their shape checks brought Numba's error-message formatting into
+the loop's compile. The
 loop's own cold compile went 16.8 → 11.7 s with the two (Numba's compile events, one
 process), a first ``simulate`` of the rigid robot 23.0 → 16.4 s (the real-time factor
 within 1 %, interleaved A/B, one core).
@@ -349,6 +350,7 @@ def _runner(stamp):
         k3v = np.empty(9)
         k4v = np.empty(9)
         qs = np.empty(9)
+        q1 = np.empty((1, 9))                   # q as check reads it (no reshape)
         qds = np.empty(9)
         sat = np.zeros(9, dtype=np.bool_)
         ctrl = 0
@@ -383,7 +385,8 @@ def _runner(stamp):
             for j in range(9):
                 finite = finite and np.isfinite(q[j]) and np.isfinite(qd[j])
             if want_limits:
-                check(0, c_view(q, 0, (1, 9)), na, diag, np.nan, True, False, True, np.inf,
+                copy9(q, q1[0])
+                check(0, q1, na, diag, np.nan, True, False, True, np.inf,
                       np.inf, lim_arm, lim_stroke, lim_ujoint, tb, kap, health)
             stop = OK if finite else (SINGULAR if not ok else DIVERGED)
             if want_limits and stop == OK:
