@@ -250,3 +250,21 @@ def test_the_viewer_draws_a_varying_cable_and_the_lifts_deck():
             assert np.allclose(v.deck[1].position, shown.deck[k])
     finally:
         v.close()
+
+
+def test_the_cable_line_speaks_each_viser_version():
+    """viser 1.0 takes ``line_width``; 1.1 deprecates it for ``thickness`` in screen
+    units (a DeprecationWarning in every run otherwise)."""
+    from offshore_crane.outputs.visual.viewer import _thin_line
+
+    class Old:
+        def add_line_segments(self, name, points, colors, *, line_width=1.0, visible=True):
+            pass
+
+    class New:
+        def add_line_segments(self, name, points, colors, *, thickness=0.01,
+                              thickness_units="world", **_deprecated_kwargs):
+            pass
+
+    assert _thin_line(Old()) == {"line_width": 2.0}
+    assert _thin_line(New()) == {"thickness": 2.0, "thickness_units": "screen"}

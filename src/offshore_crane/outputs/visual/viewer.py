@@ -253,7 +253,7 @@ class Viewer:
                 colours = np.full((1, 2, 3), SLACK_RGB if slack else CABLE_RGB, np.uint8)
                 if line is None:
                     line = self.server.scene.add_line_segments(
-                        "/cable", pts, colors=colours, line_width=2.0)
+                        "/cable", pts, colors=colours, **_thin_line(self.server.scene))
                     self.cable = ((a, b), line)
                 else:
                     line.points = pts
@@ -278,3 +278,14 @@ class Viewer:
         self._stop.set()
         self._thread.join(timeout=2.0)
         self.server.stop()
+
+
+def _thin_line(scene) -> dict:
+    """A 2-pixel line in viser's words: ``thickness`` in screen units from viser 1.1
+    (which deprecates ``line_width``), ``line_width`` before it."""
+    import inspect
+
+    params = inspect.signature(scene.add_line_segments).parameters
+    if "thickness_units" in params:
+        return {"thickness": 2.0, "thickness_units": "screen"}
+    return {"line_width": 2.0}
