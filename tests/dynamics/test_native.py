@@ -191,3 +191,12 @@ def test_an_arm_beyond_the_table_is_refused_when_packed():
     nine = arrays.kane._replace(n_arm=9, arm_prism=np.zeros(9, bool))
     with pytest.raises(oc.ModelError, match="an arm of 9 joints.*at most 8"):
         pack(nine, arrays.limits)
+
+
+def test_a_leg_model_out_of_range_is_refused_not_mistaken_for_another_slot():
+    """The variant number is arithmetic on the flags: a leg model beyond 0..2 would read
+    another variant's slot."""
+    C = _structures()["robot"]
+    q, qd, qdd = _states(9, 1, seed=12)
+    with pytest.raises(ValueError, match="leg_model must be 0, 1 or 2"):
+        _fused(c.kane_pass, C, q[0], qd[0], qdd[0], False, 3, True)

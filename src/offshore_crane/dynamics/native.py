@@ -77,16 +77,17 @@ SLOTS = np.zeros(2 ** (MAX_ARM + 1) * len(KINDS) * _VARIANTS, dtype=np.int64)
 
 
 def stamp() -> str:
-    """What the programs' text comes from: the formulas, the tracer and this module."""
+    """What the programs' text and calling convention come from: the formulas, the
+    tracer, the writer of LLVM text and this module (the wrappers close over it)."""
     if not _STAMP:
         import inspect
         import sys
 
-        from offshore_crane.dynamics import tracing
+        from offshore_crane.dynamics import llvm_program, tracing
         from offshore_crane.dynamics.backends import source_stamp
 
         h = hashlib.sha256(source_stamp().encode())
-        for module in (tracing, sys.modules[__name__]):
+        for module in (tracing, llvm_program, sys.modules[__name__]):
             h.update(inspect.getsource(module).encode())
         _STAMP.append(h.hexdigest()[:16])
     return _STAMP[0]

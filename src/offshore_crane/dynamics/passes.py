@@ -7,9 +7,9 @@ straight-line program of the robot's arm structure and of the pass's flags that
 :class:`~offshore_crane.kernel_calls.Entry` objects, each compiled once in its own library:
 kernels call ``call_explicit`` (…) with its exact types. A pass's first call for a
 structure and flags loads or compiles that program (:func:`.native.ensure_slot`, called
-back from the compiled call: under a second on a cold cache). Before the programs, these were the formulas
-inlined by Numba: 20, 14 and 15 s to compile; the explicit pass ran 1.87 µs a call with
-the mass matrix, against 1.52 µs now (the six legs run as the lanes of vectors).
+back from the compiled call: under a second on a cold cache). Before the programs, these
+were the formulas inlined by Numba, 16–23 s each to compile and slower to run
+(``benchmarks/passes.py``, docs/simulation.md).
 """
 
 from __future__ import annotations
@@ -45,6 +45,8 @@ def _make(stamp):
         """:func:`~offshore_crane.dynamics.formulas.kane_sample`."""
         if len(stamp) == 0:
             return
+        if leg_model < 0 or leg_model > 2:
+            raise ValueError("leg_model must be 0, 1 or 2 (FULL, THIN_ROD, MASSLESS)")
         v = _variant(static, leg_model, want_legs)
         i = _index(_KANE, C.n_arm, C.arm_prism, v)
         if not _call10(i, C, q, qd, qdd, g, rows, A, rhs, diag, store):
