@@ -17,7 +17,6 @@ bit-identical to one thread (every sample is computed independently).
 from __future__ import annotations
 
 import numpy as np
-from offshore_crane import kernel_calls
 from offshore_crane.kernel_cache import njit
 
 from offshore_crane.robot.kinematics import workspace as ws
@@ -35,22 +34,20 @@ from offshore_crane.dynamics.views import c_view
 
 
 def _jit_formula(f):
-    """Compile a formula, inlined into its caller: the fused Kane driver becomes one
-    function that LLVM optimises whole (measured: 1.5 µs a sample against 2.3 µs with
-    calls, which pass tuples and the constants' arrays through memory); compiling it takes
-    ~25 s, once."""
+    """Compile a formula, inlined into its caller, so that LLVM optimises the kernel
+    whole (measured on the fused Kane driver when it inlined the whole pass: 1.5 µs a
+    sample against 2.3 µs with calls, which pass tuples and the constants' arrays
+    through memory). The Kane passes themselves are programs of their own
+    (:mod:`.passes`)."""
     return njit(inline="always", **JIT)(f)
 
 
 K = backends.bind({}, _jit_formula)
 #: The formulas compiled without inlining, each built once, for the paths that call a
-#: formula now and then (the actuators' coordinates, the hanging load's Kane passes):
-#: ~2x the run time of the inlined build. The explicit form itself is
-#: :func:`.passes.explicit_sample`: one program, called by address.
+#: formula now and then (the actuators' coordinates): ~2x the run time of the inlined
+#: build.
 KE = backends.bind({}, njit(**JIT))
 STAMP = backends.source_stamp()
-
-
 
 _BAD_INPUT, _VIOLATION, _BAD_OUTPUT, _KAPPA = ws.BAD_INPUT, ws.VIOLATION, ws.BAD_OUTPUT, ws.KAPPA
 #: A clean health record, and the slots that hold the first sample of something found.

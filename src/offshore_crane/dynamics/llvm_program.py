@@ -147,8 +147,8 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
             x = array[idx]
             if x is None or (out == "Mm" and idx[1] > idx[0]):
                 continue                # left as it was; the mass matrix's lower triangle
-            after = int(x[1:]) if re.fullmatch(r"t\d+", x) else -1
-            stores.setdefault(after, []).append((out, idx, x))
+            line = re.fullmatch(r"(?:e\d_)?[tv](\d+)", x)    # a line's value, or a lane of it
+            stores.setdefault(int(line[1]) if line else -1, []).append((out, idx, x))
 
     def store(out, idx, x):
         tag = f"{out}.{'.'.join(map(str, idx))}"
@@ -161,10 +161,8 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
         body.append(f"  %{tag}.p = getelementptr double, ptr %{out}, i64 {at}")
         body.append(f"  store double {scalar(x)}, ptr %{tag}.p")
 
-    late = [item for item in stores.get(-1, ()) if item[2].startswith("e")]  # lanes'
-    for item in stores.get(-1, ()):
-        if not item[2].startswith("e"):
-            store(*item)
+    for item in stores.get(-1, ()):              # inputs, constants and literals
+        store(*item)
     for n, line in enumerate(trace.lines):
         lhs, rhs = line.split(" = ", 1)
         call = re.fullmatch(r"(np\.(\w+)|abs)\((.*)\)", rhs)
@@ -197,10 +195,8 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
             body.append(f"  %{lhs} = fneg {ty} {ops[0]}")
         for item in stores.get(n, ()):
             store(*item)
-    for item in late:
-        store(*item)
     inp = "ptr noalias readonly"
-    params = [f"{inp if kind == 'ptr' else kind} %c{f}" for f, _, kind in fields]
+    params = [f"{inp if ty == 'ptr' else ty} %c{f}" for f, _, ty in fields]
     params += [f"{inp} %q", f"{inp} %qd", f"{inp} %qdd", "double %g_0", "double %g_1",
                "double %g_2"]
     if kind == "kane_pull":

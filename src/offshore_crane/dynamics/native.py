@@ -47,6 +47,7 @@ import numpy as np
 
 from offshore_crane.dynamics.lanes import package_cache, read_file, write_atomically
 from offshore_crane.dynamics.llvm_program import program_ir
+from offshore_crane.dynamics.tracing import VARIANTS
 
 #: The largest arm (joints, sway joints included) whose programs have a slot.
 MAX_ARM = 8
@@ -54,26 +55,27 @@ _LOCK = threading.Lock()
 #: Per slot index, the compiled library (kept alive: its code is what the slot points at).
 _LIBRARIES: dict = {}
 _MAGIC = b"offshore-crane native program 1\n"
-#: The passes, in slot order (:func:`~.tracing.trace_pass`'s kinds).
-KINDS = ("explicit", "kane", "kane_pull")
-#: Variants a pass may have (:data:`~.tracing.VARIANTS`: the fused pass's 12).
-_VARIANTS = 12
+#: The passes, in slot order (:data:`~.tracing.VARIANTS`' kinds).
+KINDS = tuple(VARIANTS)
+_NKINDS = len(KINDS)
+#: The variants a pass's slots leave room for: the most any pass has (the fused pass's).
+_VARIANTS = max(VARIANTS.values())
 
 
 def program_index(kind, n_arm, arm_prism, variant):
     """The slot of pass ``kind`` (its index in :data:`KINDS`), ``variant``, for an arm
     of ``n_arm`` joints whose types are ``arm_prism`` (True: prismatic): the structure's
     code ``binary 1 p_0 p_1 … p_{n−1}``, then the kind, then the variant, below
-    ``2 ** (MAX_ARM + 1) · 3 · 12``. Plain arithmetic: compiled into the wrappers as it
-    is run here."""
+    ``2 ** (MAX_ARM + 1) · len(KINDS) · _VARIANTS``. Plain arithmetic: compiled into the
+    wrappers as it is run here."""
     code = 1
     for j in range(n_arm):
         code = 2 * code + (1 if arm_prism[j] else 0)
-    return (code * 3 + kind) * 12 + variant
+    return (code * _NKINDS + kind) * _VARIANTS + variant
 
 
 #: The programs' addresses by :func:`program_index` (0: not loaded).
-SLOTS = np.zeros(2 ** (MAX_ARM + 1) * len(KINDS) * _VARIANTS, dtype=np.int64)
+SLOTS = np.zeros(2 ** (MAX_ARM + 1) * _NKINDS * _VARIANTS, dtype=np.int64)
 
 
 def stamp() -> str:
@@ -166,7 +168,7 @@ def remember(kane) -> None:
         raise ModelError(f"an arm of {n_arm} joints: the compiled passes handle at most "
                          f"{MAX_ARM} (offshore_crane.dynamics.native.MAX_ARM); use fewer "
                          "joints")
-    code = program_index(0, n_arm, np.asarray(kane.arm_prism), 0) // (len(KINDS) * _VARIANTS)
+    code = program_index(0, n_arm, np.asarray(kane.arm_prism), 0) // (_NKINDS * _VARIANTS)
     _TEMPLATES.setdefault(code, kane)
 
 
@@ -177,7 +179,7 @@ _TEMPLATES: dict = {}
 def ensure_slot(index: int) -> None:
     """:func:`ensure` the program of slot ``index``: its structure's template (a robot
     of that structure packed in this process), its pass and variant."""
-    code, rest = divmod(int(index), len(KINDS) * _VARIANTS)
+    code, rest = divmod(int(index), _NKINDS * _VARIANTS)
     kind, variant = divmod(rest, _VARIANTS)
     kane = _TEMPLATES.get(code)
     if kane is None:
@@ -198,9 +200,10 @@ def _codegen():
     return cpu_target.target_context.codegen()
 
 
-def _library(name: str, text: str):
-    """The compiled library of the program ``text``: read from its cache file when that
-    holds the object of this text for this target, else compiled and written."""
+def _library(name: str, text: str, folder=None):
+    """The compiled library of the program ``text``: read from its cache file (in
+    ``folder``, by default :func:`_cache_folder`) when that holds the object of this
+    text for this target, else compiled and written."""
     import llvmlite
     import numba
     from numba.core.compiler_lock import global_compiler_lock
@@ -208,7 +211,7 @@ def _library(name: str, text: str):
     codegen = _codegen()
     key = hashlib.sha256("\0".join([text, repr(codegen.magic_tuple()), numba.__version__,
                                     llvmlite.__version__]).encode()).hexdigest()[:24]
-    path = _cache_folder() / f"{name}_{key}.bin"
+    path = (folder or _cache_folder()) / f"{name}_{key}.bin"
     with global_compiler_lock:
         data, problem = _read(path)
         if data is not None:

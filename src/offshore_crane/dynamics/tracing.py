@@ -98,7 +98,7 @@ class Trace:
     trig: list
     outputs: list
     trig_input: object = None
-    #: Lines traced now are lanes' (named ``v…``, :func:`trace_explicit`).
+    #: Lines traced now are lanes' (named ``v…``, :func:`trace_pass`).
     lane: bool = False
 
     def line(self, expr: str) -> Symbol:
@@ -242,8 +242,9 @@ def trace_pass(kind: str, kane, variant: int) -> tuple:
     then added in leg order, as the formulas do.
 
     Returns:
-        ``(trace, outputs)``: ``outputs`` maps each array the pass writes (explicit:
-        ``B`` (n,), ``J`` (6, 6), ``Mm`` (n, n) with ``want_mass``, ``store``
+        ``(trace, outputs)``: ``outputs`` maps each array the pass is given to write
+        (explicit: ``B`` (n,), ``J`` (6, 6), ``Mm`` (n, n: all ``None`` without
+        ``want_mass``), ``store``
         (max(n_arm, 1), 27), ``diag`` (7, 6), ``mc`` (1, 3); fused: ``rows``
         (max(n_arm, 1),), ``A`` (6, 6), ``rhs`` (6,), ``diag``, ``store``) to an object
         array of operand texts, ``None`` where the pass leaves the element as it was

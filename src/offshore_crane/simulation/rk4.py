@@ -17,10 +17,9 @@ against 22.6 s (one core, one session). It is called by address (:data:`STAGE`),
 first ``simulate`` compiles it in a helper process while this one compiles the loop; and
 the loop writes its (9,) copies out and copies q into a (1, 9) array for the checks
 instead of ``reshape``: their shape checks brought Numba's error-message formatting into
-the loop's compile. The
-loop's own cold compile went 16.8 → 11.7 s with the two (Numba's compile events, one
-process), a first ``simulate`` of the rigid robot 23.0 → 16.4 s (the real-time factor
-within 1 %, interleaved A/B, one core).
+the loop's compile. The loop's own cold compile went 16.8 → 11.7 s with the two
+(Numba's compile events, one process), a first ``simulate`` of the rigid robot 23.0 →
+16.4 s (the real-time factor within 1 %, interleaved A/B, one core).
 """
 
 from __future__ import annotations
@@ -302,8 +301,8 @@ def carve(w, na):
 @inline
 def copy9(src, dst):
     """``dst[:] = src`` for the loop's (9,) arrays, written out: the slice assignment's
-    shape check brings Numba's error-message formatting into the loop (measured: about
-    2 s of its cold compile, with the 2-D view ``check`` was once given by ``reshape``)."""
+    shape check brings Numba's error-message formatting into the loop's compile (about
+    5 s with the ``reshape`` the checks' (1, 9) view once came from, measured)."""
     for j in range(9):
         dst[j] = src[j]
 

@@ -41,11 +41,10 @@ from offshore_crane.dynamics.formulas import STORE_WIDTH
 tip_state, tip_motion, dot = c.K.tip_state, c.K.tip_motion, c.K.dot
 cable_tension, sway_damping_force = c.K.cable_tension, c.K.sway_damping_force
 drag_force = c.K.drag_force
-#: The Kane pass with the pull and the explicit pass: each inlined, compiled once and
-#: called by address (``compiled.call_kane_pull``, ``compiled.call_explicit``), as the
-#: plant's own passes are by its loops (:data:`DERIVATIVE` below): linked, each loop (one
-#: per law) compiled them again, ~15 s each (not inlined, the pull's pass took 3.5 µs
-#: against 1.3 µs, measured).
+#: The Kane pass with the pull and the explicit pass: each compiled once and called by
+#: address (``compiled.call_kane_pull``, ``compiled.call_explicit``:
+#: :mod:`offshore_crane.dynamics.passes`), as the plant's own passes are by its loops
+#: (:data:`DERIVATIVE` below): linked, each loop (one per law) compiled them again.
 kane_sample_pull, explicit_sample = c.call_kane_pull, c.call_explicit
 solve6, cholesky_solve, unpack = c.solve6, c.cholesky_solve, c.unpack
 c_view = views.c_view

@@ -37,8 +37,8 @@ tip_state, hanging_velocity, drag_force = c.K.tip_state, c.K.hanging_velocity, c
 explicit_sample, cholesky_solve, solve6 = c.call_explicit, c.cholesky_solve, c.solve6
 kinetic_energy = c.kinetic_energy
 actuation_minus_bias = c.actuation_minus_bias
-#: The Kane passes inlined, compiled once and called by address (:data:`offshore_crane.
-#: dynamics.compiled.KANE`, ``KANE_PULL``): the law's (:func:`computed_torque`) and
+#: The Kane passes, compiled once and called by address (:data:`offshore_crane.dynamics.
+#: passes.KANE`, ``KANE_PULL``): :func:`kane`'s, the law's (:func:`computed_torque`) and
 #: :func:`kane_pulled`'s.
 kane_sample_call, kane_sample_pull_call = c.call_kane, c.call_kane_pull
 finite_inputs = c._finite_inputs
