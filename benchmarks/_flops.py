@@ -183,12 +183,12 @@ def forward_dynamics(robot) -> Counter:
 
 
 def rk4_step(robot) -> Counter:
-    """One RK4 step under computed torque on the plant's own model (the simulation loop's
-    shared pass, simulation/rk4.py): four stages of forward dynamics (the explicit pass
-    with the mass matrix, the Cholesky solve) plus the law from that pass (q̈_cmd: 5
-    flops a coordinate; ``M q̈_cmd + h``: 2 n² + ... for n = 9 at most; the leg system and
-    its 6x6 solve, counted), and the state update (4 stage combinations of 18 states:
-    4 x 18 x 4 flops)."""
+    """One RK4 step under computed torque on the plant's own model (the rigid plant's
+    shared pass, simulation/plants/_rigid_kernels.py): four stages of forward dynamics
+    (the explicit pass with the mass matrix, the Cholesky solve) plus the law from that
+    pass (q̈_cmd: 5 flops a coordinate; ``M q̈_cmd + h``: 2 n² + ... for n = 9 at most; the
+    leg system and its 6x6 solve, counted), and the state update (4 stage combinations of
+    18 states: 4 x 18 x 4 flops)."""
     from offshore_crane.dynamics import linear
 
     fd = forward_dynamics(robot)

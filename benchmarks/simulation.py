@@ -9,7 +9,7 @@ median of ``--repeats`` runs, each through the public entry points (``oc.simulat
 driver is measured by re-running this script unchanged:
 
 1. ``rigid``: the rigid robot along Table 1 under the built-in computed torque, RK4 at
-   1 ms, the law at every RK4 stage (the compiled loop): the reference row;
+   1 ms, the law at every RK4 stage (the driver, compiled): the reference row;
 2. ``python``: the same law as a Python callable (``Controller(function=law)``, the law
    calling ``oc.inverse_dynamics``), at every RK4 stage like row 1;
    ``python-1khz``: the same sampled at 1 kHz (once a step, held: a real controller);
@@ -208,7 +208,7 @@ def main(argv=None) -> int:
     rows = timed_runs(args.repeats)
     fd = forward_dynamics_rows(args.repeats)
     base = rows["rigid"]["rtf"]
-    labels = {"rigid": "1 rigid robot, computed torque (compiled loop)",
+    labels = {"rigid": "1 rigid robot, computed torque (the driver)",
               "python": "2 rigid robot, the same law in Python",
               "python-1khz": "2b rigid robot, the Python law sampled at 1 kHz",
               "hanging": "3 hanging load on a rigid cable, computed torque",

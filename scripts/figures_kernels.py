@@ -175,7 +175,7 @@ def lift_rows(r: dict) -> dict:
 
 #: benchmarks/simulation.py's runs as docs/simulation.md names them.
 SIMULATION_RUNS = {
-    "rigid": "1. rigid robot, built-in computed torque (the compiled loop)",
+    "rigid": "1. rigid robot, built-in computed torque (the driver)",
     "python": "2. the same law as a Python callable (`Controller(function=law)`)",
     "python-1khz": "2b. the same Python law sampled at 1 kHz",
     "hanging": "3. 2 kg hanging on a rigid 0.5 m cable, computed torque",

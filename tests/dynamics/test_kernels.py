@@ -261,9 +261,11 @@ def test_views_without_an_owner_are_only_made_of_a_kernels_arguments():
                 if name not in makers or not call.args:
                     continue
                 buf = call.args[0]
-                base = buf.value if isinstance(buf, ast.Subscript) else buf
                 where = f"{path.relative_to(root)}:{call.lineno}"
-                assert isinstance(base, ast.Name) and base.id in params, where
+                # a tuple written out: each of its elements an argument
+                for base in (buf.elts if isinstance(buf, ast.Tuple) else [buf]):
+                    base = base.value if isinstance(base, ast.Subscript) else base
+                    assert isinstance(base, ast.Name) and base.id in params, where
                 sites += 1
     assert sites >= 30                          # the rule was applied to the call sites
 
@@ -293,21 +295,21 @@ def test_unowned_keeps_the_data_and_refuses_what_it_cannot_strip():
 
 @pytest.mark.parametrize("na", [0, 3, 5])
 def test_the_rigid_loops_carved_work_arrays_are_its_workspaces(na):
-    """``rk4.carve`` lays the loop's work arrays out in a buffer of ``rk4.work_size``:
-    each view has the shape of the array ``rk4.workspaces`` allocates, the views tile the
+    """``eq.carve`` lays the loop's work arrays out in a buffer of ``eq.work_size``:
+    each view has the shape of the array ``eq.workspaces`` allocates, the views tile the
     buffer without overlap, and the last ends at the buffer's end (no overrun)."""
     import numba
 
-    from offshore_crane.simulation import rk4
+    from offshore_crane.simulation import rigid_equations as eq
 
     @numba.njit
     def views(w, na):               # the views leave compiled code: w stays alive below
-        ws, wl = rk4.carve(w, na)
+        ws, wl = eq.carve(w, na)
         return ws + wl
 
-    w = np.zeros(rk4.work_size(na))
+    w = np.zeros(eq.work_size(na))
     carved = views(w, na)
-    ws, wl = rk4.workspaces(na)
+    ws, wl = eq.workspaces(na)
     assert [a.shape for a in carved] == [a.shape for a in ws + wl]
     starts = [(a.ctypes.data - w.ctypes.data) // 8 for a in carved]
     ends = [s + a.size for s, a in zip(starts, carved)]

@@ -52,10 +52,23 @@ _LEGS_AT_S = (
     ("rigid_saturated", ("q", "qd", "qdd", "X_cmd", "X", "energy", "power")),
     *((case, ("q", "qd", "qdd", "X_cmd", "X", "energy", "power", "sway", "sway_rate",
               "tension")) for case in ("swing_anti_sway", "swing_ct", "swing_rate_model")))
+#: Then the rigid robot's built-in laws moved from their own compiled loop onto the RK4
+#: driver (issue 37: one driver for every plant): the same q, q̇, q̈, X and energy bit
+#: for bit (the computed torque shares the plant's pass as the loop did), the power
+#: computed from the record (``record.actuator_power``) instead of inside the loop
+#: (measured 4e-15 [W] on Table 1), already within the bounds above.
 MOVED: dict[str, float] = {f"{case}/{field}": 1e-12
                            for case, fields in (*_ELASTIC_UNIFIED, *_LEGS_AT_S)
                            for field in fields}
 
+
+#: ``{"case/stopped": (kept before, kept now, why)}``: a stop's message whose count of the
+#: samples kept changed, nothing else in it.
+_ON_THE_DRIVER = ("the rigid robot's built-in laws run on the driver, whose record ends "
+                  "before the sample that left the workspace, as every plant's does (the "
+                  "compiled loop kept that sample)")
+RECOUNTED = {"rigid_pd_rate_stops/stopped": (196, 195, _ON_THE_DRIVER),
+             "rigid_saturated/stopped": (144, 143, _ON_THE_DRIVER)}
 
 #: ``{"case/field": why}``: arrays that were not computed (all NaN) and now are.
 ADDED = {f"{case}/energy": "the elastic plant records its mechanical energy (issue 37)"
@@ -80,7 +93,12 @@ def test_simulation_unchanged(now, name):
         before = g[name]
     assert name in now, f"{name} is no longer computed"
     if before.dtype.kind == "U":                       # a stop's message
-        assert str(now[name]) == str(before)
+        expected = str(before)
+        if name in RECOUNTED:
+            was, kept, _ = RECOUNTED[name]
+            assert f"the {was} samples" in expected
+            expected = expected.replace(f"the {was} samples", f"the {kept} samples")
+        assert str(now[name]) == expected
         return
     assert now[name].shape == before.shape
     if name in ADDED:

@@ -57,15 +57,15 @@ def test_quantised_and_seeded_noise(robot):
 
 
 def test_the_controllers_noise_is_the_sensors_noise(robot):
-    """``Controller(noise_q=...)`` on the compiled loop and ``Sensors(noise_q=...)`` on
-    the driver draw the same noise: the same run to 1e-12 relative (two paths of the
-    same law; measured 2e-15)."""
+    """``Controller(noise_q=...)`` (the shorthand) and ``Sensors(noise_q=...)`` draw the
+    same noise: the same run to 1e-12 relative (measured 2e-15; the second run has a
+    rate limit too large to act)."""
     a = oc.simulate(robot, 0.2, table1, controller=Controller(rate=250.0, noise_q=1e-5,
                                                               noise_qd=1e-4, seed=3))
     b = oc.simulate(robot, 0.2, table1, controller=Controller(rate=250.0),
                     sensors=Sensors(noise_q=1e-5, noise_qd=1e-4, seed=3),
                     actuators=Actuators(lag=None, rate_limit=1e30))
-    assert b.info["plant"] == "rigid"               # the driver, not the compiled loop
+    assert a.info["plant"] == b.info["plant"] == "rigid"
     assert np.abs(a.X - b.X).max() <= 1e-12 * np.abs(a.X).max()
 
 

@@ -76,9 +76,10 @@ def test_a_law_a_plant_cannot_run_says_so_in_one_line(robot):
 
 # ------------------------------------------------------------ Python = built in
 def test_a_python_computed_torque_is_the_built_in_one_on_the_rigid_robot(robot):
-    """The compiled loop's computed torque (one explicit pass a stage) against a Python
-    law calling the public inverse dynamics on the RK4 driver: ≤ 1e-12 relative in q and
-    X (two evaluations of the same equations; measured 2e-15 and 3e-14)."""
+    """The built-in computed torque (one explicit pass a stage, shared with the plant)
+    against a Python law calling the public inverse dynamics on the RK4 driver: ≤ 1e-12
+    relative in q and X (two evaluations of the same equations; measured 2e-15 and
+    3e-14)."""
     kp, kd = Controller().gains
 
     def law(t, q, qd, qr, qdr, qddr):

@@ -66,17 +66,50 @@ def test_energy_change_equals_the_actuators_work(robot):
     assert np.abs(res.energy - res.energy[0] - work).max() <= 1e-6 * np.abs(work).max()
 
 
-def test_the_driver_records_the_energy_the_compiled_loop_records(robot):
-    """PD on the RK4 driver's rigid plant and on the compiled loop: the same run bit for
-    bit, so the same energy (the driver's from its plant's record, the loop's own)."""
-    from offshore_crane.simulation import rigid
+def test_the_rigid_plants_shared_pass_gives_the_laws_own_computed_torque(robot):
+    """The rigid plant's ``inverse`` at the state its ``prepare`` made the explicit pass
+    at forms ``M q̈_cmd + h`` from that pass; told the model is not the plant's own, or
+    asked about another state (one ulp away), it makes the law's own pass. The two agree
+    to 1e-12 relative (the same equations summed in two orders; measured 6e-16), and a
+    miss is bit for bit the law's own pass."""
+    from offshore_crane.simulation.plants import RigidPlant
+    from offshore_crane.simulation.plants import _rigid_kernels as k
 
-    c = Controller("pd")
-    loop = simulate(robot, 0.3, table1, controller=c, step=1e-3)
-    driven = rigid._driven(robot, 0.3, table1, None, None, c, (0.0, 0.0, -9.81), 1e-3,
-                           None, True, 0.0, None, None)
-    np.testing.assert_array_equal(driven.q, loop.q)
-    np.testing.assert_array_equal(driven.energy, loop.energy)
+    rng = np.random.default_rng(7)
+    plant = RigidPlant(robot, robot, np.array([0.0, 0.0, -9.81]))
+    P = plant.params()
+    assert P[11][1] == 1                                 # the model is the plant's own
+    q, qd, _ = table1(np.array([3.0]))
+    y = np.concatenate([q[0], qd[0]])
+    cmd = rng.normal(size=9)
+    shared, own, missed = np.zeros(9), np.zeros(9), np.zeros(9)
+    k.prepare(P, 0, y, np.zeros(4))
+    k.inverse(P, 0, y, cmd, shared)
+    P[11][1] = 0
+    try:
+        k.inverse(P, 0, y, cmd, own)
+    finally:
+        P[11][1] = 1
+    y2 = y.copy()
+    y2[9] = np.nextafter(y2[9], np.inf)                  # not the state of the pass
+    k.inverse(P, 0, y2, cmd, missed)
+    expected = np.zeros(9)
+    P[11][1] = 0
+    try:
+        k.inverse(P, 0, y2, cmd, expected)
+    finally:
+        P[11][1] = 1
+    assert np.abs(shared - own).max() <= 1e-12 * np.abs(own).max()
+    np.testing.assert_array_equal(missed, expected)
+
+
+def test_a_model_other_than_the_plant_never_shares_its_pass(robot):
+    """A controller's model that differs (a heavier payload) is told apart when the
+    plant's parameters are made: its computed torque always makes its own pass."""
+    from offshore_crane.simulation.plants import RigidPlant
+
+    heavy = oc.load_robot(overrides={"payload.mass": 6.0}).without_hanging_payload()
+    assert RigidPlant(robot, heavy, np.array([0.0, 0.0, -9.81])).params()[11][1] == 0
 
 
 def test_a_pid_runs_energy_changes_by_the_actuators_work(robot):
@@ -150,7 +183,7 @@ def test_saturation_is_applied_and_reported(robot):
 def test_leaving_the_workspace_stops_and_keeps_the_samples(robot):
     qd0 = np.zeros(9)
     qd0[2] = 2.0                                   # the platform flies up at 2 m/s
-    with pytest.raises(SimulationError, match="stopped at t = .* leg. length") as info:
+    with pytest.raises(SimulationError, match=r"stopped at t = .* \(outside its limits\)") as info:
         simulate(robot, 2.0, table1, q0=_start(), qd0=qd0, controller=Controller("none"),
                  step=1e-3)
     res = info.value.result
@@ -365,26 +398,34 @@ def test_a_diverging_run_is_named_and_keeps_only_finite_rows():
         assert "singular" not in str(info.value)
 
 
-def test_the_shared_pass_equals_the_law_with_its_own(robot, monkeypatch):
+def test_the_shared_pass_equals_the_law_with_its_own(robot):
     """Computed torque on the plant's own model, the law at every stage: one explicit
-    pass a stage serves the law (M q̈_cmd + h) and the accelerations. The loop with the
-    law's own pass (the general path, forced here) gives the same run: forces to 1e-13
-    and states to 1e-12 of their peaks (measured 3.7e-15 and 1.7e-15 on Table 1: round-off
-    of M q̈_cmd + h against Kane's pass at q̈_cmd), saturation included."""
-    from offshore_crane.simulation import rigid
-    from offshore_crane.simulation.laws import codes
+    pass a stage serves the law (M q̈_cmd + h) and the accelerations. A model equal to
+    the plant but told apart (its own pass at every stage, the general path) gives the
+    same run: forces and states to 1e-12 of their peaks (measured 3.7e-15 and 1.7e-15 on
+    Table 1: round-off of M q̈_cmd + h against Kane's pass at q̈_cmd), saturation
+    included."""
+    from offshore_crane.simulation.plants import _rigid_kernels as k
 
-    loop = rigid._loop()
     q0 = table1(0.0)[0].copy()
     q0[2] += 1e-3                                    # an error to correct: the law acts
     lower, upper = np.full(9, -np.inf), np.full(9, np.inf)
     upper[3] = 335.0                                 # Fl1 (peak 342 N) saturates at times
     ctl = Controller(lower=lower, upper=upper)
     fast = simulate(robot, 2.0, table1, q0=q0, controller=ctl, limits=False)
-    general = codes.COMPUTED_TORQUE           # the law's code, not the shared one
-    monkeypatch.setattr(rigid, "_loop", lambda: loop[:3] + (general,))
-    slow = simulate(robot, 2.0, table1, q0=q0, controller=ctl, limits=False)
-    for a, b, bound in ((fast.X, slow.X, 1e-12), (fast.q, slow.q, 1e-12),
-                        (fast.qd, slow.qd, 1e-12)):
-        assert np.abs(a - b).max() <= bound * np.abs(b).max()
+    made = k.params
+
+    def apart(plant):
+        P = made(plant)
+        P[11][1] = 0                                 # not the plant's own: no sharing
+        return P
+
+    k.params = apart
+    try:
+        twin = oc.load_robot().without_hanging_payload()   # a new plant: params made anew
+        slow = simulate(twin, 2.0, table1, q0=q0, controller=ctl, limits=False)
+    finally:
+        k.params = made
+    for a, b in ((fast.X, slow.X), (fast.q, slow.q), (fast.qd, slow.qd)):
+        assert 0 < np.abs(a - b).max() <= 1e-12 * np.abs(b).max()
     assert np.array_equal(fast.saturated, slow.saturated) and fast.saturated[:, 3].any()

@@ -1,6 +1,6 @@
-"""The robot run forward in time: :mod:`.control` (control laws), :mod:`.rk4` (the
-integrator), :mod:`.rigid` (the 9-coordinate robot) and :mod:`.swing` (with the payload
-swinging on its cable)."""
+"""The robot run forward in time: :mod:`.control` (control laws), :mod:`.driver` (the RK4
+driver every plant and law runs on), :mod:`.rigid` (the 9-coordinate robot, its equations
+in :mod:`.rigid_equations`) and :mod:`.swing` (with the payload swinging on its cable)."""
 
 from __future__ import annotations
 

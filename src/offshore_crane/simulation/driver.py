@@ -120,13 +120,16 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
     status = np.zeros(4, dtype=np.int64)
     halt = progress.stop_flag()
     run = loop_for(plant, law)
+    from offshore_crane.simulation.loop import scratch
+
+    W = scratch(len(y), n_p, n_z, delay)
     P, L = plant.params(), law.params()
     lo, hi = (np.ascontiguousarray(np.asarray(b, dtype=float)) for b in (lower, upper))
     progress.run_polled(
         lambda: run(P, L, tt, qr, qdr, qddr, y, float(step), int(n_steps), int(out_every),
                     int(hold), lo, hi, np.asarray(lag, dtype=float),
                     np.asarray(rlim, dtype=float), int(delay), nq, nqd, res9[0], res9[1],
-                    sens is not None, n_p, n_z, *rec, sat, extra, status, halt),
+                    sens is not None, n_p, n_z, *rec, sat, extra, status, halt, W),
         lambda: status[2], n_out, "sample", "simulate", halt)
     done = int(status[2])
     t_out = tt[::2][::out_every][:n_out]
@@ -148,8 +151,10 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
         return res
     k, cause, words = stop
     when = timing.t0 + (k if k < len(t_out) else len(t_out) - 1) * step * out_every
+    # the stop's own sample tells a divergence apart (a singular mass matrix at q5 = 1e15)
+    diverged = cause is StopCause.DIVERGED or diverging(res.truncated(k + 1))
     res = res.truncated(min(k, finite_rows(res)))
-    if cause is StopCause.DIVERGED or diverging(res):
+    if diverged:
         res = res.truncated(finite_rows(res))
         cause, words = StopCause.DIVERGED, divergence(res)
     exc = stopped(res, when, words)

@@ -2,7 +2,7 @@
 built in and run as it is written where the law is Python (:func:`instantiate`).
 
 :func:`loop` and :func:`evaluate` are templates: the names they call but do not define
-(``rhs``, ``check``, ``keep`` of the plant; ``command``, ``law_rate`` of the law;
+(``prepare``, ``rhs``, ``check``, ``keep`` of the plant; ``command``, ``law_rate`` of the law;
 ``IQ``, ``IQD`` where q and q̇ sit in the plant's state) are looked up in the namespace
 they are instantiated in (:func:`instantiate`): a plant's compiled kernels
 (:mod:`offshore_crane.simulation.plants`) and a law's templates
@@ -28,7 +28,7 @@ import numpy as np
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 from offshore_crane.stops import CODES
 from offshore_crane.simulation.templates import (IQ, IQD, check, command, keep,
-                                                law_rate, rhs, unowned)
+                                                law_rate, prepare, rhs, unowned)
 
 OK, _WORKSPACE, _SINGULAR, DIVERGED, STOPPED, _SLACK = CODES
 
@@ -42,12 +42,14 @@ def quantised(x, r):
 
 def evaluate(P, L, i, t, y, dy, qr, qdr, qddr, lo, hi, held, Xh, Xhin, dzh, lag, n_p, n_z,
              Xc, X, aux):
-    """One stage at grid point ``i`` (time ``t`` [s]) and state ``y``: the law's command
+    """One stage at grid point ``i`` (time ``t`` [s]) and state ``y``: what the plant
+    makes ahead at ``y`` (``prepare``: a pass the law may share), the law's command
     ``Xc`` (or the held one), the actuators (the lag's output or the command, clipped to
     ``[lo, hi]``) into ``X``, the plant's rates and the law's and the lag's into ``dy``;
     returns the plant's ``ok`` (False: a singular mass matrix)."""
     n_pz = n_p + n_z
     nl = lag.shape[0]
+    prepare(P, i, y, aux)
     if held:
         for j in range(9):
             Xc[j] = Xh[j]
@@ -70,33 +72,24 @@ def evaluate(P, L, i, t, y, dy, qr, qdr, qddr, lo, hi, held, Xh, Xhin, dzh, lag,
 
 def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, rlim, delay,
          nq, nqd, resq, resqd, sens, n_p, n_z, RQ, RQD, RQDD, RQR, RQDR, RXC, RX, SAT, EXTRA,
-         status, halt):
+         status, halt, W):
     """RK4 from ``y`` (modified in place) for ``n_steps`` steps of ``h`` [s]; every
     ``out_every``-th step recorded (``RQ`` ... ``RX`` ``(n_out, 9)``, ``SAT`` bool, the
     plant's ``EXTRA``); ``hold`` steps a control period (0: the law at every stage); the
     sensors (``sens``: ``delay`` steps, noise rows ``nq``, ``nqd`` per control instant,
     resolutions ``resq``, ``resqd``), the rate limit ``rlim`` and lag ``lag`` (empty:
     none). ``status``: (stop code, its output sample, samples recorded, control
-    instants); ends before a step when ``halt[0]`` is not zero (STOPPED)."""
+    instants); ends before a step when ``halt[0]`` is not zero (STOPPED). ``W``: the
+    loop's zeroed scratch (:func:`scratch`)."""
     P, L = unowned(P), unowned(L)      # handed to the plant and the law at every stage
+    # the arrays handed on at every stage, without their owner: the caller keeps them
+    # alive for the call (their reference counts cost the rigid robot 3-4 %, measured)
+    y, tt, qr, qdr, qddr, lo, hi, lag = unowned((y, tt, qr, qdr, qddr, lo, hi, lag))
+    k1, k2, k3, k4, st, ym, dzb, Xc, X, Xh, Xhin, last, dzh, aux, hist, first = unowned(W)
     n = y.shape[0]
     n_pz = n_p + n_z
-    k1 = np.zeros(n)
-    k2 = np.zeros(n)
-    k3 = np.zeros(n)
-    k4 = np.zeros(n)
-    st = np.zeros(n)
-    ym = np.zeros(n)
-    dzb = np.zeros(n)
-    Xc = np.zeros(9)
-    X = np.zeros(9)
-    Xh = np.zeros(9)
-    Xhin = np.zeros(9)
-    last = np.zeros(9)
-    dzh = np.zeros(max(n_z, 1))
-    aux = np.zeros(4)
-    hist = np.zeros((delay + 1, n_p))
-    first = y[:n_p].copy()
+    for j in range(n_p):
+        first[j] = y[j]
     held = hold > 0
     period = h * hold
     ctrl = 0
@@ -180,6 +173,17 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
         rk4_combine(y, h, k1, k2, k3, k4)
 
 
+def scratch(n: int, n_p: int, n_z: int, delay: int) -> tuple:
+    """The loop's zeroed scratch ``W`` for a state of ``n`` entries (the plant's ``n_p``,
+    the law's ``n_z``) and a sensor delay of ``delay`` steps: the four RK4 slopes, the
+    stage state, the measured state, the law's rate ``(n,)`` each; the command, the
+    applied, held, held-in and last forces ``(9,)`` each; the held law rate
+    ``(max(n_z, 1),)``; the plant's ``aux`` ``(4,)``; the measurement history
+    ``(delay + 1, n_p)`` and the first measured state ``(n_p,)``."""
+    return (*(np.zeros(n) for _ in range(7)), *(np.zeros(9) for _ in range(5)),
+            np.zeros(max(n_z, 1)), np.zeros(4), np.zeros((delay + 1, n_p)), np.zeros(n_p))
+
+
 #: The driver's own templates, instantiated in every namespace.
 TEMPLATES = (quantised, evaluate, loop)
 
@@ -197,8 +201,9 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
     """The driver's :func:`loop` in a namespace of its own.
 
     Args:
-        kernels: The plant's kernel module (``rhs``, ``check``, ``keep``, ``inverse``,
-            ``gravity``, ``coords``, ``payload``, ``arm_tip``: compiled functions).
+        kernels: The plant's kernel module (``prepare``, ``rhs``, ``check``, ``keep``,
+            ``inverse``, ``gravity``, ``coords``, ``payload``, ``arm_tip``: compiled
+            functions).
         law_templates: ``{name: function}``: the law's templates (``command``,
             ``law_rate`` and what they call), instantiated here.
         names: Constants of the namespace (``IQ``, ``IQD``).
@@ -214,8 +219,8 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
 
     ns: dict = {"__name__": __name__, "np": np, "OK": OK, "DIVERGED": DIVERGED, "STOPPED": STOPPED,
                 "rk4_stage": rk4_stage, "rk4_combine": rk4_combine, INSTANCE: key, **names}
-    for name in ("rhs", "check", "keep", "inverse", "gravity", "coords", "payload",
-                 "arm_tip"):
+    for name in ("prepare", "rhs", "check", "keep", "inverse", "gravity", "coords",
+                 "payload", "arm_tip"):
         ns[name] = getattr(kernels, name)
     if compiled:
         from offshore_crane.dynamics.views import unowned as strip

@@ -1,12 +1,11 @@
 """What a simulation run records and the time grid it steps on: :class:`SimulationResult`,
 the step counts (:func:`steps`) and the reference at every RK4 stage (:func:`reference_grid`).
-Shared by the rigid robot's loop (:mod:`.rigid`) and the hanging load's (:mod:`.swing`).
+Shared by the RK4 driver (:mod:`.driver`), every plant on it, and the DOP853 path (:mod:`.rigid`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import NamedTuple
 
 import numpy as np
 
@@ -233,65 +232,6 @@ def initial_state(q0, qd0, reference_q: np.ndarray, reference_qd: np.ndarray):
                              name=name)
         out.append(x[0].copy())
     return out[0], out[1]
-
-
-# --------------------------------------------------------------- the compiled loop's inputs
-class Packed(NamedTuple):
-    """A robot's constants as the compiled kernels read them
-    (:class:`~offshore_crane.dynamics.constants.RobotArrays`: one float buffer, its layout
-    ``(fields, 4)`` int64 and the arm joints' types ``(na,)`` bool)."""
-
-    flat: np.ndarray
-    layout: np.ndarray
-    prismatic: np.ndarray
-
-
-class StageGrid(NamedTuple):
-    """The reference at every RK4 stage time (:func:`reference_grid`): ``q, qd, qdd``
-    each ``(2 n_steps + 1, 9)`` [m, rad, /s, /s²]."""
-
-    q: np.ndarray
-    qd: np.ndarray
-    qdd: np.ndarray
-
-
-class LawParameters(NamedTuple):
-    """A built-in control law for the compiled loop: ``kind`` (its code), gains ``kp``
-    [1/s²], ``kd`` [1/s] ``(9,)``, ``hold`` (steps per control period, 0: every stage),
-    the measurement noise drawn beforehand ``noise_q``, ``noise_qd`` ``(n_ctrl, 9)``
-    [m, rad, /s] and the actuator bounds ``lower``, ``upper`` ``(9,)`` [N·m, N]."""
-
-    kind: int
-    kp: np.ndarray
-    kd: np.ndarray
-    hold: int
-    noise_q: np.ndarray
-    noise_qd: np.ndarray
-    lower: np.ndarray
-    upper: np.ndarray
-
-
-class Recording(NamedTuple):
-    """What the compiled loop writes at each output sample: ``q, qd, qdd, q_ref, qd_ref,
-    X_cmd, X`` ``(n_out, 9)``, ``saturated`` ``(n_out, 9)`` bool, ``energy`` [J] and
-    ``power`` [W] ``(n_out,)``."""
-
-    q: np.ndarray
-    qd: np.ndarray
-    qdd: np.ndarray
-    q_ref: np.ndarray
-    qd_ref: np.ndarray
-    X_cmd: np.ndarray
-    X: np.ndarray
-    saturated: np.ndarray
-    energy: np.ndarray
-    power: np.ndarray
-
-    @classmethod
-    def empty(cls, n_out: int) -> "Recording":
-        """Zeroed arrays for ``n_out`` output samples."""
-        nine = [np.zeros((n_out, 9)) for _ in range(7)]
-        return cls(*nine, np.zeros((n_out, 9), dtype=bool), np.zeros(n_out), np.zeros(n_out))
 
 
 def workspace_stop(robot, res, limits: bool):

@@ -8,19 +8,20 @@ reference motion.
 
 Integrators:
 
-- ``"rk4"`` (default): classical fixed-step Runge–Kutta at ``step`` [s], compiled whole
-  (the built-in laws included): the reference is evaluated analytically at every stage time
-  (t, t + h/2, t + h) beforehand; with a control rate the law is evaluated at the control
-  instants and X held in between (sample-and-hold), otherwise at every stage.
+- ``"rk4"`` (default): classical fixed-step Runge–Kutta at ``step`` [s] on the RK4 driver
+  (:mod:`.driver`) with the rigid plant
+  (:class:`~offshore_crane.simulation.plants.RigidPlant`), compiled whole with a built-in
+  law: the reference is evaluated analytically at every stage time (t, t + h/2, t + h)
+  beforehand; with a control rate the law is evaluated at the control instants and X held
+  in between (sample-and-hold), otherwise at every stage. Every law of the registry, a
+  Python callable ``law(t, q, qd, q_ref, qd_ref, qdd_ref) -> X (9,)`` [s, m, rad, ... →
+  N·m, N], sensors and actuator models (:mod:`.instruments`) run there: one
+  forward-dynamics pass and one call of the law per stage (the pass shared by a computed
+  torque on the plant's own model; X clipped to the capacities, the time saturated
+  reported).
 - ``"dop853"``: SciPy's adaptive ``solve_ivp`` (DOP853, ``rtol``/``atol`` stated in the
-  result), driven from Python: the accuracy reference for RK4.
-
-The built-in laws with a code in the compiled loop (:mod:`.laws.codes`) run there. Any
-other law of the registry (``"pid"``, ``"anti-sway"``), a Python callable ``law(t, q, qd,
-q_ref, qd_ref, qdd_ref) -> X (9,)`` [s, m, rad, ... → N·m, N], sensors and actuator models
-(:mod:`.instruments`) run on the RK4 driver (:mod:`.driver`) with the rigid plant
-(:class:`~offshore_crane.simulation.plants.RigidPlant`): one forward-dynamics call and one
-call of the law per stage (X clipped to the capacities, the time saturated reported).
+  result), driven from Python: the accuracy reference for RK4, for the built-in laws with
+  a code (:mod:`.laws.codes`), continuous, without sensor or actuator models.
 
 The simulation stops at the first sample that leaves the workspace, reaches a singular
 configuration (the mass matrix at the attitude singularity) or diverges (a non-finite
@@ -35,14 +36,11 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from offshore_crane.simulation.control import Controller
-from offshore_crane import progress
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.errors import InputError, SimulationError
-from offshore_crane.stops import StopCause
 from offshore_crane.validation import as_gravity
-from offshore_crane.simulation.record import (LawParameters, Packed, Recording, SimulationResult,
-                                              StageGrid, divergence, diverging, finite_rows,
-                                              initial_state, reference_grid, steps, stopped)
+from offshore_crane.simulation.record import (SimulationResult, initial_state,
+                                              reference_grid, steps)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -56,15 +54,6 @@ Reference = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
 Law = Callable[..., np.ndarray]
 
 INTEGRATORS = ("rk4", "dop853")
-
-
-# --------------------------------------------------------------------------- compiled
-def _loop():
-    """The compiled RK4 loop, its control law and accelerations (:mod:`.rk4`, which
-    imports Numba: loaded on first use)."""
-    from offshore_crane.simulation import rk4 as _rk4
-
-    return _rk4.run, _rk4.law, _rk4.accel
 
 
 # --------------------------------------------------------------------------- public
@@ -121,89 +110,29 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
     if integrator not in INTEGRATORS:
         raise InputError(f"unknown integrator {integrator!r}: use one of "
                          f"{', '.join(INTEGRATORS)}", name="integrator")
-    if not _compiled(controller, sensors, actuators):
-        if integrator != "rk4":
-            raise InputError("DOP853 runs the built-in laws without sensor or actuator "
-                             "models: use integrator 'rk4'", name="integrator")
+    if integrator == "rk4":
         return _driven(robot, duration, reference, q0, qd0, controller, gravity, step, rate,
                        limits, t0, sensors, actuators)
-    from offshore_crane.simulation.laws import codes, law_class
+    if not _dop853_runs(controller, sensors, actuators):
+        raise InputError("DOP853 runs the built-in laws without sensor or actuator "
+                         "models: use integrator 'rk4'", name="integrator")
+    from offshore_crane.simulation.laws import law_class
 
     law_class(controller.law_name)
-    if any(np.any(n) for n in controller.noise):
-        if controller.rate is None:
-            raise InputError("measurement noise (noise_q, noise_qd) acts at the control "
-                             "instants of a sampled law: give a control rate",
-                             name="noise_q")
-    n_steps, out_every, hold = steps(duration, step, rate, controller.rate)
+    if any(np.any(n) for n in controller.noise) or controller.rate is not None:
+        raise InputError("DOP853 runs a continuous law without measurement noise: drop the "
+                         "control rate and the noise, or use integrator 'rk4'",
+                         name="integrator")
+    n_steps, out_every, _ = steps(duration, step, rate, controller.rate)
     g = as_gravity(gravity)
-    tt, qr, qdr, qddr = reference_grid(reference, t0, step, n_steps)
+    tt, qr, qdr, _ = reference_grid(reference, t0, step, n_steps)
     q0, qd0 = initial_state(q0, qd0, qr[0], qdr[0])
-    if integrator == "dop853":
-        return _dop853(robot, tt[::2], reference, q0, qd0, controller, g, limits, rtol, atol,
-                       out_every)
-    from offshore_crane.dynamics.constants import robot_arrays
-    from offshore_crane.robot.kinematics import workspace as ws
-
-    run = _loop()[0]
-    from offshore_crane.simulation.rk4 import work_size
-    plant = robot_arrays(robot)
-    model = robot_arrays(controller.model or robot)
-    kp, kd = controller.gains
-    lo, hi = controller.bounds(robot)
-    n_ctrl = n_steps // hold + 2 if hold else 1
-    rng = np.random.default_rng(controller.seed)
-    sq, sqd = controller.noise
-    nq = rng.normal(size=(n_ctrl, 9)) * sq
-    nqd = rng.normal(size=(n_ctrl, 9)) * sqd
-    n_out = n_steps // out_every + 1
-    kind = law_class(controller.law).code
-    if (kind == codes.COMPUTED_TORQUE and hold == 0 and all(
-            np.array_equal(a, b) for a, b in ((plant.flat, model.flat), (plant.layout,
-                                              model.layout), (plant.prismatic,
-                                                              model.prismatic)))):
-        kind = codes.SHARED                        # one explicit pass a stage serves both
-    rec = Recording.empty(n_out)
-    health = ws.new_health()
-    status = np.zeros(3, dtype=np.int64)
-    stop = progress.stop_flag()
-    progress.run_polled(
-        lambda: run(Packed(plant.flat, plant.layout, plant.prismatic),
-                    Packed(model.flat, model.layout, model.prismatic), g, step, n_steps,
-                    out_every, StageGrid(qr, qdr, qddr),
-                    LawParameters(kind, kp, kd, hold, nq, nqd, lo, hi),
-                    limits, q0, qd0, rec, health, status, stop,
-                    np.zeros(work_size(max(plant.kane.n_arm, model.kane.n_arm)))),
-        lambda: status[2], n_out, "sample", "simulate", stop)
-    n_done = int(status[2])
-    t_out = tt[::2][::out_every][:n_out]
-    res = SimulationResult(t=t_out, **rec._asdict(), integrator="rk4", step=step)
-    if status[0] != StopCause.NONE:
-        code = StopCause(int(status[0]))
-        k = int(status[1])
-        when = t0 + k * step
-        res = res.truncated(n_done)
-        if code is StopCause.WORKSPACE:
-            try:
-                ws.check_limits(health, plant.limits, res.q[-1:], None)
-                cause = "left the workspace"
-            except Exception as exc:          # the WorkspaceError's text names the limit
-                cause = str(exc).split(" at sample")[0] + " (outside its limits)"
-        diverged = code is StopCause.DIVERGED or diverging(res)
-        res = res.truncated(finite_rows(res))
-        if diverged:
-            code, cause = StopCause.DIVERGED, divergence(res)
-        elif code is StopCause.SINGULAR:
-            cause = ("the mass matrix became singular (attitude singularity, "
-                     f"q5 = {res.q[-1, 4]:.4g} rad)")
-        exc = stopped(res, when, cause)
-        exc.stop_cause = code
-        raise exc
-    return res
+    return _dop853(robot, tt[::2], reference, q0, qd0, controller, g, limits, rtol, atol,
+                   out_every)
 
 
-def _compiled(controller, sensors, actuators) -> bool:
-    """True when the compiled loop runs this law: a controller whose law has a code in
+def _dop853_runs(controller, sensors, actuators) -> bool:
+    """True when the DOP853 path runs this law: a controller whose law has a code in
     it (:mod:`.laws.codes`), without sensor models or actuator dynamics."""
     if not isinstance(controller, Controller) or controller.function is not None:
         return False
@@ -235,7 +164,7 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
     from offshore_crane.errors import require
 
     integrate = require("scipy.integrate", "scipy", "The DOP853 integrator")
-    _, law, accel = _loop()
+    from offshore_crane.simulation.rigid_equations import accel, law, workspaces
     from offshore_crane.dynamics.constants import robot_arrays
 
     plant = robot_arrays(robot)
@@ -247,8 +176,6 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
     kp, kd = controller.gains
     lo, hi = controller.bounds(robot)
     n = 6 + C.n_arm
-    from offshore_crane.simulation.rk4 import workspaces
-
     ws, wl = workspaces(max(C.n_arm, Cc.n_arm))
     gt = tuple(float(x) for x in g)
     X = np.empty(9)

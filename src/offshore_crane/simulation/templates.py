@@ -31,6 +31,7 @@ def unowned(x):
 
 # the plant's kernels (offshore_crane.simulation.plants: Plant.KERNELS)
 rhs, check, keep = _unbound("rhs"), _unbound("check"), _unbound("keep")
+prepare = _unbound("prepare")
 inverse, gravity = _unbound("inverse"), _unbound("gravity")
 coords, payload = _unbound("coords"), _unbound("payload")
 arm_tip = _unbound("arm_tip")

@@ -52,7 +52,8 @@ OK, _, SINGULAR, DIVERGED, STOPPED, _ = CODES
 
 def _helpers(stamp):
     """The right-hand side pieces, closed over the formulas' hash (their disk cache key;
-    the drivers reach them as module globals, see :mod:`offshore_crane.simulation.rk4`)."""
+    the drivers reach them as module globals, see
+    :mod:`offshore_crane.simulation.rigid_equations`)."""
 
     @jit
     def tip(C, Qh, Qdh, Qddh, i, q, qd, qdd, out, want_v):

@@ -23,7 +23,7 @@ class Law:
     sense; :attr:`refusal` says in one line why not elsewhere), :attr:`state_size` (its
     own slot in the integrated state, e.g. an integral term; 0: none) and implements
     :meth:`params` and :meth:`templates` (functions written for Numba). :attr:`code` is
-    the law's code in the rigid robot's own compiled loop
+    the law's code in the rigid robot's compiled law, which the DOP853 reference path runs
     (:mod:`offshore_crane.simulation.laws.codes`), or None; every law runs on the RK4
     driver (:mod:`offshore_crane.simulation.loop`) with every plant it names.
 

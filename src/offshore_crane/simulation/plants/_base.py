@@ -33,8 +33,10 @@ class Plant:
     RECORDED: ClassVar[dict] = {}
 
     #: The plant's compiled kernels for the driver (a module of
-    #: :mod:`offshore_crane.simulation.plants`: ``rhs``, ``check``, ``keep``, ``inverse``,
-    #: ``gravity``, ``coords``, ``payload``, ``arm_tip`` and ``params(plant)``).
+    #: :mod:`offshore_crane.simulation.plants`: ``prepare`` (what the plant makes at a
+    #: stage's state before the law is evaluated there, for the law to share), ``rhs``,
+    #: ``check``, ``keep``, ``inverse``, ``gravity``, ``coords``, ``payload``, ``arm_tip``
+    #: and ``params(plant)``).
     KERNELS: ClassVar[str] = ""
 
     def __init__(self, robot, model, gravity):

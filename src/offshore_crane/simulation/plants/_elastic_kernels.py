@@ -109,7 +109,7 @@ def _make(stamp):
 STAMP = c.STAMP + hashlib.sha256((inspect.getsource(ep) + inspect.getsource(shared)
                                   + inspect.getsource(ck)).encode()).hexdigest()
 rhs, keep, inverse, gravity, arm_tip = _make(STAMP)
-check, coords, payload = shared.check, shared.coords, shared.payload
+check, coords, payload, prepare = shared.check, shared.coords, shared.payload, shared.prepare
 
 
 def params(plant) -> tuple:

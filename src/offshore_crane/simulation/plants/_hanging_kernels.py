@@ -14,6 +14,7 @@ import numpy as np
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.cable import kernels as ck
 from offshore_crane.kernel_cache import njit
+from offshore_crane.simulation.plants import shared_kernels as shared
 from offshore_crane.stops import CODES
 
 OK, _, SINGULAR, DIVERGED, _, _ = CODES
@@ -133,6 +134,7 @@ def _make(stamp):
 #: callee edited elsewhere would otherwise be linked stale).
 STAMP = c.STAMP + hashlib.sha256(inspect.getsource(ck).encode()).hexdigest()
 rhs, check, keep, inverse, gravity, coords, payload, arm_tip = _make(STAMP)
+prepare = shared.prepare
 
 
 def params(plant) -> tuple:

@@ -1,10 +1,19 @@
 """Compiled kernels of the rigid plant (:mod:`.rigid`) for the RK4 driver
-(:mod:`offshore_crane.simulation.loop`; imports Numba), over the compiled loop's
-equations of motion and laws (:mod:`offshore_crane.simulation.rk4`). ``P``
+(:mod:`offshore_crane.simulation.loop`; imports Numba), over the rigid robot's equations
+of motion and laws (:mod:`offshore_crane.simulation.rigid_equations`). ``P``
 (:func:`params`): the plant's and the model's packed arrays, gravity, the one zeroed work
-buffer (:func:`offshore_crane.simulation.rk4.carve`: the equations' and the law's work
-arrays, views made in each kernel rather than handed in P, which the driver passes at
-every stage)."""
+buffer (:func:`~offshore_crane.simulation.rigid_equations.carve`: the equations' and the
+law's work arrays, views made in each kernel rather than handed in P, which the driver
+passes at every stage), q̈, zeros, the state the pass in the buffer was made at and the
+flags (that pass valid, the model the plant's own).
+
+One explicit pass a stage serves both the law and the accelerations when a computed
+torque runs on the plant's own model: :func:`prepare` makes the pass at the stage's
+state before the law is evaluated, and :func:`inverse` finds it there (the state it was
+made at equal to the law's, value for value) and forms ``M q̈_cmd + h`` from it
+(:func:`~offshore_crane.simulation.rigid_equations.ct_from`) instead of a pass of its
+own. A law sampled at other states (held, delayed, noisy) misses the memo and makes its
+own pass, as a model other than the plant always does."""
 
 from __future__ import annotations
 
@@ -16,12 +25,12 @@ import numpy as np
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.kernel_cache import njit
 from offshore_crane.simulation.plants import shared_kernels as shared
-from offshore_crane.simulation import rk4
+from offshore_crane.simulation import rigid_equations as eq
 from offshore_crane.simulation.laws import codes
 
 jit = njit(**c.JIT)
-equations, solve, carve, law = rk4.equations, rk4.solve, rk4.carve, rk4.call_law
-energy = rk4.energy
+equations, solve, carve, law = eq.equations, eq.solve, eq.carve, eq.call_law
+energy, ct_from = eq.energy, eq.ct_from
 inline = njit(inline="always", **c.JIT)
 
 
@@ -34,17 +43,44 @@ unpack = c.unpack
 CT, PDG = codes.COMPUTED_TORQUE, codes.PD_GRAVITY
 
 
+@inline
+def _made_at(P, y):
+    """True when the pass in the work buffer was made at ``y[:18]`` (value for value)."""
+    if P[11][0] == 0:
+        return False
+    at = P[10]
+    for j in range(18):
+        if at[j] != y[j]:
+            return False
+    return True
+
+
 def _make(stamp):
 
-    @jit
+    @inline
+    def prepare(P, i, y, aux):
+        """The explicit pass at ``y``'s (q, q̇) into the work buffer, remembered as made
+        there (the module docstring)."""
+        if len(stamp) == 0:
+            return
+        C = unpack(P[0], P[1], P[2])[0]
+        equations(C, P[6], y[:9], y[9:18], _work(P)[0])
+        at = P[10]
+        for j in range(18):
+            at[j] = y[j]
+        P[11][0] = 1
+
+    @inline
     def rhs(P, i, y, X, dy, aux):
-        """(q̇, q̈) into ``dy[:18]``; ``aux[0]`` ok (False: M singular)."""
+        """(q̇, q̈) into ``dy[:18]``; ``aux[0]`` ok (False: M singular). The pass
+        :func:`prepare` made at ``y``, else one made here."""
         if len(stamp) == 0:
             return False
         C = unpack(P[0], P[1], P[2])[0]
         qdd = P[8]
         ws = _work(P)[0]
-        equations(C, P[6], y[:9], y[9:18], ws)
+        if not _made_at(P, y):
+            prepare(P, i, y, aux)
         ok = solve(6 + C.n_arm, X, qdd, ws)
         for j in range(9):
             dy[j] = y[9 + j]
@@ -55,23 +91,26 @@ def _make(stamp):
     @jit
     def keep(P, EXTRA, k, y, dy, aux):
         """The energy [J] at ``y`` into ``EXTRA[k, 0]``: kinetic ``½ q̇ᵀ M q̇`` and
-        gravitational ``−g · Σ m c``, from the explicit pass that :func:`rhs` at ``y``
-        (the step's first stage) left in the work buffer, as the compiled loop records
-        it (:func:`offshore_crane.simulation.rk4.run`)."""
+        gravitational ``−g · Σ m c``, from the explicit pass made at ``y`` (the step's
+        first stage) in the work buffer."""
         if len(stamp) == 0:
             return
         ws = _work(P)[0]
         EXTRA[k, 0] = energy(ws[2], ws[9], y[9:18], 6 + P[2].shape[0], P[6])
 
-    @jit
+    @inline
     def inverse(P, i, y, qdd, X):
-        """The model's inverse dynamics at ``qdd``: the compiled law's computed torque
-        with zero gains at the reference (q, q̇, q̈)."""
+        """The model's inverse dynamics at ``qdd``: from the plant's pass made at ``y``
+        when the model is the plant's own (the module docstring), else the compiled
+        law's computed torque with zero gains at the reference (q, q̇, q̈)."""
         if len(stamp) == 0:
+            return
+        ws, wl = _work(P)
+        if P[11][1] != 0 and _made_at(P, y):
+            ct_from(unpack(P[0], P[1], P[2])[0], 6 + P[2].shape[0], qdd, X, ws, wl)
             return
         Cc = unpack(P[3], P[4], P[5])[0]
         zero = P[9]
-        wl = _work(P)[1]
         law(Cc, P[6], CT, zero, zero, y[:9], y[9:18], y[:9], y[9:18], qdd, X, wl)
 
     @jit
@@ -83,15 +122,15 @@ def _make(stamp):
         wl = _work(P)[1]
         law(Cc, P[6], PDG, zero, zero, y[:9], zero, y[:9], zero, zero, X, wl)
 
-    return rhs, keep, inverse, gravity
+    return prepare, rhs, keep, inverse, gravity
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
-#: rigid loop's kernels they call (Numba's cache checks only a function's own file, so a
+#: rigid equations and shared kernels they call (Numba's cache checks only a function's own file, so a
 #: callee edited elsewhere would otherwise be linked stale).
-STAMP = c.STAMP + hashlib.sha256((inspect.getsource(rk4) + inspect.getsource(shared)
+STAMP = c.STAMP + hashlib.sha256((inspect.getsource(eq) + inspect.getsource(shared)
                                   ).encode()).hexdigest()
-rhs, keep, inverse, gravity = _make(STAMP)
+prepare, rhs, keep, inverse, gravity = _make(STAMP)
 check, coords, payload, arm_tip = shared.check, shared.coords, shared.payload, shared.arm_tip
 
 
@@ -100,6 +139,9 @@ def params(plant) -> tuple:
     from offshore_crane.dynamics.constants import robot_arrays
 
     a, m = robot_arrays(plant.robot), robot_arrays(plant.model)
-    work = np.zeros(rk4.work_size(max(a.kane.n_arm, m.kane.n_arm)))
+    work = np.zeros(eq.work_size(max(a.kane.n_arm, m.kane.n_arm)))
+    own = all(np.array_equal(x, z) for x, z in ((a.flat, m.flat), (a.layout, m.layout),
+                                                  (a.prismatic, m.prismatic)))
     return (a.flat, a.layout, a.prismatic, m.flat, m.layout, m.prismatic,
-            tuple(float(x) for x in plant.g), work, np.zeros(9), np.zeros(9))
+            tuple(float(x) for x in plant.g), work, np.zeros(9), np.zeros(9), np.zeros(18),
+            np.array([0, int(own)], dtype=np.int64))

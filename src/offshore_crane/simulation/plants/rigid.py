@@ -1,9 +1,10 @@
 """The rigid robot: the 9 coordinates q1..q9 and their rates, ``y = (q, q̇)`` (18,);
-``M q̈ + h = A X`` (the equations of motion of :mod:`offshore_crane.simulation.rk4`, in
-its compiled kernels :mod:`._rigid_kernels`). Its stops: a singular mass matrix, a
+``M q̈ + h = A X`` (the equations of motion of
+:mod:`offshore_crane.simulation.rigid_equations`, in its compiled kernels
+:mod:`._rigid_kernels`). Its stops: a singular mass matrix, a
 non-finite state, the workspace. Checked against
 Pinocchio's constraint dynamics (``tests/simulation/test_simulate.py``) and by its
-work–energy balance (its energy recorded at every output sample, as the compiled loop's)."""
+work–energy balance (its energy recorded at every output sample)."""
 
 from __future__ import annotations
 
