@@ -126,8 +126,8 @@ def _make(stamp):
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
-#: rigid equations and shared kernels they call (Numba's cache checks only a function's own file, so a
-#: callee edited elsewhere would otherwise be linked stale).
+#: rigid equations and shared kernels they call (Numba's cache checks only a function's
+#: own file, so a callee edited elsewhere would otherwise be linked stale).
 STAMP = c.STAMP + hashlib.sha256((inspect.getsource(eq) + inspect.getsource(shared)
                                   ).encode()).hexdigest()
 prepare, rhs, keep, inverse, gravity = _make(STAMP)
