@@ -2,8 +2,8 @@
 built in and run as it is written where the law is Python (:func:`instantiate`).
 
 :func:`loop` and :func:`evaluate` are templates: the names they call but do not define
-(``prepare``, ``rhs``, ``check``, ``keep`` of the plant; ``command``, ``law_rate`` of the law;
-``IQ``, ``IQD`` where q and q̇ sit in the plant's state) are looked up in the namespace
+(``prepare``, ``rhs``, ``check``, ``keep`` of the plant; ``command``, ``law_rate`` of the
+law; ``IQ``, ``IQD`` where q and q̇ sit in the plant's state) are looked up in the namespace
 they are instantiated in (:func:`instantiate`): a plant's compiled kernels
 (:mod:`offshore_crane.simulation.plants`) and a law's templates
 (:mod:`offshore_crane.simulation.laws`), compiled together by Numba; or the same with a

@@ -116,9 +116,6 @@ def simulate(robot: Robot, duration: float, reference: Reference, q0: ArrayLike 
     if not _dop853_runs(controller, sensors, actuators):
         raise InputError("DOP853 runs the built-in laws without sensor or actuator "
                          "models: use integrator 'rk4'", name="integrator")
-    from offshore_crane.simulation.laws import law_class
-
-    law_class(controller.law_name)
     if any(np.any(n) for n in controller.noise) or controller.rate is not None:
         raise InputError("DOP853 runs a continuous law without measurement noise: drop the "
                          "control rate and the noise, or use integrator 'rk4'",

@@ -36,8 +36,8 @@ COMPUTED_TORQUE, PD_GRAVITY, PD, NONE = (codes.COMPUTED_TORQUE, codes.PD_GRAVITY
 def _helpers(stamp):
     """The control law and the accelerations, closed over the formulas' hash ``stamp``
     only: it keys their disk cache, so that editing a formula (whose compiled code they
-    link) rebuilds them. (A closure over a dispatcher would defeat the cache: the loop
-    below reaches these two as module globals.)"""
+    link) rebuilds them. (A closure over a dispatcher would defeat the cache: the rigid
+    plant's kernels reach these as module globals.)"""
 
     @njit(inline="always", **c.JIT)
     def command(kp, kd, q, qd, qr, qdr, qddr, qdd_c):
@@ -192,9 +192,9 @@ def _work_type(shapes):
                         for s in shapes])
 
 
-#: :func:`law` called by address (:mod:`offshore_crane.kernel_calls`) by the loop and its
-#: stages: its code (the explicit pass's call, the actuators' coordinates) is not linked
-#: into :func:`run` and optimised again there.
+#: :func:`law` called by address (:mod:`offshore_crane.kernel_calls`) by the rigid plant's
+#: kernels: its code (the explicit pass's call, the actuators' coordinates) is not linked
+#: into each driver loop and optimised again there.
 LAW = kernel_calls.Entry.typed("rigid_law", lambda: law,
                                "none(C, T3, int64, V, V, V, V, V, V, V, V, WL)", STAMP,
                                C=c.kane_constants_type(), WL=_work_type(_WL))

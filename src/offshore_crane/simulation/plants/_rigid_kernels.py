@@ -4,8 +4,8 @@ of motion and laws (:mod:`offshore_crane.simulation.rigid_equations`). ``P``
 (:func:`params`): the plant's and the model's packed arrays, gravity, the one zeroed work
 buffer (:func:`~offshore_crane.simulation.rigid_equations.carve`: the equations' and the
 law's work arrays, views made in each kernel rather than handed in P, which the driver
-passes at every stage), q̈, zeros, the state the pass in the buffer was made at and the
-flags (that pass valid, the model the plant's own).
+passes at every stage), q̈, zeros, the state the pass in the buffer was made at (NaN
+before any: no state equals it) and whether the model is the plant's own.
 
 One explicit pass a stage serves both the law and the accelerations when a computed
 torque runs on the plant's own model: :func:`prepare` makes the pass at the stage's
@@ -46,8 +46,6 @@ CT, PDG = codes.COMPUTED_TORQUE, codes.PD_GRAVITY
 @inline
 def _made_at(P, y):
     """True when the pass in the work buffer was made at ``y[:18]`` (value for value)."""
-    if P[11][0] == 0:
-        return False
     at = P[10]
     for j in range(18):
         if at[j] != y[j]:
@@ -68,7 +66,6 @@ def _make(stamp):
         at = P[10]
         for j in range(18):
             at[j] = y[j]
-        P[11][0] = 1
 
     @inline
     def rhs(P, i, y, X, dy, aux):
@@ -106,7 +103,7 @@ def _make(stamp):
         if len(stamp) == 0:
             return
         ws, wl = _work(P)
-        if P[11][1] != 0 and _made_at(P, y):
+        if P[11] and _made_at(P, y):
             ct_from(unpack(P[0], P[1], P[2])[0], 6 + P[2].shape[0], qdd, X, ws, wl)
             return
         Cc = unpack(P[3], P[4], P[5])[0]
@@ -143,5 +140,5 @@ def params(plant) -> tuple:
     own = all(np.array_equal(x, z) for x, z in ((a.flat, m.flat), (a.layout, m.layout),
                                                   (a.prismatic, m.prismatic)))
     return (a.flat, a.layout, a.prismatic, m.flat, m.layout, m.prismatic,
-            tuple(float(x) for x in plant.g), work, np.zeros(9), np.zeros(9), np.zeros(18),
-            np.array([0, int(own)], dtype=np.int64))
+            tuple(float(x) for x in plant.g), work, np.zeros(9), np.zeros(9),
+            np.full(18, np.nan), own)
