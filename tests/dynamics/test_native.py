@@ -145,6 +145,38 @@ def test_a_structures_first_call_loads_its_programs(kept_slots):
     assert native.SLOTS[index[1]] != 0 and native.SLOTS[index[0]] == 0   # only what ran
 
 
+def test_a_signal_during_a_load_ends_the_run_after_the_call(kept_slots, monkeypatch):
+    """Ctrl-C while a program loads from inside a compiled call: the load completes, the
+    pass gives its numbers (bit for bit), and KeyboardInterrupt is raised once Python
+    resumes after the call; lost inside the loader's C callback before, the pass raised
+    "could not be loaded" (a SIGTERM then ended the CLI with 1, not 143)."""
+    import signal
+    import time
+
+    C = robot_arrays(oc.load_robot()).kane
+    index = [native.program_index(0, C.n_arm, C.arm_prism, m) for m in (0, 1)]
+    q, qd, qdd = _states(9, 1, seed=4)
+    ref = _run(c.explicit_sample, C, q[0], qd[0], qdd[0], True)
+    native.SLOTS[index] = 0
+    load = native.ensure_slot
+
+    def interrupted(i):
+        signal.raise_signal(signal.SIGINT)          # the handler runs inside the loader
+        load(i)
+
+    monkeypatch.setattr(native, "ensure_slot", interrupted)
+    got = []
+    with pytest.raises(KeyboardInterrupt):
+        got.append(_run(c.explicit_sample, C, q[0], qd[0], qdd[0], True))
+        deadline = time.monotonic() + 5.0           # sent again once the call returned
+        while time.monotonic() < deadline:
+            time.sleep(0.01)
+    assert got, "the interrupt came before the pass returned"
+    for a, b in zip(got[0], ref):
+        np.testing.assert_array_equal(a, b)
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
 def test_making_a_robots_arrays_loads_no_compiler():
     import subprocess
     import sys

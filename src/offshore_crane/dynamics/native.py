@@ -40,7 +40,9 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import signal
 import struct
+import sys
 import threading
 
 import numpy as np
@@ -115,12 +117,13 @@ def register() -> tuple:
         names = (f"{SYMBOL}_{stamp()}", f"offshore_crane_native_load_{stamp()}")
 
         def load(index):
-            try:
-                ensure_slot(index)
-            except Exception:                          # noqa: BLE001 (a C caller)
-                import traceback
+            with _signals_deferred(sys._getframe().f_code):
+                try:
+                    ensure_slot(index)
+                except Exception:                      # noqa: BLE001 (a C caller)
+                    import traceback
 
-                traceback.print_exc()                  # the pass then raises
+                    traceback.print_exc()              # the pass then raises
 
         callback = ctypes.CFUNCTYPE(None, ctypes.c_int64)(load)
         binding.add_symbol(names[0], SLOTS.ctypes.data)
@@ -130,6 +133,59 @@ def register() -> tuple:
 
 
 _REGISTERED: list = []
+
+
+@contextlib.contextmanager
+def _signals_deferred(code):
+    """Hold back SIGINT and SIGTERM while a program loads from compiled code.
+
+    The loader runs Python inside a C callback: an exception a signal's handler raises
+    there (Ctrl-C's ``KeyboardInterrupt``, the CLI's ``Terminated``) cannot pass the
+    compiled caller, and was printed and lost, leaving the program half loaded and the
+    pass raising instead of the run ending as the signal asked (exit 1 with a traceback,
+    not 143). In the main thread, a signal whose handler is Python's is recorded
+    meanwhile, the load completes, the handlers are restored, and the signal is sent again
+    once the thread has left the loader, so its handler runs where Python resumes, after
+    the compiled call (the way a signal during any compiled call is handled). Elsewhere,
+    or with a handler that is not Python's (the default, ignored), nothing changes.
+    ``code``: the loader's code (the frame the signal must not be handled in)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    got: list = []
+    held = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
+    held = {s: h for s, h in held.items() if callable(h)}
+    for s in held:
+        signal.signal(s, lambda signum, frame: got.append(signum))
+    try:
+        yield
+    finally:
+        for s, h in held.items():
+            signal.signal(s, h)
+        if got:
+            _send_when_left(got, code, threading.get_ident())
+
+
+def _send_when_left(signums: list, code, thread: int) -> None:
+    """Raise ``signums`` again from a helper thread once ``thread`` no longer runs
+    ``code`` (the loader: a handler run inside it would be lost as above)."""
+    import time
+
+    def inside() -> bool:
+        frame = sys._current_frames().get(thread)
+        while frame is not None:
+            if frame.f_code is code:
+                return True
+            frame = frame.f_back
+        return False
+
+    def send():
+        while inside():
+            time.sleep(0.001)
+        for s in signums:
+            signal.raise_signal(s)
+
+    threading.Thread(target=send, name="offshore-crane signal", daemon=True).start()
 
 
 def ensure(kind: str, kane, variant: int) -> None:
