@@ -226,7 +226,7 @@ def test_compiled_views_are_the_constants(robot, which):
 
 
 def test_views_without_an_owner_are_only_made_of_a_kernels_arguments():
-    """``views.c_view`` (and ``unpack``, ``_carve``, which call it) and ``views.unowned``
+    """``views.c_view`` (and ``unpack``, the carvers, which call it) and ``views.unowned``
     make arrays that do
     not keep their buffer alive: the buffer must be an argument of the running kernel
     (or an element of one, or unpacked from one), never an array the kernel made. Every
@@ -242,7 +242,7 @@ def test_views_without_an_owner_are_only_made_of_a_kernels_arguments():
             if not isinstance(node, (ast.FunctionDef, ast.Lambda)):
                 todo.extend(ast.iter_child_nodes(node))
 
-    makers = {"c_view", "unpack", "_carve", "carve", "_work", "unowned"}
+    makers = {"c_view", "unpack", "_carve", "carve", "carve_ws", "_work", "_ws", "unowned"}
     root = Path(oc.__file__).parent
     sites = 0
     for path in root.rglob("*.py"):
@@ -297,7 +297,8 @@ def test_unowned_keeps_the_data_and_refuses_what_it_cannot_strip():
 def test_the_rigid_loops_carved_work_arrays_are_its_workspaces(na):
     """``eq.carve`` lays the loop's work arrays out in a buffer of ``eq.work_size``:
     each view has the shape of the array ``eq.workspaces`` allocates, the views tile the
-    buffer without overlap, and the last ends at the buffer's end (no overrun)."""
+    buffer without overlap, and the last ends at the buffer's end (no overrun);
+    ``eq.carve_ws`` gives the first tuple's views, the same arrays."""
     import numba
 
     from offshore_crane.simulation import rigid_equations as eq
@@ -305,11 +306,13 @@ def test_the_rigid_loops_carved_work_arrays_are_its_workspaces(na):
     @numba.njit
     def views(w, na):               # the views leave compiled code: w stays alive below
         ws, wl = eq.carve(w, na)
-        return ws + wl
+        return ws + wl, eq.carve_ws(w, na)
 
     w = np.zeros(eq.work_size(na))
-    carved = views(w, na)
+    carved, first = views(w, na)
     ws, wl = eq.workspaces(na)
+    assert [(a.ctypes.data, a.shape) for a in first] == [
+        (a.ctypes.data, a.shape) for a in carved[:len(ws)]]
     assert [a.shape for a in carved] == [a.shape for a in ws + wl]
     starts = [(a.ctypes.data - w.ctypes.data) // 8 for a in carved]
     ends = [s + a.size for s, a in zip(starts, carved)]

@@ -49,17 +49,18 @@ def _helpers(stamp):
             qdd_c[j] = qddr[j] + kd[j] * (qdr[j] - qd[j]) + kp[j] * (qr[j] - q[j])
 
     @njit(inline="always", **c.JIT)
-    def forces(C, B, J, A, rhs, x, M13, Xout):
-        """Actuator forces of the generalized forces ``B`` (9,): ``(T1, T2, Fs) =
+    def forces(n_arm, inv_L, B, J, A, rhs, x, M13, Xout):
+        """Actuator forces of the generalized forces ``B`` (9,) of a robot with ``n_arm``
+        arm joints and mean anchor distance ``1 / inv_L`` [m]: ``(T1, T2, Fs) =
         B[6:9]``, ``Jᵀ Fl = B[0:6]`` solved as inverse dynamics solves it
         (:func:`~offshore_crane.dynamics.compiled.leg_system`, rotation rows scaled; a
         singular system gives NaN forces); the other entries of ``Xout`` untouched.
         (This and :func:`command` are inlined: calls cost the loop ~5 %.)"""
         if len(stamp) == 0:
             return
-        for b in range(C.n_arm):
+        for b in range(n_arm):
             Xout[b] = B[6 + b]
-        leg_system(B, J, 1.0 / C.L, A, rhs)
+        leg_system(B, J, inv_L, A, rhs)
         solve6(A, rhs, x, M13, False)
         for l in range(6):
             Xout[3 + l] = x[l]
@@ -90,7 +91,7 @@ def _helpers(stamp):
             else:
                 explicit_sample(Cc, q, zero, zero, g, False, B, J, Mm, store, Vw, Ww, Vs,
                                 diag, mc)
-            forces(Cc, B, J, A, rhs, x, M13, Xout)
+            forces(Cc.n_arm, 1.0 / Cc.L, B, J, A, rhs, x, M13, Xout)
         if kind == PD_GRAVITY or kind == PD:
             actuator_coordinates(Cc, q, qd, pos, rate)
             actuator_coordinates(Cc, qr, qdr, posr, rater)
@@ -130,13 +131,14 @@ def _helpers(stamp):
         return solve(n, X, qdd, ws)
 
     @inline
-    def ct_from(C, n, qdd_c, Xout, ws, wl):
+    def ct_from(n, inv_L, qdd_c, Xout, ws, wl):
         """Computed torque on the plant's own model from the pass already in ``ws`` (the
         one the accelerations use) at the commanded accelerations ``qdd_c`` (9,): ``B = M
         q̈_cmd + h`` (M's lower triangle), ``(T1, T2, Fs) = B[6:9]``, ``Jᵀ Fl = B[0:6]``
         (:func:`forces`, as :func:`law`). Equal to :func:`law`'s computed torque to
         round-off (its own explicit pass at q̈_cmd gives the same ``M q̈_cmd + h``),
-        without that pass."""
+        without that pass. ``n``: the coordinates (6 + arm joints); ``inv_L`` [1/m] as
+        :func:`forces`."""
         if len(stamp) == 0:
             return
         h, J, Mm = ws[0], ws[1], ws[2]
@@ -148,7 +150,7 @@ def _helpers(stamp):
                 for c_ in range(n):
                     f += (Mm[r, c_] if c_ <= r else Mm[c_, r]) * qdd_c[c_]
             Bc[r] = f
-        forces(C, Bc, J, A, rhs, x, M13, Xout)
+        forces(n - 6, inv_L, Bc, J, A, rhs, x, M13, Xout)
 
     @inline
     def energy(Mm, mc, qd, n, g):
@@ -212,10 +214,11 @@ def work_size(na: int) -> int:
     return sum(c or max(na, 1) * 27 for c in _COUNTS)
 
 
-def _carve_text() -> str:
-    """The text of :func:`carve`, written from :data:`_WS` and :data:`_WL` (their one
-    source): each view's start a constant plus the arm workspaces before it (a multiple
-    of ``27 r``), no offsets array allocated at each call."""
+def _carve_text(name: str, both: bool) -> str:
+    """The text of :func:`carve` (``both``: ``ws`` and ``wl``) or :func:`carve_ws`, written
+    from :data:`_WS` and :data:`_WL` (their one source): each view's start a constant plus
+    the arm workspaces before it (a multiple of ``27 r``), no offsets array allocated at
+    each call."""
     views, fixed, arms = [], 0, 0
     for s in _WS + _WL:
         shape = "(r, 27)" if s == "S" else repr(tuple(s))
@@ -225,21 +228,24 @@ def _carve_text() -> str:
         else:
             fixed += int(np.prod(s))
     ws, wl = views[:len(_WS)], views[len(_WS):]
-    return ("def carve(w, na):\n    r = max(na, 1)\n    r27 = r * 27\n"
-            f"    return ({', '.join(ws)},), ({', '.join(wl)},)\n")
+    out = f"({', '.join(ws)},), ({', '.join(wl)},)" if both else f"({', '.join(ws)},)"
+    return f"def {name}(w, na):\n    r = max(na, 1)\n    r27 = r * 27\n    return {out}\n"
 
 
-def _carver():
-    """:func:`carve` made from :func:`_carve_text` (inlined where it is called: not
-    cached on its own, its callers are)."""
+def _carver(name: str, both: bool, doc: str):
+    """:func:`carve` or :func:`carve_ws` made from :func:`_carve_text` (inlined where it
+    is called: not cached on its own, its callers are)."""
     scope = {"c_view": c_view}
-    exec(compile(_carve_text(), f"<{__name__}.carve>", "exec"), scope)  # noqa: S102 (our text)
-    fn = scope["carve"]
-    fn.__doc__ = (":func:`workspaces`'s two tuples as views of the zeroed buffer ``w`` "
-                  "(:func:`work_size`), without an owner (:mod:`offshore_crane.dynamics."
-                  "views`: handed from call to call, owned arrays cost the loop their "
-                  "reference counts).")
+    exec(compile(_carve_text(name, both), f"<{__name__}.{name}>", "exec"),  # noqa: S102
+         scope)                                                           # (our text)
+    fn = scope[name]
+    fn.__doc__ = (f"{doc} as views of the zeroed buffer ``w`` (:func:`work_size`), without "
+                  "an owner (:mod:`offshore_crane.dynamics.views`: handed from call to "
+                  "call, owned arrays cost the loop their reference counts).")
     return njit(inline="always", **{**c.JIT, "cache": False})(fn)
 
 
-carve = _carver()
+carve = _carver("carve", True, ":func:`workspaces`'s two tuples")
+#: ``carve(w, na)[0]`` alone: a kernel that needs only the equations' arrays types and
+#: lowers 13 views, not 32 (what a driver loop's compile spends its time on).
+carve_ws = _carver("carve_ws", False, ":func:`workspaces`'s first tuple (``ws``)")

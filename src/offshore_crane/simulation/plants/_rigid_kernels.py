@@ -5,7 +5,8 @@ of motion and laws (:mod:`offshore_crane.simulation.rigid_equations`). ``P``
 buffer (:func:`~offshore_crane.simulation.rigid_equations.carve`: the equations' and the
 law's work arrays, views made in each kernel rather than handed in P, which the driver
 passes at every stage), q̈, zeros, the state the pass in the buffer was made at (NaN
-before any: no state equals it) and whether the model is the plant's own.
+before any: no state equals it), whether the model is the plant's own and the plant's
+``1 / L`` [1/m] (its mean anchor distance from O2: the leg system's scale).
 
 One explicit pass a stage serves both the law and the accelerations when a computed
 torque runs on the plant's own model: :func:`prepare` makes the pass at the stage's
@@ -22,6 +23,7 @@ import inspect
 
 import numpy as np
 
+from offshore_crane import kernel_calls
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.kernel_cache import njit
 from offshore_crane.simulation.plants import shared_kernels as shared
@@ -29,7 +31,8 @@ from offshore_crane.simulation import rigid_equations as eq
 from offshore_crane.simulation.laws import codes
 
 jit = njit(**c.JIT)
-equations, solve, carve, law = eq.equations, eq.solve, eq.carve, eq.call_law
+equations, solve, law = eq.equations, eq.solve, eq.call_law
+carve, carve_ws = eq.carve, eq.carve_ws
 energy, ct_from = eq.energy, eq.ct_from
 inline = njit(inline="always", **c.JIT)
 
@@ -39,6 +42,12 @@ def _work(P):
     """The equations' and the law's work tuples (``ws``, ``wl``), carved from ``P[7]``
     for the longer arm of the plant's and the model's (their ``prismatic`` flags)."""
     return carve(P[7], max(P[2].shape[0], P[5].shape[0]))
+
+
+@inline
+def _ws(P):
+    """``_work(P)[0]`` alone (fewer views for the compiler to type and lower)."""
+    return carve_ws(P[7], max(P[2].shape[0], P[5].shape[0]))
 unpack = c.unpack
 CT, PDG = codes.COMPUTED_TORQUE, codes.PD_GRAVITY
 
@@ -62,10 +71,19 @@ def _make(stamp):
         if len(stamp) == 0:
             return
         C = unpack(P[0], P[1], P[2])[0]
-        equations(C, P[6], y[:9], y[9:18], _work(P)[0])
+        equations(C, P[6], y[:9], y[9:18], _ws(P))
         at = P[10]
         for j in range(18):
             at[j] = y[j]
+
+    @jit
+    def prepare_called(P, y):
+        """:func:`prepare` called by address (:data:`PREPARE`): for what finds no pass
+        made at its state; its text is then typed and compiled once, beside the driver's
+        loop, not inlined into its stage a second time."""
+        if len(stamp) == 0:
+            return
+        prepare(P, 0, y, P[9])
 
     @inline
     def rhs(P, i, y, X, dy, aux):
@@ -73,12 +91,10 @@ def _make(stamp):
         :func:`prepare` made at ``y``, else one made here."""
         if len(stamp) == 0:
             return False
-        C = unpack(P[0], P[1], P[2])[0]
         qdd = P[8]
-        ws = _work(P)[0]
         if not _made_at(P, y):
-            prepare(P, i, y, aux)
-        ok = solve(6 + C.n_arm, X, qdd, ws)
+            call_prepare(P, y)
+        ok = solve(6 + P[2].shape[0], X, qdd, _ws(P))
         for j in range(9):
             dy[j] = y[9 + j]
             dy[9 + j] = qdd[j]
@@ -92,23 +108,32 @@ def _make(stamp):
         first stage) in the work buffer."""
         if len(stamp) == 0:
             return
-        ws = _work(P)[0]
+        ws = _ws(P)
         EXTRA[k, 0] = energy(ws[2], ws[9], y[9:18], 6 + P[2].shape[0], P[6])
+
+    @jit
+    def own_inverse(P, y, qdd, X):
+        """The compiled law's computed torque with the model's own pass, zero gains at
+        the reference (q, q̇, q̈), called by address (:data:`OWN_INVERSE`: compiled once,
+        beside a law's template that calls it)."""
+        if len(stamp) == 0:
+            return
+        Cc = unpack(P[3], P[4], P[5])[0]
+        zero = P[9]
+        law(Cc, P[6], CT, zero, zero, y[:9], y[9:18], y[:9], y[9:18], qdd, X, _work(P)[1])
 
     @inline
     def inverse(P, i, y, qdd, X):
         """The model's inverse dynamics at ``qdd``: from the plant's pass made at ``y``
-        when the model is the plant's own (the module docstring), else the compiled
-        law's computed torque with zero gains at the reference (q, q̇, q̈)."""
+        when the model is the plant's own (the module docstring), else
+        :func:`own_inverse`."""
         if len(stamp) == 0:
             return
-        ws, wl = _work(P)
         if P[11] and _made_at(P, y):
-            ct_from(unpack(P[0], P[1], P[2])[0], 6 + P[2].shape[0], qdd, X, ws, wl)
+            ws, wl = _work(P)
+            ct_from(6 + P[2].shape[0], P[12], qdd, X, ws, wl)
             return
-        Cc = unpack(P[3], P[4], P[5])[0]
-        zero = P[9]
-        law(Cc, P[6], CT, zero, zero, y[:9], y[9:18], y[:9], y[9:18], qdd, X, wl)
+        call_own_inverse(P, y, qdd, X)
 
     @jit
     def gravity(P, i, y, X):
@@ -119,7 +144,7 @@ def _make(stamp):
         wl = _work(P)[1]
         law(Cc, P[6], PDG, zero, zero, y[:9], zero, y[:9], zero, zero, X, wl)
 
-    return prepare, rhs, keep, inverse, gravity
+    return prepare, rhs, keep, inverse, gravity, prepare_called, own_inverse
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
@@ -127,7 +152,18 @@ def _make(stamp):
 #: own file, so a callee edited elsewhere would otherwise be linked stale).
 STAMP = c.STAMP + hashlib.sha256((inspect.getsource(eq) + inspect.getsource(shared)
                                   ).encode()).hexdigest()
-prepare, rhs, keep, inverse, gravity = _make(STAMP)
+prepare, rhs, keep, inverse, gravity, prepare_called, own_inverse = _make(STAMP)
+#: ``P``'s Numba type (:func:`params`), in the entries' signatures.
+_P = "Tuple((*PACKED, *PACKED, T3, V, V, V, V, boolean, float64))"
+#: The pass and the model's own inverse dynamics called by address
+#: (:mod:`offshore_crane.kernel_calls`): the paths the memo does not serve compile in a
+#: helper process beside the driver's loop (measured, one process, Numba's compile
+#: events: the rigid computed torque's loop 17.7 s when they were inlined, 10.5 s now).
+PREPARE = kernel_calls.Entry.typed("rigid_prepare", lambda: prepare_called,
+                                   f"none({_P}, V)", STAMP)
+OWN_INVERSE = kernel_calls.Entry.typed("rigid_own_inverse", lambda: own_inverse,
+                                       f"none({_P}, V, V, V)", STAMP)
+call_prepare, call_own_inverse = PREPARE.call, OWN_INVERSE.call
 check, coords, payload, arm_tip = shared.check, shared.coords, shared.payload, shared.arm_tip
 
 
@@ -141,4 +177,4 @@ def params(plant) -> tuple:
                                                   (a.prismatic, m.prismatic)))
     return (a.flat, a.layout, a.prismatic, m.flat, m.layout, m.prismatic,
             tuple(float(x) for x in plant.g), work, np.zeros(9), np.zeros(9),
-            np.full(18, np.nan), own)
+            np.full(18, np.nan), own, 1.0 / float(a.kane.L))
