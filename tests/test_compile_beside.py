@@ -12,7 +12,7 @@ import textwrap
 
 import pytest
 
-from offshore_crane import compile_beside
+from offshore_crane import compile_beside, compile_times
 
 pytestmark = pytest.mark.skipif(compile_beside.usable_cores() < 2,
                                 reason="the helper runs only with a second core")
@@ -45,8 +45,8 @@ import beside_case as m
 
 started = []
 start = compile_beside.start
-compile_beside.start = lambda entries: started.append([e.name for e in entries]) or \\
-    start(entries)
+compile_beside.start = lambda entries, own=None: started.append(
+    [e.name for e in entries]) or start(entries, own)
 if sys.argv[1] == "broken":
     m.ENTRY.module = "no_such_module_of_this_test"
 with warnings.catch_warnings(record=True) as caught:
@@ -121,3 +121,29 @@ def test_passes_are_dealt_longest_first_to_the_least_busy_helper():
     assert loads == pytest.approx([20.4, 22.0])
     assert compile_beside.deal(names[:1], 4, [3.0]) == ([["explicit"]], [3.0])
     assert compile_beside.deal([], 2, []) == ([], [])
+
+
+def test_processes_sharing_cores_end_when_their_fair_shares_have_done_their_work():
+    """Two cores: two processes run at full speed; three at 2/3 of a core each until
+    the first ends (4 s of work: at 6 s), then the kernel's 6.5 s left at full speed."""
+    assert compile_times.finish([10.0, 5.0], 2) == pytest.approx(10.0)
+    assert compile_times.finish([10.5, 4.0, 4.0], 2) == pytest.approx(12.5)
+    assert compile_times.finish([], 2) == 0.0
+
+
+def test_as_many_helpers_as_end_the_wait_first():
+    """The rigid robot's first ``simulate`` on 2 cores (its loop 10.5 s, its passes
+    6.5 s in all): one helper (10.5 s against 12.2 s with two). The elastic lift's
+    (loop 10 s, passes 15.8 s): two helpers end first. No kernel time known: one helper
+    per core, as :func:`deal` alone."""
+    rigid = ["law", "prepare", "inverse", "explicit"]
+    shares, loads = compile_beside.plan(rigid, 2, [3.2, 1.5, 1.4, 0.4], 10.5)
+    assert shares == [rigid] and loads == pytest.approx([6.5])
+    elastic = ["cable", "derivative", "torque", "pulled", "measure"]
+    times = [6.0, 5.5, 2.0, 1.2, 1.1]
+    shares, loads = compile_beside.plan(elastic, 2, times, 10.0)
+    assert len(shares) == 2
+    assert compile_times.finish([10.0, *loads], 2) < compile_times.finish([10.0, 15.8], 2)
+    assert compile_beside.plan(rigid, 2, [3.2, 1.5, 1.4, 0.4], None) == \
+        compile_beside.deal(rigid, 2, [3.2, 1.5, 1.4, 0.4])
+    assert compile_beside.plan([], 2, [], 10.0) == ([], [])

@@ -94,8 +94,8 @@ def estimate(name: str, beside=None) -> str | None:
     Args:
         beside: ``(loads, cores)``: helper processes compile what the kernel calls beside
             it (:mod:`offshore_crane.compile_beside`), each ``loads[i]`` [s] of work, on
-            ``cores`` cores: the wait is the longest of the kernel's, a helper's and the
-            whole work shared by the cores.
+            ``cores`` cores: the wait is when the last of them ends, the cores shared
+            fairly (:func:`finish`).
     """
     found = _lookup(name)
     if found is None:
@@ -104,10 +104,22 @@ def estimate(name: str, beside=None) -> str | None:
     if not (beside and beside[0]):
         return f"{_wait(own)}{where}"
     loads, cores = beside
-    wait = max(own, max(loads), (own + sum(loads)) / max(cores, 1))
+    wait = finish([own, *loads], max(cores, 1))
     helpers = f"{len(loads)} helper process{'es' if len(loads) > 1 else ''}"
     return (f"{_wait(wait)} with {helpers} compiling what it calls beside it (the "
             "last compiles recorded: this machine's, else benchmarks/compile.py's)")
+
+
+def finish(works, cores: int) -> float:
+    """When the last of processes needing ``works`` [s] of one core each ends, started
+    together on ``cores`` cores shared fairly (each runs at ``min(1, cores / running)``
+    of a core) [s]."""
+    left, t = sorted(w for w in works if w > 0), 0.0
+    while left:
+        rate = min(1.0, cores / len(left))
+        t += left[0] / rate
+        left = [w - left[0] for w in left[1:]]
+    return t
 
 
 def started(name: str) -> str | None:

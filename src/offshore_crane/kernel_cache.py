@@ -126,7 +126,9 @@ def _ensuring(dispatcher):
             return compile_(sig)          # (a helper only writes its kernels' cache)
         beside = None
         if not kernel_calls.cached(dispatcher, sig):
-            beside = compile_beside.start([e for e in entries if not e.cached()])
+            beside = compile_beside.start(
+                [e for e in entries if not e.cached()],
+                compile_times.seconds(compile_times.kernel_name(dispatcher.py_func)))
         _LOCAL.outer = True
         try:
             out = compile_(sig)
