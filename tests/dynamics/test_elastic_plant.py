@@ -196,3 +196,21 @@ def test_the_kernels_allocate_nothing_a_call(plants):
         if not was:
             _nrt_python.memsys_disable_stats()
     assert counts[0] == counts[1], counts
+
+
+def test_the_carved_views_named_for_the_energy_are_the_mass_matrix_and_moments():
+    """``VIEW_MM`` and ``VIEW_MC`` pick the (9, 9) mass matrix and the (1, 3) mass moments
+    out of the work buffer's views, where ``_SIZES`` lays them out."""
+    import numba
+
+    @numba.njit
+    def views(w):                    # the views leave compiled code: w stays alive below
+        return ep._carve(w)
+
+    w = np.zeros(ep.WORK)
+    carved = views(w)
+    assert len(carved) == len(ep._SIZES)
+    mm, mc = carved[ep.VIEW_MM], carved[ep.VIEW_MC]
+    assert mm.shape == (9, 9) and mc.shape == (1, 3)
+    assert (mm.ctypes.data - w.ctypes.data) // 8 == ep._MM
+    assert (mc.ctypes.data - w.ctypes.data) // 8 == ep._MC

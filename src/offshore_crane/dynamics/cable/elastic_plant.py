@@ -73,6 +73,9 @@ _SIZES = (6 + _MAX_ARM, 6 + _MAX_ARM, 6 + _MAX_ARM, _MAX_ARM, 36, 6, 42,
           _MAX_ARM * STORE_WIDTH, 6, 78, 9, 9, 9, 9, 36, 81, 81, 27, 27, 27, 3, 9, 9)
 (_Q, _QD, _QDD, _ROWS, _A, _RHS6, _DIAG, _STORE, _X6, _M13, _XP, _X0, _XS, _B, _J, _MM,
  _L, _VW, _WW, _VS, _MC, _RHS, _ACC, WORK) = (sum(_SIZES[:i]) for i in range(len(_SIZES) + 1))
+#: Where :func:`_carve`'s tuple holds the mass matrix and the mass moments Σ m c (what
+#: the plant's energy reads after a pass): the views are in :data:`_SIZES` order.
+VIEW_MM, VIEW_MC = 15, 20
 
 
 @inline

@@ -23,7 +23,7 @@ jit = njit(**c.JIT)
 #: only (:mod:`offshore_crane.kernel_calls`).
 derivative, measure, computed_torque = (ep.DERIVATIVE.call, ep.MEASURE.call,
                                         ep.COMPUTED_TORQUE.call)
-carve = ep._carve
+carve, VIEW_MM, VIEW_MC = ep._carve, ep.VIEW_MM, ep.VIEW_MC
 unpack = c.unpack
 tip_kinematics = ck.tip_kinematics
 _OK = ep.OK
@@ -61,7 +61,7 @@ def _make(stamp):
         EXTRA[k, 6] = aux[1]
         EXTRA[k, 7] = aux[2]
         par, cell, views = P[6], P[8], carve(P[9])
-        Mm, mc = views[15], views[20]
+        Mm, mc = views[VIEW_MM], views[VIEW_MC]
         n = 6 + unpack(P[3], P[4], P[5])[0].n_arm
         E = kinetic_energy(Mm, y[12:21], n)
         C = unpack(P[0], P[1], P[2])[0]
