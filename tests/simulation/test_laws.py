@@ -111,7 +111,7 @@ def test_a_python_law_reading_the_sway_is_the_built_in_one(crane):
         X = np.empty(9)
         ck.computed_torque(a_.flat, a_.layout, a_.prismatic, damp, drag,
                            np.concatenate([q, sway]), np.concatenate([qd, sway_rate]), cmd,
-                           g, 0.0, 0.0, X)
+                           g, 0.0, 0.0, X, np.zeros(ck.WORK))
         return X
 
     a = oc.simulate(crane, 0.5, table1, initial=(0.1, -0.05))

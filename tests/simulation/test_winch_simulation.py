@@ -103,7 +103,8 @@ def test_a_python_law_reading_the_winch_is_the_built_in_one():
         X = np.empty(9)
         ck.computed_torque(flat, a_.layout, a_.prismatic, robot.hybrid.sway_damping, 0.0,
                            np.concatenate([q, sway]), np.concatenate([qd, sway_rate]), cmd,
-                           g, length_rate, float(HOIST(np.array([t]))[2][0]), X)
+                           g, length_rate, float(HOIST(np.array([t]))[2][0]), X,
+                           np.zeros(ck.WORK))
         return X
 
     a = simulate_swing(robot, 0.5, table1, initial=(0.1, -0.05), hoist=HOIST)

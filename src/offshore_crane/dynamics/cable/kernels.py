@@ -21,12 +21,17 @@ They close over the formulas' hash only (the disk cache keys on it, see
 
 from __future__ import annotations
 
+import hashlib
+import inspect
+
 import numpy as np
 from offshore_crane.stops import CODES
 from offshore_crane import kernel_calls
 from offshore_crane.kernel_cache import njit
 
 from offshore_crane.dynamics import compiled as c
+from offshore_crane.dynamics.cable import work as _work
+from offshore_crane.dynamics.cable.work import WORK, carve_accelerations, carve_law  # noqa: F401
 from offshore_crane.dynamics.formulas import STORE_WIDTH
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 
@@ -314,7 +319,7 @@ def _make(stamp):
                  lim_arm, lim_stroke, lim_ujoint, tb, X, kappa, health, x, M)
 
     @jit
-    def accelerations(flat, lay, prism, damp, drag, q, qd, X, g, Ld, Ldd, a, energy):
+    def accelerations(flat, lay, prism, damp, drag, q, qd, X, g, Ld, Ldd, a, energy, work):
         """One state ``q, qd`` (11,) [m, rad, /s] under actuator forces ``X`` (9,):
         ``a`` (11,) the accelerations of ``M a + h = [A X; −c φ̇] + Jᵀ (f − m a_w)``
         (Cholesky of the explicit Kane pass's M; NaN when M is singular; ``f`` the
@@ -323,24 +328,23 @@ def _make(stamp):
         adds to the payload's acceleration on the arrays' cable length, :func:`hoisting`)
         and ``energy`` (2,): kinetic ``½ q̇ᵀ M q̇ + m L̇ e·J q̇ + ½ m L̇²`` and
         gravitational ``−g · Σ m c`` [J]. Returns False when M is not positive definite
-        (the attitude singularity, or the sway's cos φ2 = 0)."""
+        (the attitude singularity, or the sway's cos φ2 = 0). ``work``
+        (:data:`~offshore_crane.dynamics.cable.work.WORK`,): scratch."""
         if len(stamp) == 0:
             return False
         C = unpack(flat, lay, prism)[0]
         na = C.n_arm
         n = 6 + na
-        B = np.zeros(n)
-        J = np.empty((6, 6))
-        Mm = np.zeros((n, n))
-        L = np.zeros((n, n))
-        diag = np.zeros((7, 6))
-        store = np.empty((na, STORE_WIDTH))
-        Vw = np.empty((n, 3))
-        Ww = np.empty((n, 3))
-        Vs = np.empty((n, 3))
-        mc = np.empty((1, 3))
-        rhs = np.empty(n)
-        zero = np.zeros(n)
+        B, J, Mm, L, Vw, Ww, Vs, diag, store, mc, rhs, zero, unit = carve_accelerations(
+            work, na)
+        for i in range(n):
+            B[i] = 0.0
+            zero[i] = 0.0
+            unit[i] = 0.0
+            for j in range(n):
+                Mm[i, j] = 0.0
+                L[i, j] = 0.0
+        diag[:] = 0.0
         gt = (g[0], g[1], g[2])
         explicit_sample(C, q, qd, zero, gt, True, B, J, Mm, store, Vw, Ww, Vs, diag, mc)
         actuation_minus_bias(B, J, X, na - 2, rhs)
@@ -357,7 +361,6 @@ def _make(stamp):
             if drag > 0.0:
                 f = drag_force(axpy(Ld, e, v), drag)
             f = axpy(-m, aw, f)
-            unit = np.zeros(n)
             for i in range(n):
                 unit[i] = 1.0
                 vi = velocity(C, q, unit, zero)
@@ -371,7 +374,7 @@ def _make(stamp):
         return ok
 
     @jit
-    def computed_torque(flat, lay, prism, damp, drag, q, qd, qdd_cmd, g, Ld, Ldd, X):
+    def computed_torque(flat, lay, prism, damp, drag, q, qd, qdd_cmd, g, Ld, Ldd, X, work):
         """The actuator forces ``X`` (9,) that give the robot the accelerations
         ``qdd_cmd`` (9,) at the measured state ``q, qd`` (11,) with its payload swinging
         on the arrays' cable length, paid out at ``Ld`` [m/s], ``Ldd`` [m/s²] (a winch;
@@ -379,13 +382,19 @@ def _make(stamp):
         under that motion (the payload's drag with ``½ ρ C_d A`` = ``drag`` [kg/m]),
         then Kane's inverse dynamics of the chain with the sway joints (with drag or a
         winch: of the robot pulled at the payload's place, ``kane_sample_pull``).
-        Returns the Stewart system's condition number (inf when singular)."""
+        Returns the Stewart system's condition number (inf when singular). ``work``
+        (:data:`~offshore_crane.dynamics.cable.work.WORK`,): scratch."""
         if len(stamp) == 0:
             return 0.0
         C = unpack(flat, lay, prism)[0]
         na = C.n_arm
         gt = (g[0], g[1], g[2])
-        qdd = np.empty(6 + na)
+        qdd, rows, A, rhs6, diag, store, x, M, zero = carve_law(work, na)
+        for j in range(6 + na):
+            zero[j] = 0.0
+        for j in range(na):
+            rows[j] = 0.0
+        diag[:] = 0.0
         for j in range(9):
             qdd[j] = qdd_cmd[j]
         Rt, w, al, at = tip_motion(C, q, qd, qdd)
@@ -396,7 +405,7 @@ def _make(stamp):
         e = mv(Rt, e_t)
         f = (0.0, 0.0, 0.0)
         if drag > 0.0:
-            f = drag_force(axpy(Ld, e, velocity(C, q, qd, np.zeros(6 + na))), drag)
+            f = drag_force(axpy(Ld, e, velocity(C, q, qd, zero)), drag)
         pulled = drag > 0.0 or hoisted  # X from the pull at the payload (kane_sample_pull)
         pull = (0.0, 0.0, 0.0)
         if pulled:
@@ -407,13 +416,6 @@ def _make(stamp):
                                     f)
         qdd[6 + na - 2] = a1
         qdd[6 + na - 1] = a2
-        rows = np.zeros(na)
-        A = np.empty((6, 6))
-        rhs6 = np.empty(6)
-        diag = np.zeros((7, 6))
-        store = np.empty((na, STORE_WIDTH))
-        x = np.empty(6)
-        M = np.empty((6, 13))
         if pulled:
             kane_sample_pull_call(C, q, qd, qdd, gt, pull, mv(Rt, scale(e_t, L)), rows, A,
                                   rhs6, diag, store)
@@ -448,14 +450,17 @@ def _make(stamp):
     return integrate, kane, kane_pulled, accelerations, computed_torque, payload
 
 
-integrate, kane, kane_pulled, accelerations, computed_torque, payload = _make(c.STAMP)
+#: What the drivers' disk cache is keyed by: the formulas' hash and the text of the
+#: scratch's layout they inline (Numba's cache checks only a function's own file).
+STAMP = c.STAMP + hashlib.sha256(inspect.getsource(_work).encode()).hexdigest()
+integrate, kane, kane_pulled, accelerations, computed_torque, payload = _make(STAMP)
 
 #: :func:`accelerations` and :func:`computed_torque` called by address
 #: (:mod:`offshore_crane.kernel_calls`): the hanging plant's loops, one per law, call
 #: them without compiling their Kane passes again.
 ACCELERATIONS = kernel_calls.Entry.typed(
     "cable_accelerations", lambda: accelerations,
-    "boolean(*PACKED, V, float64, V, V, V, V, float64, float64, V, V)", c.STAMP)
+    "boolean(*PACKED, V, float64, V, V, V, V, float64, float64, V, V, V)", STAMP)
 COMPUTED_TORQUE = kernel_calls.Entry.typed(
     "cable_computed_torque", lambda: computed_torque,
-    "float64(*PACKED, V, float64, V, V, V, V, float64, float64, V)", c.STAMP)
+    "float64(*PACKED, V, float64, V, V, V, V, float64, float64, V, V)", STAMP)

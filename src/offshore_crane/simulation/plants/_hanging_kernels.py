@@ -53,7 +53,7 @@ def _make(stamp):
         a, en = P[6], P[7]
         Ld, Ldd = winch(P, P[0], P[1], P[2], i)
         ok = accelerations(P[0], P[1], P[2], P[3], P[4], y[:11], y[11:22], X, P[5], Ld, Ldd,
-                           a, en)
+                           a, en, P[18])
         for j in range(11):
             dy[j] = y[11 + j]
             dy[11 + j] = a[j]
@@ -89,7 +89,7 @@ def _make(stamp):
             return
         Ld, Ldd = winch(P, P[8], P[9], P[10], i)
         computed_torque(P[8], P[9], P[10], P[11], P[12], y[:11], y[11:22], qdd, P[5], Ld,
-                        Ldd, X)
+                        Ldd, X, P[18])
 
     @jit
     def gravity(P, i, y, X):
@@ -100,7 +100,7 @@ def _make(stamp):
         zero = P[16]
         winch(P, P[8], P[9], P[10], i)
         computed_torque(P[8], P[9], P[10], P[11], P[12], y[:11], zero[:11], zero[:9], P[5],
-                        0.0, 0.0, X)
+                        0.0, 0.0, X, P[18])
 
     @jit
     def coords(P, q, qd, s, sd):
@@ -132,7 +132,7 @@ def _make(stamp):
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
 #: cable's kernels they call (Numba's cache checks only a function's own file, so a
 #: callee edited elsewhere would otherwise be linked stale).
-STAMP = c.STAMP + hashlib.sha256(inspect.getsource(ck).encode()).hexdigest()
+STAMP = ck.STAMP + hashlib.sha256(inspect.getsource(ck).encode()).hexdigest()
 rhs, check, keep, inverse, gravity, coords, payload, arm_tip = _make(STAMP)
 prepare = shared.prepare
 
@@ -150,4 +150,4 @@ def params(plant) -> tuple:
             plant.drag_p, np.array(plant.g, dtype=float), np.zeros(11), np.zeros(2),
             own(m.flat), m.layout, m.prismatic, np.asarray(plant.damp_c, float),
             plant.drag_c, legs.flat, legs.layout, legs.prismatic, np.zeros(11),
-            np.ascontiguousarray(Lh, dtype=float))
+            np.ascontiguousarray(Lh, dtype=float), np.zeros(ck.WORK))
