@@ -178,7 +178,7 @@ def test_the_kernels_allocate_nothing_a_call(plants):
         for _ in range(n):
             ep.measure(*cell_head, L, Ld, y, cell, work)
             ep.computed_torque(*model_head, y, cmd, cell, Xc, work)
-            ep.derivative(*head, L, Ld, y, X, out, cell, work, status)
+            ep.derivative(*head, L, Ld, y, X, out, cell, work, status, False)
 
     args = (plant._plant, plant._cell, plant._model, y, X, L, Ld, cmd, np.empty(24),
             np.empty(9), plant.cell, plant.work, plant.status)

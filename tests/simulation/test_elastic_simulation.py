@@ -108,3 +108,41 @@ def test_the_elastic_plants_energy_changes_by_the_actuators_work():
                                             * np.diff(res.t))])
     assert (res.tension > 0).all() and np.abs(work).max() > 1.0
     assert np.abs(res.energy - res.energy[0] - work).max() <= 1e-5 * np.abs(work).max()
+
+
+def test_the_law_and_the_plant_read_one_load_cell_a_stage_with_the_same_numbers():
+    """The elastic plant measures the load cell once a stage (``prepare``); the built-in
+    law's ``inverse`` and the plant's ``rhs`` read it there at that state, and give what
+    each gives measuring its own, bit for bit (the same kernel on the same arrays). A
+    cell changed after ``prepare`` changes the law's X: the shared cell is what it
+    read; at another state (one ulp away) it measures its own."""
+    from offshore_crane.simulation.plants import ElasticPlant
+
+    robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 1.0})
+    lengths = np.tile([1.0, 0.05, 0.0], (3, 1))
+    plant = ElasticPlant(robot, robot, np.array(oc.GRAVITY), ea=EA, damping=3.0,
+                         lengths=lengths)
+    k = plant.kernels()
+    q, qd, _ = table1(np.array([2.0]))
+    p_tip, v_tip = (x[0] for x in tip_positions(plant.robot, q, qd))
+    y = np.concatenate([q[0], p_tip + [0.01, -0.02, -1.0005], qd[0], v_tip])
+    cmd, X = np.random.default_rng(3).normal(size=9), np.linspace(-20.0, 20.0, 9)
+    aux = np.zeros(4)
+
+    def run(share, cell_shift=0.0, at=y):
+        P = plant.params()
+        if share:
+            k.prepare(P, 1, y, aux)
+            P[8][0] += cell_shift
+        Xc, dy = np.zeros(9), np.zeros(24)
+        k.inverse(P, 1, at, cmd, Xc)
+        k.rhs(P, 1, y, X, dy, aux)
+        return Xc, dy
+
+    shared, own = run(True), run(False)
+    np.testing.assert_array_equal(shared[0], own[0])
+    np.testing.assert_array_equal(shared[1], own[1])
+    assert not np.array_equal(run(True, cell_shift=1.0)[0], own[0])
+    y2 = y.copy()
+    y2[3] = np.nextafter(y2[3], np.inf)
+    np.testing.assert_array_equal(run(True, 1.0, at=y2)[0], run(False, at=y2)[0])

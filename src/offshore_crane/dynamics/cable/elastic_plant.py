@@ -58,8 +58,9 @@ OK, SINGULAR = 0, 1
 #: damping [N·s/m], the sway damping c1, c2 [N·m·s/rad], the drag ``½ ρ C_d A`` [kg/m].
 _EA, _DAMPING, _C1, _C2, _DRAG = 3, 4, 5, 6, 7
 #: The load cell ``cell`` (:data:`CELL`,): the pull on the robot P (3) [N], where it acts
-#: ρ (3) [m, from the tip] and the force on the payload ``F_d − P`` (3) [N], base axes.
-CELL = 9
+#: ρ (3) [m, from the tip] and the force on the payload ``F_d − P`` (3) [N], base axes,
+#: and the tension [N].
+CELL = 10
 #: The most bodies of the chain with the sway joints (an arm of 3 joints, the 2 sway
 #: joints): the work buffer's arm rows.
 _MAX_ARM = 5
@@ -135,6 +136,7 @@ def _helpers(stamp):
             cell[j] = pull[j]
             cell[3 + j] = rho[j]
             cell[6 + j] = f[j] - pull[j]
+        cell[9] = T
         return T
 
     @jit
@@ -222,7 +224,7 @@ def _make(stamp):
 
     @jit
     def derivative(flat, lay, prism, eflat, elay, eprism, par, L, Ld, y, X, ydot, cell, work,
-                   status):
+                   status, measured):
         """``ydot`` (24,) at the state ``y`` (24,) under the applied actuator forces X
         (9,) on a cable of length ``L`` [m] paid out at ``Ld`` [m/s]; returns the tension
         [N] (0 slack). ``flat, lay, prism``: the robot with its payload
@@ -231,7 +233,9 @@ def _make(stamp):
         ``robot.without_hanging_payload()``); ``par`` (:func:`parameters`); ``cell``
         (:data:`CELL`,) receives the load cell (:func:`measure`), ``status[0]``
         :data:`OK` or :data:`SINGULAR` (the mass matrix; the robot's accelerations then
-        NaN); ``work`` (:data:`WORK`,) scratch."""
+        NaN); ``work`` (:data:`WORK`,) scratch. ``measured``: ``cell`` holds the load
+        cell at this state and length already (:func:`measure`'s, the same numbers),
+        which is then not measured again."""
         if len(stamp) == 0:
             return 0.0
         C = unpack(flat, lay, prism)[0]
@@ -240,7 +244,7 @@ def _make(stamp):
          Vs, mc, rhs, a) = _carve(work)
         na = C.n_arm
         load(y, q, qd, qdd, 6 + na)
-        T = cable(C, par, L, Ld, y, q, qd, qdd, cell)
+        T = cell[9] if measured else cable(C, par, L, Ld, y, q, qd, qdd, cell)
         g = (par[0], par[1], par[2])
         pull = (cell[0], cell[1], cell[2])
         at = (cell[3], cell[4], cell[5])
@@ -277,7 +281,8 @@ COMPUTED_TORQUE = kernel_calls.Entry.typed(
     c.STAMP)
 DERIVATIVE = kernel_calls.Entry.typed(
     "elastic_derivative", lambda: derivative,
-    "float64(*PACKED, *PACKED, V, float64, float64, V, V, V, V, V, int64[::1])", c.STAMP)
+    "float64(*PACKED, *PACKED, V, float64, float64, V, V, V, V, V, int64[::1], boolean)",
+    c.STAMP)
 
 
 def parameters(gravity, ea: float, damping: float, sway, drag: float) -> np.ndarray:
@@ -340,10 +345,10 @@ class ElasticPlant:
         """``out`` (24,) = ẏ at ``y`` under the applied X on a cable of length ``L`` [m]
         paid out at ``Ld`` [m/s]; returns the tension [N] (0 slack). :attr:`singular`
         tells whether the mass matrix was singular (the accelerations then NaN);
-        :attr:`cell` holds the pull (3) [N], where it acts (3) [m] and the force on the
-        payload (3) [N]."""
+        :attr:`cell` holds the pull (3) [N], where it acts (3) [m], the force on the
+        payload (3) [N] and the tension [N]."""
         return derivative(*self._plant, L, Ld, y, X, out, self.cell, self.work,
-                          self.status)
+                          self.status, False)
 
     def measure(self, y, L: float, Ld: float) -> float:
         """The load cell at ``y`` into :attr:`cell`; returns the tension [N]."""

@@ -2,7 +2,13 @@
 (:mod:`offshore_crane.simulation.loop`; imports Numba), over the plant's one-sample
 kernels (:mod:`offshore_crane.dynamics.cable.elastic_plant`). ``P`` (:func:`params`): the
 robot's arrays with and without its payload, the kernels' parameters, the winch's length
-at every stage, the load cells and scratch of the plant and of the law."""
+at every stage, the load cells and scratch of the plant and of the law, a still state and
+zeros, and the state and stage point the plant's cell was measured at (:func:`prepare`).
+
+One load cell a stage: :func:`prepare` measures it before the law is evaluated, and the
+built-in law's :func:`inverse` and the plant's :func:`rhs` read it when they are asked
+about that state (a sampled, delayed or noisy measurement is another state: the law then
+measures its own)."""
 
 from __future__ import annotations
 
@@ -19,6 +25,7 @@ from offshore_crane.kernel_cache import njit
 from offshore_crane.simulation.plants import shared_kernels as shared
 
 jit = njit(**c.JIT)
+inline = njit(inline="always", **c.JIT)
 #: The plant's passes, called by address: each loop (one per law) compiles its own code
 #: only (:mod:`offshore_crane.kernel_calls`).
 derivative, measure, computed_torque = (ep.DERIVATIVE.call, ep.MEASURE.call,
@@ -29,17 +36,45 @@ tip_kinematics = ck.tip_kinematics
 _OK = ep.OK
 
 
+@inline
+def _made_at(P, i, y):
+    """True when the plant's load cell ``P[8]`` was measured at stage point ``i`` and
+    state ``y`` (value for value; ``P[15]``: that state and ``i``, NaN before any)."""
+    at = P[15]
+    if at[24] != i:
+        return False
+    for j in range(24):
+        if at[j] != y[j]:
+            return False
+    return True
+
+
 def _make(stamp):
 
-    @jit
+    @inline
+    def prepare(P, i, y, aux):
+        """The load cell at ``y`` on the stage's length into the plant's cell ``P[8]``,
+        remembered as measured there: the built-in law's measurement (the same kernel on
+        the same arrays) and the plant's cable read it (one cable model a stage, not
+        two; the numbers are the same)."""
+        if len(stamp) == 0:
+            return
+        Lg, at = P[7], P[15]
+        measure(P[0], P[1], P[2], P[6], Lg[i, 0], Lg[i, 1], y, P[8], P[9])
+        for j in range(24):
+            at[j] = y[j]
+        at[24] = i
+
+    @inline
     def rhs(P, i, y, X, dy, aux):
         """ẏ (24,) into ``dy[:24]``; ``aux[0]`` ok, ``aux[1]`` the tension [N], ``aux[2]``
-        the cable's length [m]."""
+        the cable's length [m]. The load cell :func:`prepare` measured at ``y``, else
+        one measured here."""
         if len(stamp) == 0:
             return False
         Lg, status = P[7], P[10]
         T = derivative(P[0], P[1], P[2], P[3], P[4], P[5], P[6], Lg[i, 0], Lg[i, 1], y, X,
-                       dy, P[8], P[9], status)
+                       dy, P[8], P[9], status, _made_at(P, i, y))
         ok = status[0] == _OK
         aux[0] = 1.0 if ok else 0.0
         aux[1] = T
@@ -73,13 +108,18 @@ def _make(stamp):
             E += 0.5 * par[3] * stretch * stretch / aux[2]
         EXTRA[k, 8] = E
 
-    @jit
+    @inline
     def inverse(P, i, y, qdd, X):
-        """The Kane pass with the load cell's pull at ``qdd`` (the law's side)."""
+        """The Kane pass with the load cell's pull at ``qdd`` (the law's side): the
+        plant's cell when :func:`prepare` measured it at ``y`` (the state the law reads
+        is the plant's), else one measured into the law's own."""
         if len(stamp) == 0:
             return
         Lg, cell, work = P[7], P[11], P[12]
-        measure(P[0], P[1], P[2], P[6], Lg[i, 0], Lg[i, 1], y, cell, work)
+        if _made_at(P, i, y):
+            cell = P[8]
+        else:
+            measure(P[0], P[1], P[2], P[6], Lg[i, 0], Lg[i, 1], y, cell, work)
         computed_torque(P[0], P[1], P[2], P[6], y, qdd, cell, X, work)
 
     @jit
@@ -100,7 +140,7 @@ def _make(stamp):
             return
         tip_kinematics(P[0], P[1], P[2], q, qd, qdd, out)
 
-    return rhs, keep, inverse, gravity, arm_tip
+    return prepare, rhs, keep, inverse, gravity, arm_tip
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
@@ -108,8 +148,8 @@ def _make(stamp):
 #: a callee edited elsewhere would otherwise be linked stale).
 STAMP = c.STAMP + hashlib.sha256((inspect.getsource(ep) + inspect.getsource(shared)
                                   + inspect.getsource(ck)).encode()).hexdigest()
-rhs, keep, inverse, gravity, arm_tip = _make(STAMP)
-check, coords, payload, prepare = shared.check, shared.coords, shared.payload, shared.prepare
+prepare, rhs, keep, inverse, gravity, arm_tip = _make(STAMP)
+check, coords, payload = shared.check, shared.coords, shared.payload
 
 
 def params(plant) -> tuple:
@@ -122,4 +162,4 @@ def params(plant) -> tuple:
     return (a.flat, a.layout, a.prismatic, e.flat, e.layout, e.prismatic, par,
             np.ascontiguousarray(plant.Lg), np.zeros(ep.CELL), np.zeros(ep.WORK),
             np.zeros(1, dtype=np.int64), np.zeros(ep.CELL), np.zeros(ep.WORK), np.zeros(24),
-            np.zeros(9))
+            np.zeros(9), np.full(25, np.nan))
