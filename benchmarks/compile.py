@@ -52,6 +52,8 @@ FIRST = {
     "first_simulate": ["simulate", "--trajectory", "table1", "--duration", "1"],
     "first_simulate_elastic": ["simulate", "--scene", "scenes/compensated_lift.toml",
                                "--duration", "1"],
+    "first_simulate_hanging": ["simulate", "--scene", "scenes/hanging_load.toml",
+                               "--duration", "1"],
 }
 #: The issue's bound on a first simulate's wait [s].
 FIRST_TARGET = 15.0

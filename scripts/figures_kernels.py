@@ -290,10 +290,12 @@ def compile_rows(r: dict) -> dict:
             f"{par['others_cores']:.1f} of the {cores} cores meanwhile")
     kernels = ", ".join(f"{k} {s:.0f} s" for k, s in one["kernels"].items())
     rigid, lift = r["first_simulate"], r["first_simulate_elastic"]
+    hanging = r["first_simulate_hanging"]
+    waits = [x["wall_s"] for x in (rigid, lift, hanging)]
     first = (f"a first `simulate` on a cold cache waits {rigid['wall_s']:.0f} s (the rigid "
-             f"robot along Table 1) and {lift['wall_s']:.0f} s (the elastic compensated "
-             f"lift), against issue 37's 15 s "
-             f"({_met(max(rigid['wall_s'], lift['wall_s']) <= 15)})")
+             f"robot along Table 1), {lift['wall_s']:.0f} s (the elastic compensated "
+             f"lift) and {hanging['wall_s']:.0f} s (scenes/hanging_load.toml), against "
+             f"issue 37's 15 s ({_met(max(waits) <= 15)})")
     return {
         ("README.md", "figure compile-short"):
             f"{one['wall_s']:.0f} s for the whole set in one process, {par['wall_s']:.0f} s "

@@ -35,10 +35,15 @@ from offshore_crane.dynamics.cable.work import WORK, carve_accelerations, carve_
 from offshore_crane.dynamics.formulas import STORE_WIDTH
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 
-tip_motion, pendulum, cable_force = c.K.tip_motion, c.K.pendulum, c.K.cable_force
-hoisted_pendulum = c.K.hoisted_pendulum
+#: The tip's motion and state, called (compiled once, :data:`~offshore_crane.dynamics.
+#: compiled.KE`), not inlined: seven kernels here run them, and each inlined copy of the
+#: arm's kinematics cost its kernel seconds of compile (a first hanging-load ``simulate``
+#: compiled them five times over); a call a stage costs the run little (the commit log
+#: measures both).
+tip_motion, tip_state = c.KE.tip_motion, c.KE.tip_state
+pendulum, hoisted_pendulum, cable_force = c.K.pendulum, c.K.hoisted_pendulum, c.K.cable_force
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
-tip_state, hanging_velocity, drag_force = c.K.tip_state, c.K.hanging_velocity, c.K.drag_force
+hanging_velocity, drag_force = c.K.hanging_velocity, c.K.drag_force
 explicit_sample, cholesky_solve, solve6 = c.call_explicit, c.cholesky_solve, c.solve6
 kinetic_energy = c.kinetic_energy
 actuation_minus_bias = c.actuation_minus_bias

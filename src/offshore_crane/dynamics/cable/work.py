@@ -1,7 +1,8 @@
 """The scratch of the hanging load's one-state kernels (:func:`~offshore_crane.dynamics.
 cable.kernels.accelerations`, :func:`~offshore_crane.dynamics.cable.kernels.
-computed_torque`): one buffer of :data:`WORK` floats, cut into views at each call instead
-of some twenty small arrays allocated at every RK4 stage (imports Numba).
+computed_torque`, the hanging plant's tension): one buffer of :data:`WORK` floats, cut
+into views at each call instead of some twenty small arrays allocated at every RK4 stage
+(imports Numba).
 
 Each kernel has a region of its own (the law and the plant run at the same stage), laid
 out for the longest chain (:data:`N` coordinates: the platform's 6, an arm of 3 joints
@@ -28,9 +29,14 @@ _ACCEL = (N, 36, N * N, N * N, 3 * N, 3 * N, 3 * N, 42, NA * STORE_WIDTH, 3, N, 
 #: :func:`carve_law`'s: q̈, the arm rows, the Stewart matrix, its right-hand side, the
 #: diagnostics, the arm store, the leg forces, the Gauss–Jordan scratch and zeros.
 _LAW = (N, NA, 36, 6, 42, NA * STORE_WIDTH, 6, 78, N)
-_STARTS = tuple(sum((_ACCEL + _LAW)[:i]) for i in range(len(_ACCEL + _LAW) + 1))
+#: :func:`carve_tension`'s: the Kane pass's arm rows, Stewart matrix, right-hand side,
+#: diagnostics and arm store.
+_TENSION = (NA, 36, 6, 42, NA * STORE_WIDTH)
+_ALL = _ACCEL + _LAW + _TENSION
+_STARTS = tuple(sum(_ALL[:i]) for i in range(len(_ALL) + 1))
 (_B, _J, _M, _L, _VW, _WW, _VS, _DIAG, _STORE, _MC, _RHS, _ZERO, _UNIT, _QDD, _ROWS, _A,
- _RHS6, _LDIAG, _LSTORE, _X, _M13, _LZERO, WORK) = _STARTS
+ _RHS6, _LDIAG, _LSTORE, _X, _M13, _LZERO, _TROWS, _TA, _TRHS6, _TDIAG, _TSTORE,
+ WORK) = _STARTS
 
 
 @njit(inline="always", **JIT)
@@ -55,3 +61,11 @@ def carve_law(w, na):
             c_view(w, _RHS6, (6,)), c_view(w, _LDIAG, (7, 6)),
             c_view(w, _LSTORE, (na, STORE_WIDTH)), c_view(w, _X, (6,)),
             c_view(w, _M13, (6, 13)), c_view(w, _LZERO, (n,)))
+
+
+@njit(inline="always", **JIT)
+def carve_tension(w, na):
+    """The views of the hanging plant's tension (its Kane pass at a recorded sample) for a
+    chain of ``na`` bodies: ``(rows, A, rhs6, diag, store)``."""
+    return (c_view(w, _TROWS, (na,)), c_view(w, _TA, (6, 6)), c_view(w, _TRHS6, (6,)),
+            c_view(w, _TDIAG, (7, 6)), c_view(w, _TSTORE, (na, STORE_WIDTH)))

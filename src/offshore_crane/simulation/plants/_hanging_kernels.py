@@ -13,6 +13,7 @@ import numpy as np
 
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.cable import kernels as ck
+from offshore_crane.dynamics.cable.work import carve_tension
 from offshore_crane.kernel_cache import njit
 from offshore_crane.simulation.plants import shared_kernels as shared
 from offshore_crane.stops import CODES
@@ -24,6 +25,7 @@ jit = njit(**c.JIT)
 accelerations, computed_torque = ck.ACCELERATIONS.call, ck.COMPUTED_TORQUE.call
 pay_kernel = ck.payload
 set_length, tip_kinematics = ck.set_length, ck.tip_kinematics
+kane_call, cable_force = c.call_kane, c.K.cable_force
 actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
 #: A coordinate beyond this has diverged (record.DIVERGED_STATE).
 LIMIT = 1e6
@@ -72,8 +74,27 @@ def _make(stamp):
         return OK if ok else SINGULAR
 
     @jit
+    def tension(P, y, dy):
+        """The cable's tension [N] at the state ``y`` moving at ``dy``'s accelerations: the
+        fused Kane pass of the chain with the sway joints (the fixed length's arrays),
+        and the force its store carries across the sway joints (as the cable's inverse
+        dynamics, :func:`~offshore_crane.dynamics.cable.kernels.kane`)."""
+        if len(stamp) == 0:
+            return 0.0
+        C = unpack(P[0], P[1], P[2])[0]
+        rows, A, rhs6, diag, store = carve_tension(P[18], C.n_arm)
+        rows[:] = 0.0
+        diag[:] = 0.0
+        g = P[5]
+        kane_call(C, y[:11], y[11:22], dy[11:22], (g[0], g[1], g[2]), False, 0, True, rows,
+                  A, rhs6, diag, store)
+        return cable_force(C, store)[1]
+
+    @jit
     def keep(P, EXTRA, k, y, dy, aux):
-        """The sway, its rate and acceleration (2 each) and the energy into ``EXTRA[k]``."""
+        """The sway, its rate and acceleration (2 each), the energy and, on a cable of a
+        fixed length, its tension (before the drag's share, which the plant's ``finish``
+        adds; NaN with a winch: ``finish`` forms the hoisted pull) into ``EXTRA[k]``."""
         if len(stamp) == 0:
             return
         for j in range(2):
@@ -81,6 +102,7 @@ def _make(stamp):
             EXTRA[k, 2 + j] = y[20 + j]
             EXTRA[k, 4 + j] = dy[20 + j]
         EXTRA[k, 6] = aux[1]
+        EXTRA[k, 7] = tension(P, y, dy) if P[17].shape[0] == 1 else np.nan
 
     @jit
     def inverse(P, i, y, qdd, X):

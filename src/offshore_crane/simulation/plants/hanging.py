@@ -21,7 +21,7 @@ class HangingPlant(Plant):
     size = 22
     Q = slice(0, 9)
     QD = slice(11, 20)
-    RECORDED = {"sway": 2, "sway_rate": 2, "sway_acc": 2, "energy": 0}
+    RECORDED = {"sway": 2, "sway_rate": 2, "sway_acc": 2, "energy": 0, "tension": 0}
     KERNELS = "offshore_crane.simulation.plants._hanging_kernels"
 
     def __init__(self, robot, model, gravity, hoist=None, tt=None):
@@ -69,29 +69,27 @@ class HangingPlant(Plant):
 
             L = hoist_grid(self.hoist, res.t)
             res.info["length"] = L[:, 0]
-        return finish(self.robot, res, rec["sway_acc"][:n], self.g, limits, L)
+        return finish(self.robot, res, rec["sway_acc"][:n], self.g, limits, L,
+                      rec["tension"][:n])
 
 
-def finish(robot, res, sway_acc, g, limits, L=None):
+def finish(robot, res, sway_acc, g, limits, L, tension):
     """The hanging plant's record completed (:func:`_finish`) and its first slack-cable
     sample or workspace violation ``(sample, StopCause, words)``, or None."""
     from offshore_crane.simulation.record import finite_rows
 
-    _finish(robot, res, sway_acc, g, limits, L)
+    _finish(robot, res, sway_acc, g, L, tension)
     return _slack_or_workspace(robot, res.truncated(finite_rows(res)), limits)
 
 
-def _finish(robot, res, sway_acc, g, limits, L=None) -> None:
-    """The tension and the actuators' power filled in from the recorded samples (one pass
-    of the cable's Kane kernel, on blocks of samples vectorised across them; with a
-    winch's ``L`` ``(n, 3)`` [m, m/s, m/s²], the hoisted pendulum's pull on NumPy
-    arrays)."""
-    from offshore_crane.dynamics.cable import kernels as ck
+def _finish(robot, res, sway_acc, g, L, tension) -> None:
+    """The tension and the actuators' power filled in from the recorded samples: on a
+    cable of a fixed length the ``tension`` the loop recorded (the Kane pass at each
+    sample, :func:`~offshore_crane.simulation.plants._hanging_kernels` ``keep``) and the
+    drag's share along the cable; with a winch's ``L`` ``(n, 3)`` [m, m/s, m/s²], the
+    hoisted pendulum's pull on NumPy arrays."""
     from offshore_crane.dynamics.constants import cable_arrays
-    from offshore_crane.dynamics.lanes import kane_kernel
-    from offshore_crane.robot.kinematics.formulas import FULL
     from offshore_crane.simulation.record import actuator_power
-    from offshore_crane.robot.kinematics import workspace as ws
 
     n = len(res)
     if n == 0:
@@ -104,22 +102,14 @@ def _finish(robot, res, sway_acc, g, limits, L=None) -> None:
                                    Y, L, g)[2][:, 3]
         res.power = actuator_power(robot, res.q, res.qd, res.X)
         return
-    arrays = cable_arrays(robot)
-    q11 = np.ascontiguousarray(np.concatenate([res.q, res.sway], 1))
-    qd11 = np.ascontiguousarray(np.concatenate([res.qd, res.sway_rate], 1))
-    qdd11 = np.ascontiguousarray(np.concatenate([res.qdd, sway_acc], 1))
-    F = np.full((n, 6), np.nan)              # a non-finite sample is skipped: NaN row
-    kane = kane_kernel(arrays, FULL, cable=True) or ck.kane      # blocks of samples
-    kane(arrays.flat, arrays.layout, arrays.prismatic, robot.hybrid.sway_damping, q11, qd11,
-         qdd11, g, False, False, np.inf, np.inf, 0, n, np.empty((n, 9)), np.empty((3, 1)),
-         ws.new_health(), F)
+    T = np.array(tension, dtype=float)
     if robot.hybrid.drag > 0.0:             # the pull along the cable takes the drag too
         from offshore_crane.dynamics.cable.forces import hanging_drag
 
-        f, _, _, _, e = hanging_drag(robot, arrays.kane, res.q, res.qd, res.qdd,
-                                     np.hstack([res.sway, res.sway_rate]), None)
-        F[:, 3] += np.einsum("ij,ij->i", f, e)
-    res.tension = F[:, 3]
+        f, _, _, _, e = hanging_drag(robot, cable_arrays(robot).kane, res.q, res.qd,
+                                     res.qdd, np.hstack([res.sway, res.sway_rate]), None)
+        T += np.einsum("ij,ij->i", f, e)
+    res.tension = T
     res.power = actuator_power(robot, res.q, res.qd, res.X)
 
 
