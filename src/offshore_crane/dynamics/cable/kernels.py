@@ -460,12 +460,14 @@ def _make(stamp):
 STAMP = c.STAMP + hashlib.sha256(inspect.getsource(_work).encode()).hexdigest()
 integrate, kane, kane_pulled, accelerations, computed_torque, payload = _make(STAMP)
 
-#: :func:`accelerations` and :func:`computed_torque` called by address
+#: :func:`accelerations`, :func:`computed_torque` and :func:`payload` called by address
 #: (:mod:`offshore_crane.kernel_calls`): the hanging plant's loops, one per law, call
-#: them without compiling their Kane passes again.
+#: them without compiling their Kane passes and the tip's kinematics again.
 ACCELERATIONS = kernel_calls.Entry.typed(
     "cable_accelerations", lambda: accelerations,
     "boolean(*PACKED, V, float64, V, V, V, V, float64, float64, V, V, V)", STAMP)
 COMPUTED_TORQUE = kernel_calls.Entry.typed(
     "cable_computed_torque", lambda: computed_torque,
     "float64(*PACKED, V, float64, V, V, V, V, float64, float64, V, V)", STAMP)
+PAYLOAD = kernel_calls.Entry.typed("cable_payload", lambda: payload,
+                                   "none(*PACKED, V, V, float64, V)", STAMP)

@@ -11,6 +11,7 @@ import inspect
 
 import numpy as np
 
+from offshore_crane import kernel_calls
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.cable import kernels as ck
 from offshore_crane.dynamics.cable.work import carve_tension
@@ -23,7 +24,7 @@ jit = njit(**c.JIT)
 #: The plant's Kane passes, called by address: each loop (one per law) compiles its own
 #: code only (:mod:`offshore_crane.kernel_calls`).
 accelerations, computed_torque = ck.ACCELERATIONS.call, ck.COMPUTED_TORQUE.call
-pay_kernel = ck.payload
+pay_kernel = ck.PAYLOAD.call
 set_length, tip_kinematics = ck.set_length, ck.tip_kinematics
 kane_call, cable_force = c.call_kane, c.K.cable_force
 actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
@@ -74,18 +75,19 @@ def _make(stamp):
         return OK if ok else SINGULAR
 
     @jit
-    def tension(P, y, dy):
-        """The cable's tension [N] at the state ``y`` moving at ``dy``'s accelerations: the
-        fused Kane pass of the chain with the sway joints (the fixed length's arrays),
-        and the force its store carries across the sway joints (as the cable's inverse
-        dynamics, :func:`~offshore_crane.dynamics.cable.kernels.kane`)."""
+    def tension(flat, lay, prism, g, y, dy, work):
+        """The cable's tension [N] at the state ``y`` (22,) moving at ``dy``'s
+        accelerations: the fused Kane pass of the chain with the sway joints (the arrays
+        ``flat, lay, prism`` of the fixed length; ``g`` (3,) [m/s²]), and the force its
+        store carries across the sway joints (as the cable's inverse dynamics,
+        :func:`~offshore_crane.dynamics.cable.kernels.kane`). ``work``: the plant's
+        scratch (:mod:`offshore_crane.dynamics.cable.work`)."""
         if len(stamp) == 0:
             return 0.0
-        C = unpack(P[0], P[1], P[2])[0]
-        rows, A, rhs6, diag, store = carve_tension(P[18], C.n_arm)
+        C = unpack(flat, lay, prism)[0]
+        rows, A, rhs6, diag, store = carve_tension(work, C.n_arm)
         rows[:] = 0.0
         diag[:] = 0.0
-        g = P[5]
         kane_call(C, y[:11], y[11:22], dy[11:22], (g[0], g[1], g[2]), False, 0, True, rows,
                   A, rhs6, diag, store)
         return cable_force(C, store)[1]
@@ -102,7 +104,8 @@ def _make(stamp):
             EXTRA[k, 2 + j] = y[20 + j]
             EXTRA[k, 4 + j] = dy[20 + j]
         EXTRA[k, 6] = aux[1]
-        EXTRA[k, 7] = tension(P, y, dy) if P[17].shape[0] == 1 else np.nan
+        EXTRA[k, 7] = (call_tension(P[0], P[1], P[2], P[5], y, dy, P[18])
+                       if P[17].shape[0] == 1 else np.nan)
 
     @jit
     def inverse(P, i, y, qdd, X):
@@ -148,14 +151,19 @@ def _make(stamp):
             return
         tip_kinematics(P[8], P[9], P[10], q, qd, qdd, out)
 
-    return rhs, check, keep, inverse, gravity, coords, payload, arm_tip
+    return rhs, check, keep, inverse, gravity, coords, payload, arm_tip, tension
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
 #: cable's kernels they call (Numba's cache checks only a function's own file, so a
 #: callee edited elsewhere would otherwise be linked stale).
 STAMP = ck.STAMP + hashlib.sha256(inspect.getsource(ck).encode()).hexdigest()
-rhs, check, keep, inverse, gravity, coords, payload, arm_tip = _make(STAMP)
+rhs, check, keep, inverse, gravity, coords, payload, arm_tip, tension = _make(STAMP)
+#: The tension called by address (:mod:`offshore_crane.kernel_calls`): compiled once,
+#: beside a first loop on a cold cache, not in each loop.
+TENSION = kernel_calls.Entry.typed("hanging_tension", lambda: tension,
+                                   "float64(*PACKED, V, V, V, V)", STAMP)
+call_tension = TENSION.call
 prepare = shared.prepare
 
 
