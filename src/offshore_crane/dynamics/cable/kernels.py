@@ -35,12 +35,21 @@ from offshore_crane.dynamics.cable.work import WORK, carve_accelerations, carve_
 from offshore_crane.dynamics.formulas import STORE_WIDTH
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 
-#: The tip's motion and state, called (compiled once, :data:`~offshore_crane.dynamics.
-#: compiled.KE`), not inlined: seven kernels here run them, and each inlined copy of the
-#: arm's kinematics cost its kernel seconds of compile (a first hanging-load ``simulate``
-#: compiled them five times over); a call a stage costs the run little (the commit log
-#: measures both).
-tip_motion, tip_state = c.KE.tip_motion, c.KE.tip_state
+#: The tip's motion and state (:data:`~offshore_crane.dynamics.compiled.KE`'s), called
+#: by address (:mod:`offshore_crane.kernel_calls`), not inlined: seven kernels here run
+#: them, and each inlined copy of the arm's kinematics cost its kernel seconds of compile
+#: (a first hanging-load ``simulate`` compiled them five times over); by address, a helper
+#: process compiles them once beside the kernels that call them. A call a stage costs
+#: the run little (the commit log measures both).
+_V3 = "UniTuple(float64, 3)"
+TIP_MOTION = kernel_calls.Entry.typed(
+    "tip_motion", lambda: c.KE.tip_motion,
+    f"Tuple((UniTuple({_V3}, 3), {_V3}, {_V3}, {_V3}))(C, V, V, V)", c.STAMP,
+    C=c.kane_constants_type())
+TIP_STATE = kernel_calls.Entry.typed("tip_state", lambda: c.KE.tip_state,
+                                     f"UniTuple({_V3}, 2)(C, V, V)", c.STAMP,
+                                     C=c.kane_constants_type())
+tip_motion, tip_state = TIP_MOTION.call, TIP_STATE.call
 pendulum, hoisted_pendulum, cable_force = c.K.pendulum, c.K.hoisted_pendulum, c.K.cable_force
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
 hanging_velocity, drag_force = c.K.hanging_velocity, c.K.drag_force
