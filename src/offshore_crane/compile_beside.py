@@ -180,10 +180,11 @@ def deal(entries, n: int, seconds) -> tuple[list[list], list[float]]:
 
 def plan(entries, cores: int, seconds, own: float | None) -> tuple[list[list], list[float]]:
     """``entries`` dealt (:func:`deal`) to the number of helpers, at most ``cores``, whose
-    compiles end first beside the kernel's own of ``own`` [s] (:func:`finish`; the fewer
-    on a tie; ``own`` None: ``cores`` helpers). Measured on 2 cores: the rigid robot's
-    first ``simulate`` waited 16.5 s with 2 helpers beside its loop's 10.5 s compile,
-    which 3 processes slowed down (its passes: 6.5 s in all)."""
+    compiles end first beside the kernel's own of ``own`` [s]
+    (:func:`~offshore_crane.compile_times.finish`; the fewer on a tie; ``own`` None:
+    ``cores`` helpers). Measured on 2 cores: the rigid robot's first ``simulate`` waited
+    16.5 s with 2 helpers beside its loop's 10.5 s compile, which 3 processes slowed down
+    (its passes: 6.5 s in all)."""
     from offshore_crane.compile_times import finish
 
     if own is None:

@@ -35,6 +35,7 @@ from offshore_crane.kernel_cache import njit
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics import views
+from offshore_crane.dynamics.cable.work import NA
 from offshore_crane.dynamics.cable.kernels import jit
 from offshore_crane.dynamics.formulas import STORE_WIDTH
 
@@ -62,8 +63,8 @@ _EA, _DAMPING, _C1, _C2, _DRAG = 3, 4, 5, 6, 7
 #: and the tension [N].
 CELL = 10
 #: The most bodies of the chain with the sway joints (an arm of 3 joints, the 2 sway
-#: joints): the work buffer's arm rows.
-_MAX_ARM = 5
+#: joints): the work buffer's arm rows (the hanging load's scratch's, one constant).
+_MAX_ARM = NA
 #: The work buffer's views, in order, by their sizes: the chain's q, q̇, q̈ (6 + its
 #: bodies), the Kane pass's rows, Stewart matrix, right-hand side, diagnostics, arm store,
 #: leg forces and Gauss–Jordan scratch, the forces with and without the pull and the

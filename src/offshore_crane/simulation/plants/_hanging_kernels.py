@@ -16,7 +16,6 @@ from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.cable import kernels as ck
 from offshore_crane.dynamics.cable.work import carve_tension
 from offshore_crane.kernel_cache import njit
-from offshore_crane.simulation.plants import shared_kernels as shared
 from offshore_crane.stops import CODES
 
 OK, _, SINGULAR, DIVERGED, _, _ = CODES
@@ -33,6 +32,12 @@ LIMIT = 1e6
 
 
 def _make(stamp):
+
+    @jit
+    def prepare(P, i, y, aux):
+        """Nothing made ahead of the law (no pass of the plant's that its laws share)."""
+        if len(stamp) == 0:
+            return
 
     @jit
     def winch(P, flat, lay, prism, i):
@@ -151,20 +156,20 @@ def _make(stamp):
             return
         tip_kinematics(P[8], P[9], P[10], q, qd, qdd, out)
 
-    return rhs, check, keep, inverse, gravity, coords, payload, arm_tip, tension
+    return prepare, rhs, check, keep, inverse, gravity, coords, payload, arm_tip, tension
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
 #: cable's kernels they call (Numba's cache checks only a function's own file, so a
 #: callee edited elsewhere would otherwise be linked stale).
 STAMP = ck.STAMP + hashlib.sha256(inspect.getsource(ck).encode()).hexdigest()
-rhs, check, keep, inverse, gravity, coords, payload, arm_tip, tension = _make(STAMP)
+(prepare, rhs, check, keep, inverse, gravity, coords, payload, arm_tip,
+ tension) = _make(STAMP)
 #: The tension called by address (:mod:`offshore_crane.kernel_calls`): compiled once,
 #: beside a first loop on a cold cache, not in each loop.
 TENSION = kernel_calls.Entry.typed("hanging_tension", lambda: tension,
                                    "float64(*PACKED, V, V, V, V)", STAMP)
 call_tension = TENSION.call
-prepare = shared.prepare
 
 
 def params(plant) -> tuple:

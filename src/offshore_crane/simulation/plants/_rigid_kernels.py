@@ -48,6 +48,8 @@ def _work(P):
 def _ws(P):
     """``_work(P)[0]`` alone (fewer views for the compiler to type and lower)."""
     return carve_ws(P[7], max(P[2].shape[0], P[5].shape[0]))
+
+
 unpack = c.unpack
 CT, PDG = codes.COMPUTED_TORQUE, codes.PD_GRAVITY
 

@@ -18,12 +18,6 @@ actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
 def _make(stamp):
 
     @jit
-    def prepare(P, i, y, aux):
-        """Nothing made ahead of the law (a plant without a pass the law could share)."""
-        if len(stamp) == 0:
-            return
-
-    @jit
     def check(P, y, aux, ok):
         """SINGULAR for a singular mass matrix, else OK."""
         if len(stamp) == 0:
@@ -53,7 +47,7 @@ def _make(stamp):
         for j in range(9):
             out[j] = np.nan
 
-    return prepare, check, coords, payload, arm_tip
+    return check, coords, payload, arm_tip
 
 
-prepare, check, coords, payload, arm_tip = _make(c.STAMP)
+check, coords, payload, arm_tip = _make(c.STAMP)
