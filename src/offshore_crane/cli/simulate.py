@@ -176,9 +176,12 @@ def run(args) -> int:
         from offshore_crane.outputs.report import CABLE_COLUMNS
 
         if "payload" in res.info:                      # the elastic cable
-            write_csv(outputs["--out"], f"{CSV_HEADER},{ELASTIC_COLUMNS}",
+            winch = ([res.info["length_rate"], res.info["winch_force"]]
+                     if "winch_force" in res.info else [])    # a commanded winch
+            write_csv(outputs["--out"], f"{CSV_HEADER},{ELASTIC_COLUMNS}"
+                      + (",Ld_m_s,Fw_N" if winch else ""),
                       np.column_stack([res.t, res.q, res.q_ref, res.X, res.info["payload"],
-                                       res.tension, res.info["length"]]))
+                                       res.tension, res.info["length"], *winch]))
         elif res.sway is None:
             write_csv(outputs["--out"], CSV_HEADER,
                       np.column_stack([res.t, res.q, res.q_ref, res.X]))
@@ -235,6 +238,10 @@ def summary(res, controller=None) -> str:
                      f"slack for {slack:.3g} s; cable length "
                      f"{res.info['length'].min():.4g}..{res.info['length'].max():.4g} m "
                      f"(axial period {1e3 * res.info['axial_period']:.3g} ms)")
+        if "winch_force" in res.info:
+            F = res.info["winch_force"]
+            lines.append(f"commanded winch: line pull {F.min():.4g}..{F.max():.4g} N, "
+                         f"saturated {res.info['winch_saturated'].sum() * dt:.3f} s")
     if res.sway is not None and len(res.t):
         angle = np.arccos(np.clip(np.cos(res.sway[:, 0]) * np.cos(res.sway[:, 1]), -1, 1))
         k = int(np.argmax(angle))

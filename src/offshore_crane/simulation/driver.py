@@ -80,7 +80,8 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
             (:func:`~offshore_crane.simulation.record.reference_grid`).
         y0: The plant's initial state.
         timing: :class:`Timing`.
-        lower, upper: ``(9,)`` actuator capacities [N·m, N] (±inf: none).
+        lower, upper: ``(plant.nx,)`` actuator capacities [N·m, N] (±inf: none): the
+            robot's 9, and a commanded winch's line pull last.
         sensors, actuators: :class:`~offshore_crane.simulation.instruments.Sensors`,
             :class:`~offshore_crane.simulation.instruments.Actuators` or None.
         limits: Stop at the first sample outside the workspace.
@@ -114,15 +115,16 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
         (sens.resolution_q, sens.resolution_qd) if sens is not None else (None, None))]
     y = np.concatenate([np.asarray(y0, dtype=float), law.initial_state(), np.zeros(len(lag))])
     n_out = n_steps // out_every + 1
-    rec = [np.full((n_out, 9), np.nan) for _ in range(7)]
-    sat = np.zeros((n_out, 9), dtype=bool)
+    nx = plant.nx
+    rec = [np.full((n_out, 9 if k < 5 else nx), np.nan) for k in range(7)]
+    sat = np.zeros((n_out, nx), dtype=bool)
     extra = np.full((n_out, plant.extra_width()), np.nan)
     status = np.zeros(4, dtype=np.int64)
     halt = progress.stop_flag()
     run = loop_for(plant, law)
     from offshore_crane.simulation.loop import scratch
 
-    W = scratch(len(y), n_p, n_z, delay)
+    W = scratch(len(y), n_p, n_z, delay, nx)
     P, L = plant.params(), law.params()
     lo, hi = (np.ascontiguousarray(np.asarray(b, dtype=float)) for b in (lower, upper))
     progress.run_polled(

@@ -9,6 +9,13 @@ it (computed torque reads the cable's pull measured at the tip, a load cell, so 
 an exact model the tracking error obeys ``ë + Kd ė + Kp e = 0`` however the load flies).
 The step must resolve the cable's axial period ``2π √(m L / EA)``: at least
 :data:`STEPS_PER_PERIOD` steps in the shortest one, or the run is refused.
+
+A winch whose description gives a reflected mass (``actuators.winch.reflected_mass``
+> 0) is a commanded actuator: its length and rate join the state, ``m_w L̈ = T − Fw``,
+and its line pull ``Fw`` is the 10th force. Its drive makes the length follow the
+profile (``hoist``, or the fixed length) with the computed-torque law's default
+closed-loop frequency (:data:`~offshore_crane.simulation.control.CT_OMEGA`, critically
+damped) from the measured tension; a law that returns 10 forces commands the pull itself.
 """
 
 from __future__ import annotations
@@ -50,7 +57,10 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     Returns:
         :class:`~offshore_crane.simulation.rigid.SimulationResult` with ``tension``
         ``(N,)`` [N] and ``info["payload"]``, ``info["payload_velocity"]`` ``(N, 3)``
-        (base frame), ``info["length"]`` ``(N,)`` the cable's length [m].
+        (base frame), ``info["length"]``, ``info["length_rate"]`` ``(N,)`` the cable's
+        length [m] and its rate [m/s]; with a commanded winch ``info["winch_force"]``
+        (applied), ``info["winch_force_cmd"]`` [N], ``info["winch_saturated"]`` and
+        ``info["winch_power"]`` ``−Fw L̇`` [W] ``(N,)``.
 
     Raises:
         InputError: bad arguments, a step too long for the cable's axial period, a law
@@ -61,7 +71,7 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     from offshore_crane.dynamics.cable.elastic import check_cable
     from offshore_crane.dynamics.cable.grid import cable_robot
     from offshore_crane.dynamics.cable.tip import tip_positions
-    from offshore_crane.simulation.control import Controller
+    from offshore_crane.simulation.control import CT_OMEGA, Controller
     from offshore_crane.simulation.plants import ElasticPlant
     from offshore_crane.simulation.runs import prepare
 
@@ -84,7 +94,9 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
         Lg = (np.column_stack([np.full(len(tt), L0), np.zeros(len(tt)), np.zeros(len(tt))])
               if hoist is None else np.column_stack([np.asarray(x, float).reshape(len(tt))
                                                      for x in hoist(tt)]))
-        p = ElasticPlant(robot, model, g, ea=ea, damping=damping, lengths=Lg)
+        p = ElasticPlant(robot, model, g, ea=ea, damping=damping, lengths=Lg,
+                         winch_mass=robot.winch.reflected_mass,
+                         winch_gains=(CT_OMEGA ** 2, 2.0 * CT_OMEGA))
         if step > p.axial_period / STEPS_PER_PERIOD:
             raise InputError(f"step = {step:g} s is too long for the cable's axial period "
                              f"{p.axial_period * 1e3:.3g} ms: give step <= "
@@ -101,7 +113,9 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     rho0 = (g / gn * Lg[0, 0] * (1.0 + m * gn / ea) if initial is None
             else np.asarray(initial, dtype=float).reshape(3))
     v0 = np.asarray(initial_velocity, dtype=float).reshape(3)
-    return run.drive(np.concatenate([run.q0, p_tip + rho0, run.qd0, v_tip + v0]), limits)
+    winch = Lg[0, :2] if run.plant.commanded else []
+    return run.drive(np.concatenate([run.q0, p_tip + rho0, run.qd0, v_tip + v0, winch]),
+                     limits)
 
 
 def warm_up(robot=None) -> list[tuple[str, float]]:

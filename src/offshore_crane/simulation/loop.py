@@ -28,7 +28,7 @@ import numpy as np
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 from offshore_crane.stops import CODES
 from offshore_crane.simulation.templates import (IQ, IQD, check, command, keep,
-                                                law_rate, prepare, rhs, unowned)
+                                                law_rate, prepare, rhs, unowned, winch)
 
 OK, _WORKSPACE, _SINGULAR, DIVERGED, STOPPED, _SLACK = CODES
 
@@ -44,19 +44,23 @@ def evaluate(P, L, i, t, y, dy, qr, qdr, qddr, lo, hi, held, Xh, Xhin, dzh, lag,
              Xc, X, aux):
     """One stage at grid point ``i`` (time ``t`` [s]) and state ``y``: what the plant
     makes ahead at ``y`` (``prepare``: a pass the law may share), the law's command
-    ``Xc`` (or the held one), the actuators (the lag's output or the command, clipped to
-    ``[lo, hi]``) into ``X``, the plant's rates and the law's and the lag's into ``dy``;
-    returns the plant's ``ok`` (False: a singular mass matrix)."""
+    ``Xc`` (or the held one; a commanded winch's pull first from its drive, ``winch``,
+    which the law may overwrite), the actuators (the lag's output or the command, clipped
+    to ``[lo, hi]``, as many forces as ``lo`` holds) into ``X``, the plant's rates and the
+    law's and the lag's into ``dy``; returns the plant's ``ok`` (False: a singular mass
+    matrix)."""
     n_pz = n_p + n_z
     nl = lag.shape[0]
+    nx = lo.shape[0]
     prepare(P, i, y, aux)
     if held:
-        for j in range(9):
+        for j in range(nx):
             Xc[j] = Xh[j]
     else:
+        winch(P, i, y, Xc)
         command(L, P, i, t, y, n_p, qr, qdr, qddr, Xc)
-    for j in range(9):
-        src = y[n_pz + j] if nl > 0 else (Xhin[j] if held else Xc[j])
+    for j in range(nx):
+        src = y[n_pz + j] if j < nl else (Xhin[j] if held else Xc[j])
         X[j] = min(max(src, lo[j]), hi[j])
     ok = rhs(P, i, y, X, dy, aux)
     if n_z > 0:
@@ -74,9 +78,10 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
          nq, nqd, resq, resqd, sens, n_p, n_z, RQ, RQD, RQDD, RQR, RQDR, RXC, RX, SAT, EXTRA,
          status, halt, W):
     """RK4 from ``y`` (modified in place) for ``n_steps`` steps of ``h`` [s]; every
-    ``out_every``-th step recorded (``RQ`` ... ``RX`` ``(n_out, 9)``, ``SAT`` bool, the
-    plant's ``EXTRA``); ``hold`` steps a control period (0: the law at every stage); the
-    sensors (``sens``: ``delay`` steps, noise rows ``nq``, ``nqd`` per control instant,
+    ``out_every``-th step recorded (``RQ`` ... ``RQDR`` ``(n_out, 9)``, ``RXC``, ``RX``,
+    ``SAT`` (bool) ``(n_out, nx)``, the plant's ``EXTRA``); ``nx``: the actuator forces,
+    ``lo``'s length (9, or 10 with a commanded winch, its line pull last); ``hold`` steps
+    a control period (0: the law at every stage); the sensors (``sens``: ``delay`` steps, noise rows ``nq``, ``nqd`` per control instant,
     resolutions ``resq``, ``resqd``), the rate limit ``rlim`` and lag ``lag`` (empty:
     none). ``status``: (stop code, its output sample, samples recorded, control
     instants); ends before a step when ``halt[0]`` is not zero (STOPPED). ``W``: the
@@ -88,6 +93,7 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
     k1, k2, k3, k4, st, ym, dzb, Xc, X, Xh, Xhin, last, dzh, aux, hist, first = unowned(W)
     n = y.shape[0]
     n_pz = n_p + n_z
+    nx = lo.shape[0]
     for j in range(n_p):
         first[j] = y[j]
     held = hold > 0
@@ -113,16 +119,17 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
                     ym[IQ + j] = quantised(ym[IQ + j] + nq[ctrl, j], resq[j])
                     ym[IQD + j] = quantised(ym[IQD + j] + nqd[ctrl, j],
                                             resqd[j])
+            winch(P, i0, ym, Xh)
             command(L, P, i0, tt[i0], ym, n_p, qr[i0], qdr[i0], qddr[i0], Xh)
-            for j in range(9):
-                if rlim.shape[0] > 0 and ctrl > 0:
+            for j in range(nx):
+                if j < rlim.shape[0] and ctrl > 0:
                     step = rlim[j] * period
                     Xhin[j] = last[j] + min(max(Xh[j] - last[j], -step), step)
                 else:
                     Xhin[j] = Xh[j]
                 last[j] = Xhin[j]
             if n_z > 0:
-                for j in range(9):
+                for j in range(nx):
                     X[j] = min(max(Xhin[j], lo[j]), hi[j])
                 law_rate(L, P, i0, tt[i0], ym, n_p, qr[i0], qdr[i0], qddr[i0], Xh, X,
                          dzb)
@@ -132,8 +139,9 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
             status[3] = ctrl
         if s == 0 and lag.shape[0] > 0:
             if not held:
+                winch(P, i0, y, Xhin)
                 command(L, P, i0, tt[i0], y, n_p, qr[i0], qdr[i0], qddr[i0], Xhin)
-            for j in range(9):
+            for j in range(lag.shape[0]):
                 y[n_pz + j] = Xhin[j]
         ok = evaluate(P, L, i0, tt[i0], y, k1, qr[i0], qdr[i0], qddr[i0], lo, hi, held, Xh,
                       Xhin, dzh, lag, n_p, n_z, Xc, X, aux)
@@ -145,6 +153,7 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
                 RQDD[k, j] = k1[IQD + j]
                 RQR[k, j] = qr[i0, j]
                 RQDR[k, j] = qdr[i0, j]
+            for j in range(nx):
                 RXC[k, j] = Xc[j]
                 RX[k, j] = X[j]
                 SAT[k, j] = Xc[j] < lo[j] or Xc[j] > hi[j]
@@ -173,14 +182,14 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
         rk4_combine(y, h, k1, k2, k3, k4)
 
 
-def scratch(n: int, n_p: int, n_z: int, delay: int) -> tuple:
+def scratch(n: int, n_p: int, n_z: int, delay: int, nx: int = 9) -> tuple:
     """The loop's zeroed scratch ``W`` for a state of ``n`` entries (the plant's ``n_p``,
-    the law's ``n_z``) and a sensor delay of ``delay`` steps: the four RK4 slopes, the
-    stage state, the measured state, the law's rate ``(n,)`` each; the command, the
-    applied, held, held-in and last forces ``(9,)`` each; the held law rate
+    the law's ``n_z``), ``nx`` actuator forces and a sensor delay of ``delay`` steps: the
+    four RK4 slopes, the stage state, the measured state, the law's rate ``(n,)`` each;
+    the command, the applied, held, held-in and last forces ``(nx,)`` each; the held law rate
     ``(max(n_z, 1),)``; the plant's ``aux`` ``(4,)``; the measurement history
     ``(delay + 1, n_p)`` and the first measured state ``(n_p,)``."""
-    return (*(np.zeros(n) for _ in range(7)), *(np.zeros(9) for _ in range(5)),
+    return (*(np.zeros(n) for _ in range(7)), *(np.zeros(nx) for _ in range(5)),
             np.zeros(max(n_z, 1)), np.zeros(4), np.zeros((delay + 1, n_p)), np.zeros(n_p))
 
 
@@ -202,8 +211,8 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
 
     Args:
         kernels: The plant's kernel module (``prepare``, ``rhs``, ``check``, ``keep``,
-            ``inverse``, ``gravity``, ``coords``, ``payload``, ``arm_tip``: compiled
-            functions).
+            ``inverse``, ``gravity``, ``coords``, ``payload``, ``arm_tip``, ``winch``:
+            compiled functions).
         law_templates: ``{name: function}``: the law's templates (``command``,
             ``law_rate`` and what they call), instantiated here.
         names: Constants of the namespace (``IQ``, ``IQD``).
@@ -220,7 +229,7 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
     ns: dict = {"__name__": __name__, "np": np, "OK": OK, "DIVERGED": DIVERGED, "STOPPED": STOPPED,
                 "rk4_stage": rk4_stage, "rk4_combine": rk4_combine, INSTANCE: key, **names}
     for name in ("prepare", "rhs", "check", "keep", "inverse", "gravity", "coords",
-                 "payload", "arm_tip"):
+                 "payload", "arm_tip", "winch"):
         ns[name] = getattr(kernels, name)
     if compiled:
         from offshore_crane.dynamics.views import unowned as strip

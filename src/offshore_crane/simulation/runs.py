@@ -17,7 +17,7 @@ from offshore_crane.errors import InputError
 class Run:
     """A prepared run (:func:`prepare`): ``plant``, bound ``law``, ``grid`` (the reference
     at every stage), ``timing`` (:class:`~offshore_crane.simulation.driver.Timing`),
-    ``q0``, ``qd0`` ``(9,)``, capacities ``lower``, ``upper`` ``(9,)``, ``sensors``,
+    ``q0``, ``qd0`` ``(9,)``, capacities ``lower``, ``upper`` ``(plant.nx,)``, ``sensors``,
     ``actuators``, ``info``."""
 
     plant: object
@@ -120,7 +120,11 @@ def prepare(robot, duration, reference, q0, qd0, controller, *, gravity=GRAVITY,
     q0, qd0 = initial_state(q0, qd0, qr[0], qdr[0])
     if not given:
         q0, qd0 = law.start(q0, qd0)
-    lo, hi = (controller if is_controller else Controller()).bounds(p.robot)
+    ctrl = controller if is_controller else Controller()
+    lo, hi = ctrl.bounds(p.robot)
+    if p.nx > 9:            # a commanded winch: its pull within ±pull_max (or none)
+        cap = p.robot.winch.pull_max if ctrl.saturation else np.inf
+        lo, hi = np.append(lo, -cap), np.append(hi, cap)
     info = dict(info or {}, **({} if is_controller else {"controller": "python"}))
     return Run(p, law, (tt, qr, qdr, qddr), Timing(step, n_steps, out_every, hold, t0),
                q0, qd0, lo, hi, sensors, actuators, info)

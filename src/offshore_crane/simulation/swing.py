@@ -46,12 +46,20 @@ def simulate_swing(robot, duration: float, reference, q0=None, qd0=None, control
         SimulationError: the run stopped (workspace, singular, diverged, slack cable);
             ``error.result`` keeps every sample computed before.
     """
+    from offshore_crane.errors import InputError
     from offshore_crane.simulation.plants import HangingPlant
     from offshore_crane.simulation.runs import prepare
     from offshore_crane.validation import as_pair
 
     sway0, rate0 = as_pair(initial, "initial", "rad"), as_pair(initial_rate, "initial_rate",
                                                             "rad/s")
+    m_w = robot.winch.reflected_mass
+    if hoist is not None and m_w > 0.0:
+        raise InputError(f"actuators.winch.reflected_mass = {m_w:g} kg makes the winch a "
+                         "commanded actuator, which runs on an elastic cable only: give the "
+                         "cable's EA ([cable] ea, simulate_elastic) or drop the reflected "
+                         "mass (the winch then follows its length profile)",
+                         name="actuators.winch.reflected_mass")
     run = prepare(robot, duration, reference, q0, qd0, controller, gravity=gravity,
                   step=step, rate=rate, t0=t0, sensors=sensors, actuators=actuators,
                   plant=lambda model, g, tt: HangingPlant(robot, model, g, hoist, tt))

@@ -21,8 +21,6 @@ def _unbound(name: str):
     return call
 
 
-
-
 def unowned(x):
     """``x`` itself: in a compiled loop, :func:`offshore_crane.dynamics.views.unowned`
     (the arrays of the loop's argument tuples without their owner)."""
@@ -34,7 +32,7 @@ rhs, check, keep = _unbound("rhs"), _unbound("check"), _unbound("keep")
 prepare = _unbound("prepare")
 inverse, gravity = _unbound("inverse"), _unbound("gravity")
 coords, payload = _unbound("coords"), _unbound("payload")
-arm_tip = _unbound("arm_tip")
+arm_tip, winch = _unbound("arm_tip"), _unbound("winch")
 # the law's templates (offshore_crane.simulation.laws: Law.templates)
 command, law_rate = _unbound("command"), _unbound("law_rate")
 pd_command, ct_command = _unbound("pd_command"), _unbound("ct_command")

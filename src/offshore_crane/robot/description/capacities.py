@@ -33,9 +33,16 @@ def capacities(has, get, fail) -> Capacities:
     return Capacities(ACTUATORS, *(np.array(cols[k]) for k in ACTUATOR))
 
 def winch_capacities(get, fail) -> WinchCapacities:
-    """``actuators.winch``: each given capacity > 0."""
-    values = {}
+    """``actuators.winch``: each given capacity > 0, a given reflected mass finite and
+    ≥ 0."""
+    mass = get("actuators.winch.reflected_mass", 0.0)
+    if not (math.isfinite(mass) and mass >= 0.0):
+        fail("actuators.winch.reflected_mass", f"{mass:g} kg must be finite and >= 0 (0: an "
+             "ideal winch whose length follows its profile)")
+    values = {"reflected_mass": mass}
     for key in WinchCapacities.__dataclass_fields__:
+        if key == "reflected_mass":
+            continue
         name = f"actuators.winch.{key}"
         x = get(name, math.inf)
         if not x > 0.0:

@@ -46,12 +46,17 @@ class WinchCapacities:
     Attributes:
         pull_max: Largest line pull [N]. speed_max: largest |L̇| [m/s].
         acceleration_max: Largest |L̈| [m/s²]. power_max: largest |Fw L̇| [W].
+        reflected_mass: The drum's and drive's inertia reflected to the line, ``J / r²``
+            [kg] (not a capacity): > 0 makes the winch a commanded actuator of the
+            elastic lift's simulation (its line pull a force, ``m_w L̈ = T − Fw``); 0
+            (the default) an ideal winch whose length follows its profile.
     """
 
     pull_max: float = math.inf
     speed_max: float = math.inf
     acceleration_max: float = math.inf
     power_max: float = math.inf
+    reflected_mass: float = 0.0
 
     def given(self) -> bool:
         """True when every capacity is given (a winch can be judged)."""

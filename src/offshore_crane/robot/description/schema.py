@@ -128,6 +128,8 @@ WINCH = {
     "speed_max": _num("m/s", "largest |hoisting speed| (haul in or pay out)"),
     "acceleration_max": _num("m/s²", "largest |hoisting acceleration|"),
     "power_max": _num("W", "largest |line pull × hoisting speed|"),
+    "reflected_mass": _num("kg", "drum and drive inertia reflected to the line, J/r² (> 0: "
+                           "a commanded winch in the elastic lift's simulation)"),
 }
 PLACEMENT = {"origin": Leaf("vec3", "m", "origin in the parent frame"),
              "rpy": Leaf("vec3", "rad", "orientation in the parent frame (URDF rpy)")}

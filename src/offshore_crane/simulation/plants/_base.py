@@ -27,6 +27,9 @@ class Plant:
 
     name: ClassVar[str] = ""
     size: ClassVar[int] = 18
+    #: The actuator forces the law commands: the robot's 9 (a commanded winch's line
+    #: pull makes 10, :class:`~offshore_crane.simulation.plants.ElasticPlant`).
+    nx: ClassVar[int] = 9
     Q: ClassVar[slice] = slice(0, 9)
     QD: ClassVar[slice] = slice(9, 18)
     #: Arrays the plant records beside the driver's, ``{name: width}`` (0: a scalar).

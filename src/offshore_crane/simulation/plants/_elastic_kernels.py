@@ -3,7 +3,10 @@
 kernels (:mod:`offshore_crane.dynamics.cable.elastic_plant`). ``P`` (:func:`params`): the
 robot's arrays with and without its payload, the kernels' parameters, the winch's length
 at every stage, the load cells and scratch of the plant and of the law, a still state and
-zeros, and the state and stage point the plant's cell was measured at (:func:`prepare`).
+zeros, the state and stage point the plant's cell was measured at (:func:`prepare`), the
+winch's reflected mass [kg] (0: its length is the profile's; > 0: ``(L, L̇)`` are the
+state's last two entries and its line pull the 10th force, :func:`winch`) and its drive's
+gains ``(kp [1/s²], kd [1/s])``.
 
 One load cell a stage: :func:`prepare` measures it before the law is evaluated, and the
 built-in law's :func:`inverse` and the plant's :func:`rhs` read it when they are asked
@@ -37,13 +40,29 @@ _OK = ep.OK
 
 
 @inline
+def _size(P):
+    """The plant's state: 24, or 26 with a commanded winch (``P[16] > 0``)."""
+    return 26 if P[16] > 0.0 else 24
+
+
+@inline
+def _length(P, i, y):
+    """The cable's length L [m] and its rate L̇ [m/s]: the commanded winch's state, else
+    the profile's at stage point ``i``."""
+    if P[16] > 0.0:
+        return y[24], y[25]
+    return P[7][i, 0], P[7][i, 1]
+
+
+@inline
 def _made_at(P, i, y):
     """True when the plant's load cell ``P[8]`` was measured at stage point ``i`` and
-    state ``y`` (value for value; ``P[15]``: that state and ``i``, NaN before any)."""
+    state ``y`` (value for value; ``P[15]``: that state and ``i`` last, NaN before
+    any)."""
     at = P[15]
-    if at[24] != i:
+    if at[26] != i:
         return False
-    for j in range(24):
+    for j in range(_size(P)):
         if at[j] != y[j]:
             return False
     return True
@@ -59,35 +78,42 @@ def _make(stamp):
         two; the numbers are the same)."""
         if len(stamp) == 0:
             return
-        Lg, at = P[7], P[15]
-        measure(P[0], P[1], P[2], P[6], Lg[i, 0], Lg[i, 1], y, P[8], P[9])
-        for j in range(24):
+        at = P[15]
+        L, Ld = _length(P, i, y)
+        measure(P[0], P[1], P[2], P[6], L, Ld, y, P[8], P[9])
+        for j in range(_size(P)):
             at[j] = y[j]
-        at[24] = i
+        at[26] = i
 
     @inline
     def rhs(P, i, y, X, dy, aux):
-        """ẏ (24,) into ``dy[:24]``; ``aux[0]`` ok, ``aux[1]`` the tension [N], ``aux[2]``
-        the cable's length [m]. The load cell :func:`prepare` measured at ``y``, else
-        one measured here."""
+        """ẏ (24, or 26 with a commanded winch: ``m_w L̈ = T − X[9]``) into ``dy``;
+        ``aux[0]`` ok, ``aux[1]`` the tension [N], ``aux[2]``, ``aux[3]`` the cable's
+        length [m] and its rate [m/s]. The load cell :func:`prepare` measured at ``y``,
+        else one measured here."""
         if len(stamp) == 0:
             return False
-        Lg, status = P[7], P[10]
-        T = derivative(P[0], P[1], P[2], P[3], P[4], P[5], P[6], Lg[i, 0], Lg[i, 1], y, X,
+        status = P[10]
+        L, Ld = _length(P, i, y)
+        T = derivative(P[0], P[1], P[2], P[3], P[4], P[5], P[6], L, Ld, y, X,
                        dy, P[8], P[9], status, _made_at(P, i, y))
+        if P[16] > 0.0:
+            dy[24] = y[25]
+            dy[25] = (T - X[9]) / P[16]
         ok = status[0] == _OK
         aux[0] = 1.0 if ok else 0.0
         aux[1] = T
-        aux[2] = Lg[i, 0]
+        aux[2] = L
+        aux[3] = Ld
         return ok
 
     @jit
     def keep(P, EXTRA, k, y, dy, aux):
-        """The payload's position and velocity (3 each), the tension, the length and the
-        mechanical energy [J]: the robot's ``T − g · Σ m c`` (the mass matrix and mass
-        moments its equations of motion just formed at ``y``), the payload's
-        ``½ m |v|² − m g · p`` and the cable's strain energy ``½ EA s² / L`` while taut
-        (``s = |ρ| − L``; the load cell's ρ)."""
+        """The payload's position and velocity (3 each), the tension, the length, the
+        mechanical energy [J] and the length's rate: the robot's ``T − g · Σ m c`` (the
+        mass matrix and mass moments its equations of motion just formed at ``y``), the
+        payload's ``½ m |v|² − m g · p``, the cable's strain energy ``½ EA s² / L`` while
+        taut (``s = |ρ| − L``; the load cell's ρ) and a commanded winch's ``½ m_w L̇²``."""
         if len(stamp) == 0:
             return
         for j in range(3):
@@ -106,7 +132,10 @@ def _make(stamp):
         stretch = np.sqrt(cell[3] ** 2 + cell[4] ** 2 + cell[5] ** 2) - aux[2]
         if stretch > 0.0:
             E += 0.5 * par[3] * stretch * stretch / aux[2]
+        if P[16] > 0.0:
+            E += 0.5 * P[16] * y[25] * y[25]
         EXTRA[k, 8] = E
+        EXTRA[k, 9] = aux[3]
 
     @inline
     def inverse(P, i, y, qdd, X):
@@ -115,11 +144,12 @@ def _make(stamp):
         is the plant's), else one measured into the law's own."""
         if len(stamp) == 0:
             return
-        Lg, cell, work = P[7], P[11], P[12]
+        cell, work = P[11], P[12]
         if _made_at(P, i, y):
             cell = P[8]
         else:
-            measure(P[0], P[1], P[2], P[6], Lg[i, 0], Lg[i, 1], y, cell, work)
+            L, Ld = _length(P, i, y)
+            measure(P[0], P[1], P[2], P[6], L, Ld, y, cell, work)
         computed_torque(P[0], P[1], P[2], P[6], y, qdd, cell, X, work)
 
     @jit
@@ -127,8 +157,9 @@ def _make(stamp):
         """The static forces with the measured pull (rates of the robot zero)."""
         if len(stamp) == 0:
             return
-        Lg, cell, work, still = P[7], P[11], P[12], P[13]
-        measure(P[0], P[1], P[2], P[6], Lg[i, 0], Lg[i, 1], y, cell, work)
+        cell, work, still = P[11], P[12], P[13]
+        L, Ld = _length(P, i, y)
+        measure(P[0], P[1], P[2], P[6], L, Ld, y, cell, work)
         for j in range(24):
             still[j] = y[j] if (j < 12 or j >= 21) else 0.0
         computed_torque(P[0], P[1], P[2], P[6], still, P[14], cell, X, work)
@@ -140,7 +171,28 @@ def _make(stamp):
             return
         tip_kinematics(P[0], P[1], P[2], q, qd, qdd, out)
 
-    return prepare, rhs, keep, inverse, gravity, arm_tip
+    @jit
+    def winch(P, i, y, X):
+        """A commanded winch's drive (``P[16] > 0``; else nothing): the line pull
+        ``X[9] = T − m_w (L̈_r + kd (L̇_r − L̇) + kp (L_r − L))`` [N] that makes the length
+        follow its profile ``(L_r, L̇_r, L̈_r)`` at stage point ``i`` with the error obeying
+        ``ë + kd ė + kp e = 0``, the tension ``T`` measured (the plant's load cell when
+        :func:`prepare` measured it at ``y``). Called before the law, which may overwrite
+        ``X[9]`` (it commands the winch then)."""
+        if len(stamp) == 0:
+            return
+        m = P[16]
+        if m <= 0.0:
+            return
+        Lg, gains = P[7], P[17]
+        if _made_at(P, i, y):
+            T = P[8][9]
+        else:
+            T = measure(P[0], P[1], P[2], P[6], y[24], y[25], y, P[11], P[12])
+        X[9] = T - m * (Lg[i, 2] + gains[1] * (Lg[i, 1] - y[25])
+                        + gains[0] * (Lg[i, 0] - y[24]))
+
+    return prepare, rhs, keep, inverse, gravity, arm_tip, winch
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
@@ -148,7 +200,7 @@ def _make(stamp):
 #: a callee edited elsewhere would otherwise be linked stale).
 STAMP = c.STAMP + hashlib.sha256((inspect.getsource(ep) + inspect.getsource(shared)
                                   + inspect.getsource(ck)).encode()).hexdigest()
-prepare, rhs, keep, inverse, gravity, arm_tip = _make(STAMP)
+prepare, rhs, keep, inverse, gravity, arm_tip, winch = _make(STAMP)
 check, coords, payload = shared.check, shared.coords, shared.payload
 
 
@@ -162,4 +214,5 @@ def params(plant) -> tuple:
     return (a.flat, a.layout, a.prismatic, e.flat, e.layout, e.prismatic, par,
             np.ascontiguousarray(plant.Lg), np.zeros(ep.CELL), np.zeros(ep.WORK),
             np.zeros(1, dtype=np.int64), np.zeros(ep.CELL), np.zeros(ep.WORK), np.zeros(24),
-            np.zeros(9), np.full(25, np.nan))
+            np.zeros(9), np.full(27, np.nan), float(plant.winch_mass),
+            np.array(plant.winch_gains, dtype=float))

@@ -16,6 +16,7 @@ from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics.cable import kernels as ck
 from offshore_crane.dynamics.cable.work import carve_tension
 from offshore_crane.kernel_cache import njit
+from offshore_crane.simulation.plants import shared_kernels as shared
 from offshore_crane.stops import CODES
 
 OK, _, SINGULAR, DIVERGED, _, _ = CODES
@@ -160,9 +161,10 @@ def _make(stamp):
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
-#: cable's kernels they call (Numba's cache checks only a function's own file, so a
-#: callee edited elsewhere would otherwise be linked stale).
-STAMP = ck.STAMP + hashlib.sha256(inspect.getsource(ck).encode()).hexdigest()
+#: cable's kernels and the shared ones they call (Numba's cache checks only a function's
+#: own file, so a callee edited elsewhere would otherwise be linked stale).
+STAMP = ck.STAMP + hashlib.sha256((inspect.getsource(ck) + inspect.getsource(shared)
+                                   ).encode()).hexdigest()
 (prepare, rhs, check, keep, inverse, gravity, coords, payload, arm_tip,
  tension) = _make(STAMP)
 #: The tension called by address (:mod:`offshore_crane.kernel_calls`): compiled once,
@@ -170,6 +172,8 @@ STAMP = ck.STAMP + hashlib.sha256(inspect.getsource(ck).encode()).hexdigest()
 TENSION = kernel_calls.Entry.typed("hanging_tension", lambda: tension,
                                    "float64(*PACKED, V, V, V, V)", STAMP)
 call_tension = TENSION.call
+#: A winch on a rigid cable follows its length profile: it takes no command.
+winch = shared.winch
 
 
 def params(plant) -> tuple:

@@ -1,6 +1,8 @@
 """The robot with its payload on an elastic cable and a winch (docs/cable.md, "Forward
 simulation of the real lift"): ``y = (q, p, q̇, v)`` (24,), the payload a point mass at
-``p`` (base frame) with three free coordinates.
+``p`` (base frame) with three free coordinates; with a commanded winch (a reflected mass
+``m_w`` > 0) ``y = (q, p, q̇, v, L, L̇)`` (26,) and the winch's line pull ``Fw`` the 10th
+actuator force: ``m_w L̈ = T − Fw`` (the tension pays the line out, the pull hauls it in).
 
 - the cable's tension ``T = EA s / L + c ṡ`` while taut and pulling, else 0 (the formulas
   of :func:`offshore_crane.dynamics.sway.cable_tension`, ``L(t)`` the winch's length);
@@ -33,11 +35,16 @@ class ElasticPlant(Plant):
     size = 24
     Q = slice(0, 9)
     QD = slice(12, 21)
-    RECORDED = {"payload": 3, "payload_velocity": 3, "tension": 0, "length": 0, "energy": 0}
+    RECORDED = {"payload": 3, "payload_velocity": 3, "tension": 0, "length": 0, "energy": 0,
+                "length_rate": 0}
     KERNELS = "offshore_crane.simulation.plants._elastic_kernels"
 
-    def __init__(self, robot, model, gravity, *, ea, damping, lengths):
-        """``lengths`` ``(n_stages, 3)``: the winch's L [m], L̇, L̈ at every stage time."""
+    def __init__(self, robot, model, gravity, *, ea, damping, lengths, winch_mass=0.0,
+                 winch_gains=(0.0, 0.0)):
+        """``lengths`` ``(n_stages, 3)``: the winch's L [m], L̇, L̈ at every stage time
+        (with a commanded winch, the profile its drive follows). ``winch_mass``: the
+        winch's reflected mass [kg] (0: its length is the profile's); ``winch_gains``:
+        its drive's ``(kp [1/s²], kd [1/s])`` (the kernels' ``winch``)."""
         from offshore_crane.dynamics import backends
         from offshore_crane.dynamics.cable.grid import cable_robot
         from offshore_crane.dynamics.constants import cable_arrays
@@ -47,6 +54,10 @@ class ElasticPlant(Plant):
         self.empty = robot.without_hanging_payload()
         self.m = float(robot.hybrid.cable.mass[-1])
         self.ea, self.damping, self.Lg = float(ea), float(damping), lengths
+        self.winch_mass, self.winch_gains = float(winch_mass), tuple(winch_gains)
+        self.commanded = self.winch_mass > 0.0
+        #: The state's entries and the actuator forces (the winch's state and pull).
+        self.size, self.nx = (26, 10) if self.commanded else (24, 9)
         #: The cable's shortest axial period ``2π √(m L_min / EA)`` [s].
         self.axial_period = 2.0 * math.pi * math.sqrt(self.m * float(lengths[:, 0].min())
                                                       / self.ea)
@@ -66,6 +77,13 @@ class ElasticPlant(Plant):
                            np.zeros((1, 6)), self.g, False, False, Thresholds(),
                            P=pull[None], at=at[None])[0][0]
 
+    def length(self, i, y) -> tuple[float, float]:
+        """``(L [m], L̇ [m/s])`` at stage point i: the commanded winch's state, else the
+        profile's."""
+        if self.commanded:
+            return float(y[24]), float(y[25])
+        return float(self.Lg[i, 0]), float(self.Lg[i, 1])
+
     def cable(self, i, y):
         """``(pull on the robot (3,), where it acts (ρ, 3,), tension, the cable's, the
         damping's and the air's force on the payload (3,))`` at stage point i, state y
@@ -78,11 +96,10 @@ class ElasticPlant(Plant):
 
         pt, vt = (x[0] for x in tip_positions(self.robot, y[None, :9], y[None, 12:21]))
         rho, rhod = y[9:12] - pt, y[21:24] - vt
-        Lg = self.Lg
+        L, Ld = (np.array([x]) for x in self.length(i, y))
         with np.errstate(divide="ignore", invalid="ignore"):
             T, s, _ = self._B.cable_tension(tuple(rho[:, None]), tuple(rhod[:, None]),
-                                            Lg[i:i + 1, 0], Lg[i:i + 1, 1], self.ea,
-                                            self.damping)
+                                            L, Ld, self.ea, self.damping)
         T = float(T[0]) if (s[0] > 0 and T[0] > 0) else 0.0
         pull = T * rho / np.linalg.norm(rho)
         if T > 0.0 and self._c1 + self._c2 > 0.0:     # the sway damping, carried by the cable
@@ -101,15 +118,16 @@ class ElasticPlant(Plant):
         from offshore_crane.dynamics.cable import elastic_plant as ep
 
         P, cell = self.params(), np.zeros(ep.CELL)
-        T = ep.measure(P[0], P[1], P[2], P[6], P[7][i, 0], P[7][i, 1],
-                       np.ascontiguousarray(y, dtype=float), cell, np.zeros(ep.WORK))
+        L, Ld = self.length(i, y)
+        T = ep.measure(P[0], P[1], P[2], P[6], L, Ld, np.ascontiguousarray(y, dtype=float),
+                       cell, np.zeros(ep.WORK))
         return {"payload": y[9:12].copy(), "payload_velocity": y[21:24].copy(),
-                "tension": T, "length": float(self.Lg[i, 0]), "pull": cell[0:3].copy(),
+                "tension": T, "length": L, "length_rate": Ld, "pull": cell[0:3].copy(),
                 "pull_at": cell[3:6].copy()}
 
     def derivative(self, i, y, X):
-        """``(ẏ (24,), aux)`` from the vectorised public pieces (the Kane pass with the pull,
-        forward dynamics, the tip's kinematics in NumPy): the reference the compiled
+        """``(ẏ (24,) or (26,), aux)`` from the vectorised public pieces (the Kane pass
+        with the pull, forward dynamics, the tip's kinematics in NumPy): the reference the compiled
         kernels (:mod:`offshore_crane.dynamics.cable.elastic_plant`) are tested against
         (``tests/dynamics/test_elastic_plant.py``); the driver runs the kernels."""
         from offshore_crane.dynamics.forward import forward_dynamics
@@ -118,10 +136,12 @@ class ElasticPlant(Plant):
         rest = np.zeros(9)
         shift = (self._pulled(y[:9], y[12:21], rest, pull, at)
                  - self._pulled(y[:9], y[12:21], rest, 0 * pull, at))
-        a = forward_dynamics(self.empty, y[:9], y[12:21], X - shift, self.g)
+        a = forward_dynamics(self.empty, y[:9], y[12:21], X[:9] - shift, self.g)
         a_p = self.g + force / self.m
-        return np.concatenate([y[12:21], y[21:24], a, a_p]), {"ok": True, "tension": T,
-                                                               "length": self.Lg[i, 0]}
+        L, Ld = self.length(i, y)
+        winch = [Ld, (T - X[9]) / self.winch_mass] if self.commanded else []
+        return np.concatenate([y[12:21], y[21:24], a, a_p, winch]), {
+            "ok": True, "tension": T, "length": L}
 
     def finish(self, res, rec, limits):
         from offshore_crane.simulation.record import actuator_power, workspace_stop
@@ -129,7 +149,15 @@ class ElasticPlant(Plant):
         n = len(res)
         res.tension, res.energy = rec["tension"][:n], rec["energy"][:n]
         res.info.update(payload=rec["payload"][:n], payload_velocity=rec[
-            "payload_velocity"][:n], length=rec["length"][:n])
+            "payload_velocity"][:n], length=rec["length"][:n],
+            length_rate=rec["length_rate"][:n])
+        if self.commanded:       # the winch's pull apart: X stays the robot's 9 forces
+            res.info.update(winch_force=res.X[:, 9].copy(),
+                            winch_force_cmd=res.X_cmd[:, 9].copy(),
+                            winch_saturated=res.saturated[:, 9].copy(),
+                            winch_power=-res.X[:, 9] * res.info["length_rate"])
+            res.X, res.X_cmd = res.X[:, :9].copy(), res.X_cmd[:, :9].copy()
+            res.saturated = res.saturated[:, :9].copy()
         res.power = actuator_power(self.robot, res.q, res.qd, res.X)
         found = workspace_stop(self.robot, res, limits)
         return None if found is None else (found[0], StopCause.WORKSPACE, found[1])

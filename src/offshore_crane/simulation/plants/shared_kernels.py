@@ -47,7 +47,13 @@ def _make(stamp):
         for j in range(9):
             out[j] = np.nan
 
-    return check, coords, payload, arm_tip
+    @jit
+    def winch(P, i, y, X):
+        """No commanded winch: nothing (the forces stay the law's 9)."""
+        if len(stamp) == 0:
+            return
+
+    return check, coords, payload, arm_tip, winch
 
 
-check, coords, payload, arm_tip = _make(c.STAMP)
+check, coords, payload, arm_tip, winch = _make(c.STAMP)
