@@ -102,12 +102,13 @@ def run(args) -> int:
         flags.update(saturation=False, lower=None, upper=None)
     if args.anti_sway is not None:
         flags["anti_sway"] = args.anti_sway
-    if flags.get("law") == "arm-compensation" and "target" in scene.control:
+    on_line = ("arm-compensation", "arm-winch-compensation")
+    if flags.get("law") in on_line and "target" in scene.control:
         flags["target"] = scenes.target_deck(scene)        # the law's moving aim
     if flags:
         controller = replace(controller, _arrays={}, **flags)
-    if controller.law_name == "arm-compensation" and scene.compensation != "none":
-        raise InputError(f"--controller arm-compensation solves the arm on line, but the "
+    if controller.law_name in on_line and scene.compensation != "none":
+        raise InputError(f"--controller {controller.law_name} solves the arm on line, but the "
                          f"scene's [control] compensation = \"{scene.compensation}\" "
                          "already commands it: drop one of them", name="--controller")
     extras = scenes.instruments(scene)

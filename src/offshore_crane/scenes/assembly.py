@@ -25,7 +25,8 @@ def controller(scene: Scene, robot=None):
     model = None
     if "model" in c:
         model = load_robot(scene, c["model"])
-    target = target_deck(scene) if c.get("law") == "arm-compensation" else None
+    on_line = c.get("law") in ("arm-compensation", "arm-winch-compensation")
+    target = target_deck(scene) if on_line else None
     return Controller(**{k: v for k, v in c.items() if k in CONTROLLER_KEYS}, model=model,
                       target=target)
 

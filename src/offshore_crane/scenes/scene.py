@@ -286,16 +286,15 @@ def _check_sea(scene: "Scene") -> None:
     from offshore_crane.scenes.bounds import check_bounds
 
     check_bounds(scene, fail)
-    if "target" in scene.control and "compensation" not in scene.control and \
-            scene.control.get("law") != "arm-compensation":
+    on_line = scene.control.get("law") in ("arm-compensation", "arm-winch-compensation")
+    if "target" in scene.control and "compensation" not in scene.control and not on_line:
         fail("control.target", "[control] target is tracked by the motion compensation: "
              "set [control] compensation = \"arm\" or \"arm+winch\" (\"none\": the "
              "uncompensated lift measured against the target), or law = "
              "\"arm-compensation\" (on line)")
-    if scene.control.get("law") == "arm-compensation" and \
-            scene.control.get("compensation", "none") != "none":
-        fail("control.law", "[control] law = \"arm-compensation\" solves the arm on line: "
-             "drop [control] compensation (the reference computed beforehand)")
+    if on_line and scene.control.get("compensation", "none") != "none":
+        fail("control.law", f"[control] law = \"{scene.control['law']}\" solves the arm on "
+             "line: drop [control] compensation (the reference computed beforehand)")
     if scene.trajectory != "sea":
         if "target" in scene.control:
             fail("control.target", "[control] target is a point on a second vessel in the "

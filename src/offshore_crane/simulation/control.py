@@ -20,6 +20,8 @@ The laws (``docs/simulation.md``; with a hanging load ``docs/cable.md``):
 - ``"arm-compensation"``: computed torque whose arm reference is solved on line from the
   measured platform, holding the tip over its still-ship aim (or a moving ``target``;
   :mod:`offshore_crane.simulation.laws.arm_compensation`).
+- ``"arm-winch-compensation"``: the same, and a commanded winch's pull holding the
+  payload's height (:mod:`offshore_crane.simulation.laws.arm_winch_compensation`).
 
 Options: actuator saturation (each X_k clipped to ``[lower_k, upper_k]``, push and pull
 apart: the actuators' capacities; the time spent saturated is reported, never silent), a
@@ -161,11 +163,12 @@ class Controller:
         elif self.law == "anti-sway":
             raise InputError("law 'anti-sway' needs the damping ratio it adds to the swing: "
                              "give anti_sway = ζ", name="anti_sway")
-        if self.target is not None and (self.law != "arm-compensation"
+        if self.target is not None and (self.law not in ("arm-compensation",
+                                                         "arm-winch-compensation")
                                         or not callable(self.target)):
             raise InputError(f"target = {self.target!r}: a moving aim is the "
-                             "'arm-compensation' law's, a callable target(t) -> (x, v, a)",
-                             name="target")
+                             "'arm-compensation' law's (and 'arm-winch-compensation''s), a "
+                             "callable target(t) -> (x, v, a)", name="target")
         if self.ki is not None and self.law != "pid":
             raise InputError(f"ki: integral gains are the 'pid' law's, not {self.law!r}",
                              name="ki")

@@ -211,8 +211,8 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
 
     Args:
         kernels: The plant's kernel module (``prepare``, ``rhs``, ``check``, ``keep``,
-            ``inverse``, ``gravity``, ``coords``, ``payload``, ``arm_tip``, ``winch``:
-            compiled functions).
+            ``inverse``, ``gravity``, ``coords``, ``payload``, ``arm_tip``, ``winch``,
+            ``winch_to``: compiled functions).
         law_templates: ``{name: function}``: the law's templates (``command``,
             ``law_rate`` and what they call), instantiated here.
         names: Constants of the namespace (``IQ``, ``IQD``).
@@ -229,7 +229,7 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
     ns: dict = {"__name__": __name__, "np": np, "OK": OK, "DIVERGED": DIVERGED, "STOPPED": STOPPED,
                 "rk4_stage": rk4_stage, "rk4_combine": rk4_combine, INSTANCE: key, **names}
     for name in ("prepare", "rhs", "check", "keep", "inverse", "gravity", "coords",
-                 "payload", "arm_tip", "winch"):
+                 "payload", "arm_tip", "winch", "winch_to"):
         ns[name] = getattr(kernels, name)
     if compiled:
         from offshore_crane.dynamics.views import unowned as strip

@@ -5,8 +5,9 @@ test (``docs/simulation.md``, the PID law as the worked example).
 
 Built in: ``computed-torque`` (:mod:`.computed_torque`), ``pd-gravity`` and ``pd``
 (:mod:`.pd`), ``none`` (:mod:`.none`), ``pid`` (:mod:`.pid`), ``anti-sway``
-(:mod:`.anti_sway`), ``arm-compensation`` (:mod:`.arm_compensation`), and a user's
-Python callable (:mod:`.python`).
+(:mod:`.anti_sway`), ``arm-compensation`` (:mod:`.arm_compensation`),
+``arm-winch-compensation`` (:mod:`.arm_winch_compensation`), and a user's Python callable
+(:mod:`.python`).
 """
 
 from __future__ import annotations

@@ -188,6 +188,8 @@ class ArmCompensation(ComputedTorque):
             p, v, a = p + x, v + xd, a + xdd
         self._aim_grid = np.ascontiguousarray(np.column_stack([p[:, :2], v[:, :2],
                                                                a[:, :2]]))
+        #: ``(n_stages, 3)``: the aim's height, its rate and acceleration [m, m/s, m/s²].
+        self.vertical = np.ascontiguousarray(np.column_stack([p[:, 2], v[:, 2], a[:, 2]]))
         return self._aim_grid
 
     def params(self) -> tuple:

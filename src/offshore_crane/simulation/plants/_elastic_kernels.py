@@ -172,27 +172,35 @@ def _make(stamp):
         tip_kinematics(P[0], P[1], P[2], q, qd, qdd, out)
 
     @jit
-    def winch(P, i, y, X):
+    def winch_to(P, i, y, Lr, Ldr, Lddr, X):
         """A commanded winch's drive (``P[16] > 0``; else nothing): the line pull
         ``X[9] = T − m_w (L̈_r + kd (L̇_r − L̇) + kp (L_r − L))`` [N] that makes the length
-        follow its profile ``(L_r, L̇_r, L̈_r)`` at stage point ``i`` with the error obeying
-        ``ë + kd ė + kp e = 0``, the tension ``T`` measured (the plant's load cell when
-        :func:`prepare` measured it at ``y``). Called before the law, which may overwrite
-        ``X[9]`` (it commands the winch then)."""
+        follow ``(L_r, L̇_r, L̈_r)`` [m, m/s, m/s²] with the error obeying ``ë + kd ė +
+        kp e = 0``, the tension ``T`` measured at stage point ``i`` (the plant's load cell
+        when :func:`prepare` measured it at ``y``)."""
         if len(stamp) == 0:
             return
         m = P[16]
         if m <= 0.0:
             return
-        Lg, gains = P[7], P[17]
+        gains = P[17]
         if _made_at(P, i, y):
             T = P[8][9]
         else:
             T = measure(P[0], P[1], P[2], P[6], y[24], y[25], y, P[11], P[12])
-        X[9] = T - m * (Lg[i, 2] + gains[1] * (Lg[i, 1] - y[25])
-                        + gains[0] * (Lg[i, 0] - y[24]))
+        X[9] = T - m * (Lddr + gains[1] * (Ldr - y[25]) + gains[0] * (Lr - y[24]))
 
-    return prepare, rhs, keep, inverse, gravity, arm_tip, winch
+    @jit
+    def winch(P, i, y, X):
+        """The drive (:func:`winch_to`) following the winch's profile at stage point
+        ``i``. Called before the law, which may overwrite ``X[9]`` (it commands the
+        winch then)."""
+        if len(stamp) == 0:
+            return
+        Lg = P[7]
+        winch_to(P, i, y, Lg[i, 0], Lg[i, 1], Lg[i, 2], X)
+
+    return prepare, rhs, keep, inverse, gravity, arm_tip, winch, winch_to
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
@@ -200,7 +208,7 @@ def _make(stamp):
 #: a callee edited elsewhere would otherwise be linked stale).
 STAMP = c.STAMP + hashlib.sha256((inspect.getsource(ep) + inspect.getsource(shared)
                                   + inspect.getsource(ck)).encode()).hexdigest()
-prepare, rhs, keep, inverse, gravity, arm_tip, winch = _make(STAMP)
+prepare, rhs, keep, inverse, gravity, arm_tip, winch, winch_to = _make(STAMP)
 check, coords, payload = shared.check, shared.coords, shared.payload
 
 

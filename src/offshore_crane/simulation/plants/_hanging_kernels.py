@@ -173,7 +173,7 @@ TENSION = kernel_calls.Entry.typed("hanging_tension", lambda: tension,
                                    "float64(*PACKED, V, V, V, V)", STAMP)
 call_tension = TENSION.call
 #: A winch on a rigid cable follows its length profile: it takes no command.
-winch = shared.winch
+winch, winch_to = shared.winch, shared.winch_to
 
 
 def params(plant) -> tuple:

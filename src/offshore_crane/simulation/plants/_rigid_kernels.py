@@ -167,7 +167,7 @@ OWN_INVERSE = kernel_calls.Entry.typed("rigid_own_inverse", lambda: own_inverse,
                                        f"none({_P}, V, V, V)", STAMP)
 call_prepare, call_own_inverse = PREPARE.call, OWN_INVERSE.call
 check, coords, payload, arm_tip = shared.check, shared.coords, shared.payload, shared.arm_tip
-winch = shared.winch
+winch, winch_to = shared.winch, shared.winch_to
 
 
 def params(plant) -> tuple:

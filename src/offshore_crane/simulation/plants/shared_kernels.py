@@ -53,7 +53,13 @@ def _make(stamp):
         if len(stamp) == 0:
             return
 
-    return check, coords, payload, arm_tip, winch
+    @jit
+    def winch_to(P, i, y, Lr, Ldr, Lddr, X):
+        """No commanded winch: nothing."""
+        if len(stamp) == 0:
+            return
+
+    return check, coords, payload, arm_tip, winch, winch_to
 
 
-check, coords, payload, arm_tip, winch = _make(c.STAMP)
+check, coords, payload, arm_tip, winch, winch_to = _make(c.STAMP)
