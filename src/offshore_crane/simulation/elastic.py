@@ -34,7 +34,7 @@ STEPS_PER_PERIOD = 20
 def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, controller=None,
                      *, ea: float, damping: float = 0.0, hoist=None, gravity=GRAVITY,
                      step: float = 1e-3, rate: float | None = None, initial=None,
-                     initial_velocity=(0.0, 0.0, 0.0), limits: bool = True, t0: float = 0.0,
+                     initial_velocity=None, limits: bool = True, t0: float = 0.0,
                      sensors=None, actuators=None):
     """Simulate the robot with its payload on an elastic cable.
 
@@ -52,7 +52,8 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
         hoist: The winch ``hoist(t) -> (L, L̇, L̈)`` [m, m/s, m/s²], or None.
         initial, initial_velocity: ``(3,)`` the payload from the tip [m] and relative to
             it [m/s] at ``t0``, base axes (default: hanging along g at its static
-            stretch, at rest relative to the tip).
+            stretch, at rest relative to the tip; with a commanded winch, moving along g
+            at the winch's starting rate L̇).
 
     Returns:
         :class:`~offshore_crane.simulation.rigid.SimulationResult` with ``tension``
@@ -110,10 +111,14 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
     Lg = run.plant.Lg
     run.info["axial_period"] = run.plant.axial_period
     p_tip, v_tip = (x[0] for x in tip_positions(robot, run.q0[None], run.qd0[None]))
-    rho0 = (g / gn * Lg[0, 0] * (1.0 + m * gn / ea) if initial is None
-            else np.asarray(initial, dtype=float).reshape(3))
-    v0 = np.asarray(initial_velocity, dtype=float).reshape(3)
-    winch = Lg[0, :2] if run.plant.commanded else []
+    winch = []
+    if run.plant.commanded:               # where the law starts the winch, else its profile
+        start = run.law.winch_start(run.q0, run.qd0)
+        winch = np.array(Lg[0, :2] if start is None else start, dtype=float)
+    rho0 = (g / gn * (winch[0] if len(winch) else Lg[0, 0]) * (1.0 + m * gn / ea)
+            if initial is None else np.asarray(initial, dtype=float).reshape(3))
+    v0 = (np.asarray(initial_velocity, dtype=float).reshape(3) if initial_velocity is not None
+          else g / gn * (winch[1] if len(winch) else 0.0))
     return run.drive(np.concatenate([run.q0, p_tip + rho0, run.qd0, v_tip + v0, winch]),
                      limits)
 

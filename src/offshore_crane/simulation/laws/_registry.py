@@ -66,6 +66,12 @@ class Law:
         it would put it, not where the reference is)."""
         return q0, qd0
 
+    def winch_start(self, q0: np.ndarray, qd0: np.ndarray):
+        """A commanded winch's ``(L [m], L̇ [m/s])`` at the start, given the robot's
+        ``(q0, q̇0)``: None (the default) starts it on its profile; a law that commands
+        the winch starts it where it would put it."""
+        return None
+
     def params(self) -> tuple:
         """``L``: what the law's templates read (gains, scratch arrays)."""
         raise NotImplementedError

@@ -52,6 +52,17 @@ class ArmWinchCompensation(arm.ArmCompensation):
                              "(actuators.winch.reflected_mass > 0)",
                              name="actuators.winch.reflected_mass")
 
+    def winch_start(self, q0, qd0):
+        """The winch on its reference at the start, ``L0 + z_tip − z_aim`` and its rate
+        (the tip at ``(q0, q̇0)``, which :meth:`start` puts on the aim): no transient."""
+        from offshore_crane.dynamics.cable.tip import tip_positions
+
+        self._aim()
+        p, v = (x[0] for x in tip_positions(self.plant.model, np.asarray(q0)[None],
+                                            np.asarray(qd0)[None]))
+        L0 = self.plant.model.hybrid.cable_length
+        return L0 + p[2] - self.vertical[0, 0], v[2] - self.vertical[0, 1]
+
     def params(self) -> tuple:
         base = super().params()
         return (*base, self.vertical,
