@@ -106,8 +106,8 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
         what = "sensor models" if sens is not None else "an actuator rate limit"
         raise InputError(f"{what} act at the control instants of a sampled law: give a "
                          "control rate ([control] rate, --control-rate)", name="rate")
-    lag = np.zeros(0) if actuators is None or actuators.lag is None else actuators.lag
-    rlim = np.zeros(0) if not limit else actuators.rate_limit
+    lag, rlim = (np.zeros(0), np.zeros(0)) if actuators is None else \
+        actuators.for_forces(plant.nx)
     n_p, n_z = plant.size, law.state_size
     delay = sens.delay_steps(step) if sens is not None else 0
     nq, nqd = sens.noise(n_steps // hold + 2) if sens is not None else (np.zeros((1, 9)),) * 2

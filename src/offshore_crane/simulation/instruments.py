@@ -26,15 +26,19 @@ import numpy as np
 from offshore_crane.errors import InputError
 
 
-def _nine(name: str, value, unit: str, positive: bool = False) -> np.ndarray | None:
-    """None, or ``value`` as ``(9,)`` finite numbers ≥ 0 (> 0 with ``positive``)."""
+def _nine(name: str, value, unit: str, positive: bool = False,
+          winch: bool = False) -> np.ndarray | None:
+    """None, or ``value`` as ``(9,)`` finite numbers ≥ 0 (> 0 with ``positive``); with
+    ``winch``, 10 numbers too (a commanded winch's line pull last)."""
     if value is None:
         return None
     try:
-        a = np.broadcast_to(np.asarray(value, dtype=float), (9,)).copy()
+        shape = (10,) if winch and np.shape(value) == (10,) else (9,)
+        a = np.broadcast_to(np.asarray(value, dtype=float), shape).copy()
     except (TypeError, ValueError):
-        raise InputError(f"{name} must be one number or 9 numbers [{unit}], got {value!r}",
-                         name=name) from None
+        more = " (10 with a commanded winch's line pull last)" if winch else ""
+        raise InputError(f"{name} must be one number or 9 numbers{more} [{unit}], got "
+                         f"{value!r}", name=name) from None
     bad = ~(np.isfinite(a) & ((a > 0.0) if positive else (a >= 0.0)))
     if bad.any():
         k = int(np.argmax(bad))
@@ -118,15 +122,43 @@ class Actuators:
     Attributes:
         rate_limit: ``(9,)`` or one number [N·m/s, N/s] > 0; None: none.
         lag: First-order time constant τ [s] > 0, one number or ``(9,)``; None: none.
+
+    One number applies to every force the law commands, a commanded winch's line pull
+    too; 9 numbers to the robot's actuators (the winch's pull then unmodelled); 10 to
+    them and the winch's pull (:meth:`for_forces`).
     """
 
     rate_limit: object = None
     lag: object = None
 
     def __post_init__(self):
+        one = {k: np.ndim(getattr(self, k)) == 0 for k in ("rate_limit", "lag")}
         object.__setattr__(self, "rate_limit", _nine("rate_limit", self.rate_limit,
-                                                     "N·m/s, N/s", positive=True))
-        object.__setattr__(self, "lag", _nine("lag", self.lag, "s", positive=True))
+                                                     "N·m/s, N/s", positive=True, winch=True))
+        object.__setattr__(self, "lag", _nine("lag", self.lag, "s", positive=True,
+                                              winch=True))
+        object.__setattr__(self, "_one", one)
+
+    def for_forces(self, nx: int) -> tuple[np.ndarray, np.ndarray]:
+        """``(lag, rate_limit)`` for a law commanding ``nx`` forces (9, or 10 with a
+        commanded winch): each ``(nx,)``, or ``(9,)`` when 9 numbers were given (the
+        winch's pull unmodelled), or ``(0,)`` when not given.
+
+        Raises:
+            InputError: 10 numbers given for 9 forces (no commanded winch).
+        """
+        out = []
+        for name in ("lag", "rate_limit"):
+            a = getattr(self, name)
+            if a is None:
+                out.append(np.zeros(0))
+                continue
+            if len(a) > nx:
+                raise InputError(f"actuators {name}: 10 numbers given, but the plant has no "
+                                 "commanded winch (actuators.winch.reflected_mass): give 9",
+                                 name=name)
+            out.append(np.full(nx, a[0]) if self._one[name] else a)
+        return out[0], out[1]
 
     @property
     def active(self) -> bool:
