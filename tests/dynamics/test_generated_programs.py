@@ -24,7 +24,7 @@ import pytest
 import offshore_crane as oc
 from offshore_crane import kernel_cache
 from offshore_crane.conventions import LANES
-from offshore_crane.dynamics import lanes, solve
+from offshore_crane.dynamics import lanes, program_files, solve
 from offshore_crane.dynamics.constants import cable_arrays, robot_arrays
 from offshore_crane.kernel_cache import GeneratedProgramWarning
 from offshore_crane.robot.kinematics.formulas import LEG_MODEL_CODES
@@ -36,21 +36,21 @@ FULL = LEG_MODEL_CODES["full"]
 
 
 def _truncated(text: str) -> str:
-    """Cut at the end of a line two thirds in: still a program (the outputs' last
-    rows unwritten), so that only the checksum tells."""
+    """Cut at the end of a line two thirds in: still a program (the block's last inputs
+    ungathered, the epilogue gone), so that only the checksum tells."""
     return text[:text.index("\n", 2 * len(text) // 3) + 1]
 
 
 def _constant(text: str) -> str:
-    """A literal of the trace changed, the length kept (same size, same byte code)."""
-    assert " = 1.0 - " in text
-    return text.replace(" = 1.0 - ", " = 2.0 - ", 1)
+    """An input gathered from another column, the length kept (same size)."""
+    assert "ib[5 * L + k] = q[s + k, 5]" in text
+    return text.replace("ib[5 * L + k] = q[s + k, 5]", "ib[5 * L + k] = q[s + k, 4]", 1)
 
 
 def _deleted(text: str) -> str:
-    """One output's line deleted: its row would stay whatever memory held."""
+    """One input's line deleted: its row would stay whatever memory held."""
     lines = text.splitlines(keepends=True)
-    k = next(i for i, line in enumerate(lines) if line.lstrip().startswith("ob[5 * L"))
+    k = next(i for i, line in enumerate(lines) if line.lstrip().startswith("ib[5 * L"))
     return "".join(lines[:k] + lines[k + 1:])
 
 
@@ -184,7 +184,7 @@ def test_a_read_only_package_checks_the_programs_in_the_users_cache(tmp_path, mo
     arrays = robot_arrays(robot)
     original, real = lanes.kane_kernel(arrays, FULL), lanes.cache_folder()
     access = os.access
-    monkeypatch.setattr(lanes.os, "access", lambda p, mode: False if Path(p) == real
+    monkeypatch.setattr(program_files.os, "access", lambda p, mode: False if Path(p) == real
                         else access(p, mode))
     monkeypatch.setattr(lanes.Path, "home", classmethod(lambda cls: tmp_path))
     folder = lanes.cache_folder()
@@ -233,7 +233,7 @@ def test_a_program_that_cannot_be_written_leaves_the_per_sample_kernel(
     monkeypatch.setattr(lanes, "cache_folder", lambda: tmp_path)
     _fresh(monkeypatch)
     replace = os.replace
-    monkeypatch.setattr(lanes.os, "replace", lambda src, dst: failure(replace, src, dst)
+    monkeypatch.setattr(program_files.os, "replace", lambda src, dst: failure(replace, src, dst)
                         if Path(dst).parent == tmp_path else replace(src, dst))
     X, caught = _caught(lambda: solve(robot, q, qd, qdd).X)
     np.testing.assert_array_equal(X, expected)
@@ -271,7 +271,7 @@ warnings.simplefilter("always")
 from pathlib import Path
 import numpy as np
 import offshore_crane as oc
-from offshore_crane.dynamics import lanes, solve
+from offshore_crane.dynamics import lanes, program_files, solve
 sys.path.insert(0, sys.argv[3])
 from problems import random_states
 lanes.cache_folder = lambda: Path(sys.argv[1])

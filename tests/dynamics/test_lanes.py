@@ -9,7 +9,7 @@ import pytest
 import offshore_crane as oc
 from offshore_crane.conventions import LANES
 from offshore_crane.dynamics import compiled as c
-from offshore_crane.dynamics import lanes, solve
+from offshore_crane.dynamics import lanes, program_files, solve
 from offshore_crane.dynamics.constants import robot_arrays
 from offshore_crane.dynamics.tracing import Symbol, TraceError
 from offshore_crane.errors import WorkspaceError
@@ -97,8 +97,8 @@ def test_the_generated_module_reads_constants_from_the_description():
     light = oc.load_robot()
     a, b = robot_arrays(heavy), robot_arrays(light)
     assert lanes._structure_key(a, 0) == lanes._structure_key(b, 0)
-    text = lanes.source(b, 0)
-    assert "7.5" not in text and "c_0 = flat[0]" in text.replace("\n    ", "\n")
+    text = lanes.source(b, 0) + lanes.program(b, 0, "")[1]
+    assert "7.5" not in text and "%c_0.p = getelementptr double, ptr %flat, i64 0" in text
     q, qd, qdd = random_states(light, LANES, seed=9)
     assert not np.array_equal(solve(heavy, q, qd, qdd).X, solve(light, q, qd, qdd).X)
     (Xb, _, _), (Xs, _, _) = _both(heavy, q, qd, qdd, "full")
@@ -161,7 +161,7 @@ def test_an_untraceable_text_keeps_the_per_sample_kernel(tmp_path, monkeypatch):
 def test_a_read_only_package_keeps_the_programs_in_the_users_cache(tmp_path, monkeypatch):
     """The generated modules go beside the package's own Numba cache when it can be
     written, else into the user's cache folder (an installation owned by another user)."""
-    monkeypatch.setattr(lanes.os, "access", lambda path, mode: False)
+    monkeypatch.setattr(program_files.os, "access", lambda path, mode: False)
     monkeypatch.setattr(lanes.Path, "home", classmethod(lambda cls: tmp_path))
     assert lanes.cache_folder() == tmp_path / ".cache" / "offshore_crane" / "lanes"
 
@@ -211,3 +211,24 @@ def test_a_new_version_of_the_text_removes_the_programs_of_the_old(tmp_path, mon
     assert not old.exists() and not compiled.exists() and kept.exists()
     assert not left.exists()
     assert len(names) == 2 and all(n.startswith(f"kane_lanes_{version}_") for n in names)
+
+
+def test_a_block_slot_held_by_another_structure_keeps_the_per_sample_kernel(monkeypatch):
+    """Two structures whose keys fall on one block slot in a process (1 in 1024): the
+    second gets no block kernel (its driver would call the first's program) and its
+    callers keep the per-sample kernel, the same forces."""
+    from offshore_crane.dynamics import native
+
+    robot = oc.load_robot()
+    arrays = robot_arrays(robot)
+    key = lanes._structure_key(arrays, LEG_MODEL_CODES["thin-rod"])
+    index = native.block_index(key)
+    monkeypatch.setattr(lanes, "_KERNELS", {})
+    monkeypatch.setattr(lanes, "_BY_ARRAYS", {})
+    monkeypatch.setattr(native, "_BLOCK_KEYS", {**native._BLOCK_KEYS, index: "another"})
+    assert lanes.kane_kernel(arrays, LEG_MODEL_CODES["thin-rod"]) is None
+    q, qd, qdd = random_states(robot, LANES + 1, seed=5)
+    X = solve(robot, q, qd, qdd, leg_model="thin-rod").X
+    one = np.array([solve(robot, q[k], qd[k], qdd[k], leg_model="thin-rod").X[0]
+                    for k in range(len(q))])
+    np.testing.assert_array_equal(X, one)

@@ -208,3 +208,83 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
     text = (_DECLARE + f"define void @{name}({', '.join(params)}) nounwind {{\n"
             + "\n".join(body) + "\n  ret void\n}\n")
     return text
+
+
+def block_ir(trace, name: str, lanes: int) -> str:
+    """The LLVM function ``name(ptr ib, ptr ob, ptr flat, double g0, double g1, double
+    g2)`` of a fused pass traced for blocks (:func:`~.tracing.trace_kane` with inputs
+    named ``in_<row>`` and constants ``c_<i>``, :mod:`.lanes`): every line on vectors of
+    ``lanes`` samples (L), sample k in lane k; input row r read from ``ib[r L : (r + 1)
+    L]``, constant i from ``flat[i]`` (splat), output r written to ``ob[r L : (r + 1)
+    L]`` right after the line that makes it. The instructions are those Numba emits for
+    the same operations of a float (no fast-math flag), so each lane gives the
+    per-sample formulas' numbers bit for bit."""
+    body, known = [], {}
+    vec = f"<{lanes} x double>"
+
+    def operand(x: str) -> str:
+        if x in known:
+            return known[x]
+        if re.fullmatch(r"t\d+", x):
+            return f"%{x}"
+        m = re.fullmatch(r"in_(\d+)", x)
+        if m:
+            body.append(f"  %{x}.p = getelementptr double, ptr %ib, i64 {int(m[1]) * lanes}")
+            body.append(f"  %{x} = load {vec}, ptr %{x}.p, align 8")
+            known[x] = f"%{x}"
+            return known[x]
+        m = re.fullmatch(r"c_(\d+)", x)
+        if m:
+            body.append(f"  %{x}.p = getelementptr double, ptr %flat, i64 {m[1]}")
+            body.append(f"  %{x}.s = load double, ptr %{x}.p")
+            scalar = f"%{x}.s"
+        elif re.fullmatch(r"g[012]", x):
+            scalar = f"%{x}"
+        else:
+            special = {"np.nan": "0x7FF8000000000000", "np.inf": "0x7FF0000000000000",
+                       "-np.inf": "0xFFF0000000000000"}
+            value = special[x] if x in special else _literal(float(x))
+            known[x] = "<" + ", ".join([f"double {value}"] * lanes) + ">"
+            return known[x]
+        tag = f"%splat.{len(known)}"
+        body.append(f"  {tag}.i = insertelement {vec} poison, double {scalar}, i32 0")
+        body.append(f"  {tag} = shufflevector {vec} {tag}.i, {vec} poison, "
+                    f"<{lanes} x i32> zeroinitializer")
+        known[x] = tag
+        return tag
+
+    stores: dict = {}
+    for r, x in enumerate(trace.outputs):
+        line = re.fullmatch(r"t(\d+)", x)
+        stores.setdefault(int(line[1]) if line else -1, []).append((r, x))
+
+    def store(r, x):
+        body.append(f"  %o{r}.p = getelementptr double, ptr %ob, i64 {r * lanes}")
+        body.append(f"  store {vec} {operand(x)}, ptr %o{r}.p, align 8")
+
+    for item in stores.get(-1, ()):              # inputs, constants and literals
+        store(*item)
+    for n, line in enumerate(trace.lines):
+        lhs, rhs = line.split(" = ", 1)
+        call = re.fullmatch(r"(np\.(\w+)|abs)\((.*)\)", rhs)
+        parts = rhs.split(" ")
+        if call:
+            fn = {"sqrt": f"@llvm.sqrt.v{lanes}f64", None: f"@llvm.fabs.v{lanes}f64"}.get(
+                call[2])
+            if fn is None or ", " in call[3]:
+                raise ValueError(f"{line}: no vector form of {call[1]}")
+            body.append(f"  %{lhs} = call {vec} {fn}({vec} {operand(call[3])})")
+        elif len(parts) == 3:
+            a, b = operand(parts[0]), operand(parts[2])
+            body.append(f"  %{lhs} = {_BINARY[parts[1]]} {vec} {a}, {b}")
+        else:
+            assert len(parts) == 1 and rhs.startswith("-"), line
+            body.append(f"  %{lhs} = fneg {vec} {operand(rhs[1:])}")
+        for item in stores.get(n, ()):
+            store(*item)
+    inp = "ptr noalias readonly"
+    params = (f"{inp} %ib, ptr noalias %ob, {inp} %flat, double %g0, double %g1, "
+              "double %g2")
+    declare = "".join(f"declare {vec} @llvm.{f}.v{lanes}f64({vec})\n" for f in ("sqrt", "fabs"))
+    return (declare + f"define void @{name}({params}) nounwind {{\n" + "\n".join(body)
+            + "\n  ret void\n}\n")

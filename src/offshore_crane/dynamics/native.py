@@ -24,7 +24,9 @@ them (an array by its data pointer, a matrix followed by its row length).
 There is one program per arm structure (joint count and types), pass and variant (the
 explicit pass with or without the mass matrix, the fused pass's flags): its address goes
 into :data:`SLOTS` at :func:`program_index`, where the compiled wrappers
-(:mod:`.passes`) read it at each call. A call finding its slot empty calls back into
+(:mod:`.passes`) read it at each call. The block programs of :mod:`.lanes` (the fused pass
+on vectors of samples) have slots of their own after those (:func:`load_block`), filled
+before their drivers run. A call finding its slot empty calls back into
 Python (:func:`ensure_slot`: the structure's constants kept when the robot was packed,
 :func:`remember`), which loads or compiles the program: only what runs is loaded, and a
 process that stays on NumPy loads nothing.
@@ -47,7 +49,7 @@ import threading
 
 import numpy as np
 
-from offshore_crane.dynamics.lanes import package_cache, read_file, write_atomically
+from offshore_crane.dynamics.program_files import package_cache, read_file, write_atomically
 from offshore_crane.dynamics.llvm_program import program_ir
 from offshore_crane.dynamics.tracing import VARIANTS
 
@@ -76,8 +78,37 @@ def program_index(kind, n_arm, arm_prism, variant):
     return (code * _NKINDS + kind) * _VARIANTS + variant
 
 
-#: The programs' addresses by :func:`program_index` (0: not loaded).
-SLOTS = np.zeros(2 ** (MAX_ARM + 1) * _NKINDS * _VARIANTS, dtype=np.int64)
+#: Where the block programs' slots start (:func:`load_block`), after the passes', and
+#: how many there are.
+BLOCK_BASE, BLOCKS = 2 ** (MAX_ARM + 1) * _NKINDS * _VARIANTS, 1024
+#: The programs' addresses by :func:`program_index`, then the block programs' (0: not
+#: loaded).
+SLOTS = np.zeros(BLOCK_BASE + BLOCKS, dtype=np.int64)
+#: Per block slot, the structure key whose program it holds.
+_BLOCK_KEYS: dict = {}
+
+
+def block_index(key: str) -> int:
+    """The slot of the block program of structure ``key`` (hex): from the key alone, so
+    that a driver compiled in one process calls the same slot in the next."""
+    return BLOCK_BASE + int(key[:12], 16) % BLOCKS
+
+
+def load_block(key: str, name: str, text: str) -> bool:
+    """Load or compile the block program ``text`` (function ``name``) of structure
+    ``key`` into its slot (:func:`block_index`); False when the slot holds another
+    structure's program (two keys of one slot in a process: the caller keeps its
+    per-sample kernel)."""
+    index = block_index(key)
+    with _LOCK:
+        if _BLOCK_KEYS.get(index, key) != key:
+            return False
+        if not SLOTS[index]:
+            library = _library(name, text)
+            _LIBRARIES[index] = library
+            SLOTS[index] = library.get_pointer_to_function(name)
+            _BLOCK_KEYS[index] = key
+    return True
 
 
 def stamp() -> str:
@@ -234,7 +265,11 @@ _TEMPLATES: dict = {}
 
 def ensure_slot(index: int) -> None:
     """:func:`ensure` the program of slot ``index``: its structure's template (a robot
-    of that structure packed in this process), its pass and variant."""
+    of that structure packed in this process), its pass and variant. A block program's
+    slot is filled before its driver runs (:func:`load_block`), never here."""
+    if index >= BLOCK_BASE:
+        raise RuntimeError(f"the block program of slot {index} was not loaded before its "
+                           "driver ran: report this as a bug")
     code, rest = divmod(int(index), _NKINDS * _VARIANTS)
     kind, variant = divmod(rest, _VARIANTS)
     kane = _TEMPLATES.get(code)
@@ -246,7 +281,7 @@ def ensure_slot(index: int) -> None:
 
 
 def _cache_folder():
-    """Where the compiled programs live (:func:`~.lanes.package_cache`)."""
+    """Where the compiled programs live (:func:`~.program_files.package_cache`)."""
     return package_cache("native")
 
 
@@ -311,7 +346,7 @@ def _read(path) -> tuple:
 
 
 def _write(path, data: tuple) -> str | None:
-    """Write the object (:func:`~.lanes.write_atomically`), removing the files of other
+    """Write the object (:func:`~.program_files.write_atomically`), removing the files of other
     versions of the programs' text; None, or what went wrong."""
     def remove_stale():
         for old in path.parent.glob("offshore_crane_*.bin"):
