@@ -30,6 +30,21 @@ _DECLARE = ("declare double @llvm.sin.f64(double)\ndeclare double @llvm.cos.f64(
             "declare <8 x double> @llvm.fabs.v8f64(<8 x double>)\n")
 
 
+def _parse(line: str) -> tuple[str, str, list]:
+    """``(name, operation, operands)`` of a trace's line: the operation a call's function
+    (``"sqrt"``, ``"abs"``, ``"sin"``, ``"cos"``, ``"arctan2"``), a binary operator (``"+"``,
+    ``"-"``, ``"*"``, ``"/"``) or ``"neg"``."""
+    lhs, rhs = line.split(" = ", 1)
+    call = re.fullmatch(r"(?:np\.)?(\w+)\((.*)\)", rhs)
+    if call:
+        return lhs, call[1], call[2].split(", ")
+    parts = rhs.split(" ")
+    if len(parts) == 3:
+        return lhs, parts[1], [parts[0], parts[2]]
+    assert len(parts) == 1 and rhs.startswith("-"), line
+    return lhs, "neg", [rhs[1:]]
+
+
 def _literal(x: float) -> str:
     """A double in LLVM's text: its bits, exactly."""
     return "0x%016X" % struct.unpack("<Q", struct.pack("<d", x))[0]
@@ -164,18 +179,11 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
     for item in stores.get(-1, ()):              # inputs, constants and literals
         store(*item)
     for n, line in enumerate(trace.lines):
-        lhs, rhs = line.split(" = ", 1)
-        call = re.fullmatch(r"(np\.(\w+)|abs)\((.*)\)", rhs)
-        parts = rhs.split(" ")
+        lhs, op, args = _parse(line)
+        call = op not in _BINARY and op != "neg"
         if call:
-            fn, arity = _CALLS[call[2]] if call[2] else ("@llvm.fabs.f64", 1)
-            args = call[3].split(", ")
+            fn, arity = _CALLS[op] if op != "abs" else ("@llvm.fabs.f64", 1)
             assert len(args) == arity, line
-        elif len(parts) == 3:
-            args = [parts[0], parts[2]]
-        else:
-            assert len(parts) == 1 and rhs.startswith("-"), line
-            args = [rhs[1:]]
         if any(is_vector(x) for x in args):
             vectors.add(lhs)
             if call and fn not in _VECTOR_CALLS:
@@ -189,10 +197,10 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
         if call:
             body.append(f"  %{lhs} = call {ty} {fn}("
                         + ", ".join(f"{ty} {o}" for o in ops) + ")")
-        elif len(parts) == 3:
-            body.append(f"  %{lhs} = {_BINARY[parts[1]]} {ty} {ops[0]}, {ops[1]}")
-        else:
+        elif op == "neg":
             body.append(f"  %{lhs} = fneg {ty} {ops[0]}")
+        else:
+            body.append(f"  %{lhs} = {_BINARY[op]} {ty} {ops[0]}, {ops[1]}")
         for item in stores.get(n, ()):
             store(*item)
     inp = "ptr noalias readonly"
@@ -265,21 +273,17 @@ def block_ir(trace, name: str, lanes: int) -> str:
     for item in stores.get(-1, ()):              # inputs, constants and literals
         store(*item)
     for n, line in enumerate(trace.lines):
-        lhs, rhs = line.split(" = ", 1)
-        call = re.fullmatch(r"(np\.(\w+)|abs)\((.*)\)", rhs)
-        parts = rhs.split(" ")
-        if call:
-            fn = {"sqrt": f"@llvm.sqrt.v{lanes}f64", None: f"@llvm.fabs.v{lanes}f64"}.get(
-                call[2])
-            if fn is None or ", " in call[3]:
-                raise ValueError(f"{line}: no vector form of {call[1]}")
-            body.append(f"  %{lhs} = call {vec} {fn}({vec} {operand(call[3])})")
-        elif len(parts) == 3:
-            a, b = operand(parts[0]), operand(parts[2])
-            body.append(f"  %{lhs} = {_BINARY[parts[1]]} {vec} {a}, {b}")
+        lhs, op, args = _parse(line)
+        ops = [operand(x) for x in args]
+        if op in _BINARY:
+            body.append(f"  %{lhs} = {_BINARY[op]} {vec} {ops[0]}, {ops[1]}")
+        elif op == "neg":
+            body.append(f"  %{lhs} = fneg {vec} {ops[0]}")
+        elif op in ("sqrt", "abs") and len(ops) == 1:
+            fn = f"@llvm.{'fabs' if op == 'abs' else op}.v{lanes}f64"
+            body.append(f"  %{lhs} = call {vec} {fn}({vec} {ops[0]})")
         else:
-            assert len(parts) == 1 and rhs.startswith("-"), line
-            body.append(f"  %{lhs} = fneg {vec} {operand(rhs[1:])}")
+            raise ValueError(f"{line}: no vector form of {op}")
         for item in stores.get(n, ()):
             store(*item)
     inp = "ptr noalias readonly"
