@@ -59,13 +59,14 @@ def loop_for(plant, law):
     # laws that share their templates (pd and pd-gravity: a flag in L) share a loop
     parts = " ".join(f"{name}={f.__module__}.{f.__qualname__}"
                      for name, f in sorted(templates.items()))
-    key = (plant.name, parts, law.compiled)
+    name = f"{plant.name} ({plant.variant})" if plant.variant else plant.name
+    key = (name, parts, law.compiled)
     if key not in _LOOPS:
         from offshore_crane.simulation.loop import instantiate
 
         _LOOPS[key] = instantiate(plant.kernels(), templates,
                                   {"IQ": plant.Q.start, "IQD": plant.QD.start},
-                                  law.compiled, f"{plant.name} {parts}")["loop"]
+                                  law.compiled, f"{name} {parts}")["loop"]
     return _LOOPS[key]
 
 

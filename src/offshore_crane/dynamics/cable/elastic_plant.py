@@ -36,10 +36,10 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics import views
 from offshore_crane.dynamics.cable.work import NA
-from offshore_crane.dynamics.cable.kernels import jit
+from offshore_crane.dynamics.cable.kernels import jit, tip_motion, tip_state
 from offshore_crane.dynamics.formulas import STORE_WIDTH
 
-tip_state, tip_motion, dot = c.K.tip_state, c.K.tip_motion, c.K.dot
+dot = c.K.dot
 cable_tension, sway_damping_force = c.K.cable_tension, c.K.sway_damping_force
 drag_force = c.K.drag_force
 #: The Kane pass with the pull and the explicit pass: each compiled once and called by

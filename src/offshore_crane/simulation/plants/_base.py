@@ -52,6 +52,12 @@ class Plant:
 
         return importlib.import_module(self.KERNELS)
 
+    @property
+    def variant(self) -> str:
+        """What tells kernels compiled apart for this plant from its default ones (a
+        commanded winch), or ``""``: the driver's loop is compiled per variant."""
+        return ""
+
     def params(self) -> tuple:
         """``P``: the arrays the kernels read (made once)."""
         if self._P is None:

@@ -40,35 +40,35 @@ _OK = ep.OK
 
 
 @inline
-def _size(P):
-    """The plant's state: 24, or 26 with a commanded winch (``P[16] > 0``)."""
-    return 26 if P[16] > 0.0 else 24
-
-
-@inline
-def _length(P, i, y):
+def _length(P, i, y, commanded):
     """The cable's length L [m] and its rate L̇ [m/s]: the commanded winch's state, else
-    the profile's at stage point ``i``."""
-    if P[16] > 0.0:
+    the profile's at stage point ``i`` (``commanded``: a constant of the kernels, so the
+    test is compiled away)."""
+    if commanded:
         return y[24], y[25]
     return P[7][i, 0], P[7][i, 1]
 
 
 @inline
-def _made_at(P, i, y):
+def _made_at(P, i, y, commanded):
     """True when the plant's load cell ``P[8]`` was measured at stage point ``i`` and
     state ``y`` (value for value; ``P[15]``: that state and ``i`` last, NaN before
     any)."""
     at = P[15]
     if at[26] != i:
         return False
-    for j in range(_size(P)):
+    for j in range(24):
         if at[j] != y[j]:
             return False
+    if commanded:                   # the winch's (L, L̇)
+        return at[24] == y[24] and at[25] == y[25]
     return True
 
 
-def _make(stamp):
+def _make(stamp, commanded):
+    """The kernels, closed over the formulas' hash and whether the winch is commanded (a
+    constant of their code: a test of ``P[16]`` at run time cost the elastic lift 5 %,
+    measured)."""
 
     @inline
     def prepare(P, i, y, aux):
@@ -79,10 +79,13 @@ def _make(stamp):
         if len(stamp) == 0:
             return
         at = P[15]
-        L, Ld = _length(P, i, y)
+        L, Ld = _length(P, i, y, commanded)
         measure(P[0], P[1], P[2], P[6], L, Ld, y, P[8], P[9])
-        for j in range(_size(P)):
+        for j in range(24):
             at[j] = y[j]
+        if commanded:
+            at[24] = y[24]
+            at[25] = y[25]
         at[26] = i
 
     @inline
@@ -94,10 +97,10 @@ def _make(stamp):
         if len(stamp) == 0:
             return False
         status = P[10]
-        L, Ld = _length(P, i, y)
+        L, Ld = _length(P, i, y, commanded)
         T = derivative(P[0], P[1], P[2], P[3], P[4], P[5], P[6], L, Ld, y, X,
-                       dy, P[8], P[9], status, _made_at(P, i, y))
-        if P[16] > 0.0:
+                       dy, P[8], P[9], status, _made_at(P, i, y, commanded))
+        if commanded:
             dy[24] = y[25]
             dy[25] = (T - X[9]) / P[16]
         ok = status[0] == _OK
@@ -132,7 +135,7 @@ def _make(stamp):
         stretch = np.sqrt(cell[3] ** 2 + cell[4] ** 2 + cell[5] ** 2) - aux[2]
         if stretch > 0.0:
             E += 0.5 * par[3] * stretch * stretch / aux[2]
-        if P[16] > 0.0:
+        if commanded:
             E += 0.5 * P[16] * y[25] * y[25]
         EXTRA[k, 8] = E
         EXTRA[k, 9] = aux[3]
@@ -145,10 +148,10 @@ def _make(stamp):
         if len(stamp) == 0:
             return
         cell, work = P[11], P[12]
-        if _made_at(P, i, y):
+        if _made_at(P, i, y, commanded):
             cell = P[8]
         else:
-            L, Ld = _length(P, i, y)
+            L, Ld = _length(P, i, y, commanded)
             measure(P[0], P[1], P[2], P[6], L, Ld, y, cell, work)
         computed_torque(P[0], P[1], P[2], P[6], y, qdd, cell, X, work)
 
@@ -158,7 +161,7 @@ def _make(stamp):
         if len(stamp) == 0:
             return
         cell, work, still = P[11], P[12], P[13]
-        L, Ld = _length(P, i, y)
+        L, Ld = _length(P, i, y, commanded)
         measure(P[0], P[1], P[2], P[6], L, Ld, y, cell, work)
         for j in range(24):
             still[j] = y[j] if (j < 12 or j >= 21) else 0.0
@@ -173,32 +176,30 @@ def _make(stamp):
 
     @jit
     def winch_to(P, i, y, Lr, Ldr, Lddr, X):
-        """A commanded winch's drive (``P[16] > 0``; else nothing): the line pull
+        """A commanded winch's drive (nothing on a plant without one): the line pull
         ``X[9] = T − m_w (L̈_r + kd (L̇_r − L̇) + kp (L_r − L))`` [N] that makes the length
         follow ``(L_r, L̇_r, L̈_r)`` [m, m/s, m/s²] with the error obeying ``ë + kd ė +
         kp e = 0``, the tension ``T`` measured at stage point ``i`` (the plant's load cell
         when :func:`prepare` measured it at ``y``)."""
-        if len(stamp) == 0:
+        if len(stamp) == 0 or not commanded:
             return
-        m = P[16]
-        if m <= 0.0:
-            return
-        gains = P[17]
-        if _made_at(P, i, y):
+        m, gains = P[16], P[17]
+        if _made_at(P, i, y, commanded):
             T = P[8][9]
         else:
             T = measure(P[0], P[1], P[2], P[6], y[24], y[25], y, P[11], P[12])
         X[9] = T - m * (Lddr + gains[1] * (Ldr - y[25]) + gains[0] * (Lr - y[24]))
 
-    @jit
+    @inline
     def winch(P, i, y, X):
         """The drive (:func:`winch_to`) following the winch's profile at stage point
         ``i``. Called before the law, which may overwrite ``X[9]`` (it commands the
-        winch then)."""
+        winch then); inlined: a plant without a commanded winch pays nothing."""
         if len(stamp) == 0:
             return
-        Lg = P[7]
-        winch_to(P, i, y, Lg[i, 0], Lg[i, 1], Lg[i, 2], X)
+        if commanded:
+            Lg = P[7]
+            winch_to(P, i, y, Lg[i, 0], Lg[i, 1], Lg[i, 2], X)
 
     return prepare, rhs, keep, inverse, gravity, arm_tip, winch, winch_to
 
@@ -208,7 +209,8 @@ def _make(stamp):
 #: a callee edited elsewhere would otherwise be linked stale).
 STAMP = c.STAMP + hashlib.sha256((inspect.getsource(ep) + inspect.getsource(shared)
                                   + inspect.getsource(ck)).encode()).hexdigest()
-prepare, rhs, keep, inverse, gravity, arm_tip, winch, winch_to = _make(STAMP)
+_NAMES = ("prepare", "rhs", "keep", "inverse", "gravity", "arm_tip", "winch", "winch_to")
+prepare, rhs, keep, inverse, gravity, arm_tip, winch, winch_to = _make(STAMP, False)
 check, coords, payload = shared.check, shared.coords, shared.payload
 
 
@@ -224,3 +226,19 @@ def params(plant) -> tuple:
             np.zeros(1, dtype=np.int64), np.zeros(ep.CELL), np.zeros(ep.WORK), np.zeros(24),
             np.zeros(9), np.full(27, np.nan), float(plant.winch_mass),
             np.array(plant.winch_gains, dtype=float))
+
+
+def _commanded():
+    """The kernels of the plant with a commanded winch (its ``(L, L̇)`` in the state):
+    the same text compiled with that constant, apart (made on first use), in the shape of
+    this module for the driver."""
+    if not _COMMANDED:
+        import types
+
+        _COMMANDED.append(types.SimpleNamespace(
+            **dict(zip(_NAMES, _make(STAMP, True))), check=check, coords=coords,
+            payload=payload, params=params, STAMP=STAMP + "commanded winch"))
+    return _COMMANDED[0]
+
+
+_COMMANDED: list = []

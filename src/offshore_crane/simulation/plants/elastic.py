@@ -77,6 +77,16 @@ class ElasticPlant(Plant):
                            np.zeros((1, 6)), self.g, False, False, Thresholds(),
                            P=pull[None], at=at[None])[0][0]
 
+    def kernels(self):
+        """The compiled kernels: with a commanded winch, their variant compiled with it
+        (:mod:`._elastic_kernels`)."""
+        module = super().kernels()
+        return module._commanded() if self.commanded else module
+
+    @property
+    def variant(self) -> str:
+        return "commanded winch" if self.commanded else ""
+
     def length(self, i, y) -> tuple[float, float]:
         """``(L [m], L̇ [m/s])`` at stage point i: the commanded winch's state, else the
         profile's."""

@@ -12,6 +12,7 @@ from offshore_crane.stops import CODES
 
 OK, _, SINGULAR, _, _, _ = CODES
 jit = njit(**c.JIT)
+inline = njit(inline="always", **c.JIT)
 actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
 
 
@@ -47,9 +48,9 @@ def _make(stamp):
         for j in range(9):
             out[j] = np.nan
 
-    @jit
+    @inline
     def winch(P, i, y, X):
-        """No commanded winch: nothing (the forces stay the law's 9)."""
+        """No commanded winch: nothing (the forces stay the law's 9; inlined: no call)."""
         if len(stamp) == 0:
             return
 
