@@ -146,3 +146,22 @@ def test_the_law_and_the_plant_read_one_load_cell_a_stage_with_the_same_numbers(
     y2 = y.copy()
     y2[3] = np.nextafter(y2[3], np.inf)
     np.testing.assert_array_equal(run(True, 1.0, at=y2)[0], run(False, at=y2)[0])
+
+
+def test_a_stopped_run_keeps_its_per_sample_info_as_long_as_its_samples():
+    """A lift that leaves the workspace (no law: the robot falls): the error's result
+    holds the samples before the stop, and the payload's, the length's and the
+    commanded winch's arrays in ``info`` are cut with them."""
+    from offshore_crane.errors import SimulationError
+    from offshore_crane.stops import StopCause
+
+    robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 1.0,
+                                     "actuators.winch.reflected_mass": 0.5})
+    with pytest.raises(SimulationError, match="outside its limits") as info:
+        simulate_elastic(robot, 2.0, table1, controller=Controller(law="none"), ea=EA,
+                         step=1e-3)
+    res = info.value.result
+    assert info.value.stop_cause is StopCause.WORKSPACE and 0 < len(res) < 2000
+    for key in ("payload", "payload_velocity", "length", "length_rate", "winch_force",
+                "winch_power"):
+        assert len(res.info[key]) == len(res), key

@@ -61,14 +61,24 @@ class SimulationResult:
         return len(self.t)
 
     def truncated(self, n: int) -> "SimulationResult":
-        """The first ``n`` samples."""
+        """The first ``n`` samples (the plants' per-sample arrays in ``info`` too,
+        :data:`PER_SAMPLE_INFO`)."""
         arrays = {k: getattr(self, k)[:n] for k in ("t", "q", "qd", "qdd", "q_ref", "qd_ref",
                                                      "X_cmd", "X", "saturated", "energy",
                                                      "power")}
         cable = {k: None if getattr(self, k) is None else getattr(self, k)[:n]
                  for k in ("sway", "sway_rate", "tension")}
+        info = {k: v[:n] if k in PER_SAMPLE_INFO and isinstance(v, np.ndarray) else v
+                for k, v in self.info.items()}
         return SimulationResult(**arrays, integrator=self.integrator, step=self.step,
-                                stop=self.stop, info=self.info, **cable)
+                                stop=self.stop, info=info, **cable)
+
+
+#: The per-sample arrays a plant puts into a result's ``info`` (the elastic cable's
+#: payload and winch, a winch's length): cut with the samples when a run stops.
+PER_SAMPLE_INFO = frozenset(("payload", "payload_velocity", "length", "length_rate",
+                             "winch_force", "winch_force_cmd", "winch_saturated",
+                             "winch_power"))
 
 
 def stage_times(t0: float, h: float, n_steps: int) -> np.ndarray:
