@@ -181,6 +181,14 @@ def test_the_wait_comes_from_this_machine_then_the_package_table(tmp_path, monke
     assert ct.estimate("b.run") == "about 12 s, as long as its last compile on this machine"
     assert ct.estimate("c.run") is None
     ct.record_path().write_text("{not json")
+    kin = json.loads(table.read_text())
+    kin["kernels"].update({"m.loop [rigid command=ct]": 9.4, "m.loop [rigid command=pd]": 7.2,
+                           "m.loop [hanging command=ct]": 10.5})
+    table.write_text(json.dumps(kin))
+    assert ct.estimate("m.loop [rigid command=pid]") == (
+        "about 9 s, as long as another law's loop on this plant (none of this one is "
+        "recorded)")                       # the slowest law's loop on the rigid plant
+    assert ct.estimate("m.loop [elastic command=ct]") is None
     assert ct.estimate("b.run").startswith("about 3 s on a 2-core machine")
 
 

@@ -54,17 +54,36 @@ def _wait(seconds) -> str | None:
 def _lookup(name: str) -> tuple[float, str] | None:
     """The last cold compile of kernel ``name`` [s] and where it comes from, in words to
     follow the wait (:func:`estimate`): this machine's record, else the package's table;
-    None when neither knows it."""
-    mine = _read(record_path()).get("kernels", {}).get(name)
-    if _wait(mine) is not None:
-        return float(mine), ", as long as its last compile on this machine"
+    for an instance of a template neither knows (a law's loop on a plant), the slowest
+    instance recorded of the same template on the same plant (:func:`_kin`); None when
+    nothing is known."""
+    mine = _read(record_path()).get("kernels", {})
+    if _wait(mine.get(name)) is not None:
+        return float(mine[name]), ", as long as its last compile on this machine"
     table = _read(SHIPPED)
-    theirs = table.get("kernels", {}).get(name)
-    if _wait(theirs) is not None:
-        where = table.get("machine", "the benchmark's machine")
-        return float(theirs), (f" on {where} (benchmarks/compile.py, "
-                               f"{table.get('date', '?')})")
+    theirs = table.get("kernels", {})
+    where = table.get("machine", "the benchmark's machine")
+    if _wait(theirs.get(name)) is not None:
+        return float(theirs[name]), (f" on {where} (benchmarks/compile.py, "
+                                     f"{table.get('date', '?')})")
+    kin = _kin(name, {**theirs, **mine})
+    if kin is not None:
+        return kin, (", as long as another law's loop on this plant (none of this one is "
+                     "recorded)")
     return None
+
+
+def _kin(name: str, kernels: dict) -> float | None:
+    """The slowest recorded compile [s] of another instance of ``name``'s template on the
+    same plant (``"<template> [<plant> <parts>]"``: the first word of the instance), or
+    None (not an instance, or none recorded)."""
+    if not isinstance(kernels, dict) or not name.endswith("]") or " [" not in name:
+        return None
+    template, instance = name[:-1].split(" [", 1)
+    prefix = f"{template} [{instance.split(' ', 1)[0]} "
+    times = [float(v) for k, v in kernels.items() if isinstance(k, str)
+             and k.startswith(prefix) and _wait(v) is not None]
+    return max(times) if times else None
 
 
 def seconds(name: str) -> float | None:
