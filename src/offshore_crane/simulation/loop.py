@@ -157,7 +157,7 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
                 RXC[k, j] = Xc[j]
                 RX[k, j] = X[j]
                 SAT[k, j] = Xc[j] < lo[j] or Xc[j] > hi[j]
-            keep(P, EXTRA, k, y, k1, aux)
+            keep(P, EXTRA, k, y, k1, X, aux)
             status[2] = k + 1
             code = check(P, y, aux, ok)
             if code == OK:

@@ -111,7 +111,7 @@ def _make(stamp, commanded):
         return ok
 
     @jit
-    def keep(P, EXTRA, k, y, dy, aux):
+    def keep(P, EXTRA, k, y, dy, X, aux):
         """The payload's position and velocity (3 each), the tension, the length, the
         mechanical energy [J] and the length's rate: the robot's ``T − g · Σ m c`` (the
         mass matrix and mass moments its equations of motion just formed at ``y``), the

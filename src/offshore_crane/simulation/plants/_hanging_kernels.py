@@ -99,7 +99,7 @@ def _make(stamp):
         return cable_force(C, store)[1]
 
     @jit
-    def keep(P, EXTRA, k, y, dy, aux):
+    def keep(P, EXTRA, k, y, dy, X, aux):
         """The sway, its rate and acceleration (2 each), the energy and, on a cable of a
         fixed length, its tension (before the drag's share, which the plant's ``finish``
         adds; NaN with a winch: ``finish`` forms the hoisted pull) into ``EXTRA[k]``."""

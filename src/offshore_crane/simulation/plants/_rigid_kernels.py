@@ -5,8 +5,9 @@ of motion and laws (:mod:`offshore_crane.simulation.rigid_equations`). ``P``
 buffer (:func:`~offshore_crane.simulation.rigid_equations.carve`: the equations' and the
 law's work arrays, views made in each kernel rather than handed in P, which the driver
 passes at every stage), q̈, zeros, the state the pass in the buffer was made at (NaN
-before any: no state equals it), whether the model is the plant's own and the plant's
-``1 / L`` [1/m] (its mean anchor distance from O2: the leg system's scale).
+before any: no state equals it), whether the model is the plant's own, the plant's
+``1 / L`` [1/m] (its mean anchor distance from O2: the leg system's scale) and the
+actuated joints' positions and rates (18,) that :func:`keep` forms the power from.
 
 One explicit pass a stage serves both the law and the accelerations when a computed
 torque runs on the plant's own model: :func:`prepare` makes the pass at the stage's
@@ -104,14 +105,27 @@ def _make(stamp):
         return ok
 
     @jit
-    def keep(P, EXTRA, k, y, dy, aux):
+    def keep(P, EXTRA, k, y, dy, X, aux):
         """The energy [J] at ``y`` into ``EXTRA[k, 0]``: kinetic ``½ q̇ᵀ M q̇`` and
         gravitational ``−g · Σ m c``, from the explicit pass made at ``y`` (the step's
-        first stage) in the work buffer."""
+        first stage) in the work buffer; and the actuators' power [W] under the applied
+        ``X`` into ``EXTRA[k, 1]``: ``Σ X_k ṡ_k`` over the arm joints, then over the legs
+        (the actuated joints' rates, the kinematics' compiled text: the numbers of
+        :func:`~offshore_crane.simulation.record.actuator_power` on NumPy, bit for bit,
+        without its pass over the record after the run)."""
         if len(stamp) == 0:
             return
         ws = _ws(P)
         EXTRA[k, 0] = energy(ws[2], ws[9], y[9:18], 6 + P[2].shape[0], P[6])
+        s, sd = P[13][:9], P[13][9:]
+        actuator_coordinates(unpack(P[0], P[1], P[2])[0], y[:9], y[9:18], s, sd)
+        arm = 0.0
+        for j in range(3):
+            arm += X[j] * sd[j]
+        legs = 0.0
+        for j in range(3, 9):
+            legs += X[j] * sd[j]
+        EXTRA[k, 1] = arm + legs
 
     @jit
     def own_inverse(P, y, qdd, X):
@@ -156,7 +170,7 @@ STAMP = c.STAMP + hashlib.sha256((inspect.getsource(eq) + inspect.getsource(shar
                                   ).encode()).hexdigest()
 prepare, rhs, keep, inverse, gravity, prepare_called, own_inverse = _make(STAMP)
 #: ``P``'s Numba type (:func:`params`), in the entries' signatures.
-_P = "Tuple((*PACKED, *PACKED, T3, V, V, V, V, boolean, float64))"
+_P = "Tuple((*PACKED, *PACKED, T3, V, V, V, V, boolean, float64, V))"
 #: The pass and the model's own inverse dynamics called by address
 #: (:mod:`offshore_crane.kernel_calls`): the paths the memo does not serve compile in a
 #: helper process beside the driver's loop (measured, one process, Numba's compile
@@ -167,6 +181,7 @@ OWN_INVERSE = kernel_calls.Entry.typed("rigid_own_inverse", lambda: own_inverse,
                                        f"none({_P}, V, V, V)", STAMP)
 call_prepare, call_own_inverse = PREPARE.call, OWN_INVERSE.call
 check, coords, payload, arm_tip = shared.check, shared.coords, shared.payload, shared.arm_tip
+actuator_coordinates = c.KE.actuator_coordinates
 winch, winch_to = shared.winch, shared.winch_to
 
 
@@ -180,4 +195,4 @@ def params(plant) -> tuple:
                                                   (a.prismatic, m.prismatic)))
     return (a.flat, a.layout, a.prismatic, m.flat, m.layout, m.prismatic,
             tuple(float(x) for x in plant.g), work, np.zeros(9), np.zeros(9),
-            np.full(18, np.nan), own, 1.0 / float(a.kane.L))
+            np.full(18, np.nan), own, 1.0 / float(a.kane.L), np.zeros(18))

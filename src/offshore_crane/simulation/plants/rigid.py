@@ -15,13 +15,13 @@ from offshore_crane.stops import StopCause
 class RigidPlant(Plant):
     name = "rigid"
     size = 18
-    RECORDED = {"energy": 0}
+    RECORDED = {"energy": 0, "power": 0}
     KERNELS = "offshore_crane.simulation.plants._rigid_kernels"
 
     def finish(self, res, rec, limits):
-        from offshore_crane.simulation.record import actuator_power, workspace_stop
+        from offshore_crane.simulation.record import workspace_stop
 
         res.energy = rec["energy"][:len(res)]
-        res.power = actuator_power(self.robot, res.q, res.qd, res.X)
+        res.power = rec["power"][:len(res)]
         found = workspace_stop(self.robot, res, limits)
         return None if found is None else (found[0], StopCause.WORKSPACE, found[1])
