@@ -117,15 +117,7 @@ def _make(stamp):
             return
         ws = _ws(P)
         EXTRA[k, 0] = energy(ws[2], ws[9], y[9:18], 6 + P[2].shape[0], P[6])
-        s, sd = P[13][:9], P[13][9:]
-        actuator_coordinates(unpack(P[0], P[1], P[2])[0], y[:9], y[9:18], s, sd)
-        arm = 0.0
-        for j in range(3):
-            arm += X[j] * sd[j]
-        legs = 0.0
-        for j in range(3, 9):
-            legs += X[j] * sd[j]
-        EXTRA[k, 1] = arm + legs
+        EXTRA[k, 1] = shared.power(unpack(P[0], P[1], P[2])[0], y[:9], y[9:18], X, P[13])
 
     @jit
     def own_inverse(P, y, qdd, X):
@@ -181,7 +173,6 @@ OWN_INVERSE = kernel_calls.Entry.typed("rigid_own_inverse", lambda: own_inverse,
                                        f"none({_P}, V, V, V)", STAMP)
 call_prepare, call_own_inverse = PREPARE.call, OWN_INVERSE.call
 check, coords, payload, arm_tip = shared.check, shared.coords, shared.payload, shared.arm_tip
-actuator_coordinates = c.KE.actuator_coordinates
 winch, winch_to = shared.winch, shared.winch_to
 
 

@@ -16,6 +16,24 @@ inline = njit(inline="always", **c.JIT)
 actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
 
 
+@inline
+def power(C, q, qd, X, w):
+    """The actuators' power [W] ``Σ X_k ṡ_k`` under the applied forces ``X`` at ``q, q̇``
+    (9,) each, on the robot of constants ``C`` (``w`` (18,): scratch for the actuated
+    joints' positions and rates): the arm joints' sum, then the legs', added as
+    :func:`~offshore_crane.simulation.record.actuator_power` adds them on NumPy (the same
+    numbers, bit for bit)."""
+    s, sd = w[:9], w[9:]
+    actuator_coordinates(C, q, qd, s, sd)
+    arm = 0.0
+    for j in range(3):
+        arm += X[j] * sd[j]
+    legs = 0.0
+    for j in range(3, 9):
+        legs += X[j] * sd[j]
+    return arm + legs
+
+
 def _make(stamp):
 
     @jit
