@@ -216,3 +216,4 @@ def test_the_actuator_models_take_the_winchs_pull():
     with pytest.raises(InputError, match=r"actuators lag: 10 numbers given, but the plant "
                                          r"has no commanded winch"):
         simulate_elastic(plain, 0.01, table1, ea=EA, actuators=Actuators(lag=[tau] * 10))
+

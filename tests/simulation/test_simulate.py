@@ -421,3 +421,27 @@ def test_the_shared_pass_equals_the_law_with_its_own(robot):
     for a, b in ((fast.X, slow.X), (fast.q, slow.q), (fast.qd, slow.qd)):
         assert 0 < np.abs(a - b).max() <= 1e-12 * np.abs(b).max()
     assert np.array_equal(fast.saturated, slow.saturated) and fast.saturated[:, 3].any()
+
+
+def test_every_plant_records_the_power_of_the_numpy_formula_bit_for_bit():
+    """The loop records the actuators' power on every plant (``keep``, the compiled
+    kinematics' text); it is :func:`record.actuator_power` on the record's q, q̇ and X
+    (NumPy, the same formulas and sum order) bit for bit: the rigid robot, a hanging load,
+    the elastic cable with a commanded winch (its pull apart)."""
+    from offshore_crane.simulation.record import actuator_power
+    from offshore_crane.simulation.swing import simulate_swing
+
+    from offshore_crane.dynamics.cable import hoist_profile
+    from offshore_crane.simulation.elastic import simulate_elastic
+
+    rigid = oc.load_robot()
+    winch = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 1.0,
+                                     "actuators.winch.reflected_mass": 0.5})
+    hanging = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 0.5})
+    runs = [(rigid, oc.simulate(rigid, 0.2, table1)),
+            (hanging, simulate_swing(hanging, 0.2, table1)),
+            (winch, simulate_elastic(winch, 0.2, table1, ea=2e4, hoist=hoist_profile(
+                [(0.05, 1.0), (0.15, 0.9)])))]
+    for robot, res in runs:
+        assert np.abs(res.power).max() > 1.0
+        np.testing.assert_array_equal(res.power, actuator_power(robot, res.q, res.qd, res.X))
