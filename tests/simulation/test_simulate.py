@@ -424,10 +424,11 @@ def test_the_shared_pass_equals_the_law_with_its_own(robot):
 
 
 def test_every_plant_records_the_power_of_the_numpy_formula_bit_for_bit():
-    """The loop records the actuators' power on every plant (``keep``, the compiled
-    kinematics' text); it is :func:`record.actuator_power` on the record's q, q̇ and X
-    (NumPy, the same formulas and sum order) bit for bit: the rigid robot, a hanging load,
-    the elastic cable with a commanded winch (its pull apart)."""
+    """The rigid robot's loop records the actuators' power (``keep``, the compiled
+    kinematics' text, called by address); it is :func:`record.actuator_power` on the
+    record's q, q̇ and X (NumPy, the same formulas and sum order) bit for bit, as the
+    other plants' (formed on NumPy after the run): the rigid robot, a hanging load, the
+    elastic cable with a commanded winch (its pull apart)."""
     from offshore_crane.simulation.record import actuator_power
     from offshore_crane.simulation.swing import simulate_swing
 

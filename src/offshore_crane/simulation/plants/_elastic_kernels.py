@@ -6,7 +6,7 @@ at every stage, the load cells and scratch of the plant and of the law, a still 
 zeros, the state and stage point the plant's cell was measured at (:func:`prepare`), the
 winch's reflected mass [kg] (0: its length is the profile's; > 0: ``(L, L̇)`` are the
 state's last two entries and its line pull the 10th force, :func:`winch`) and its drive's
-gains ``(kp [1/s²], kd [1/s])``, and the actuated joints' positions and rates (18,).
+gains ``(kp [1/s²], kd [1/s])``.
 
 One load cell a stage: :func:`prepare` measures it before the law is evaluated, and the
 built-in law's :func:`inverse` and the plant's :func:`rhs` read it when they are asked
@@ -113,8 +113,7 @@ def _make(stamp, commanded):
     @jit
     def keep(P, EXTRA, k, y, dy, X, aux):
         """The payload's position and velocity (3 each), the tension, the length, the
-        mechanical energy [J], the length's rate and the actuators' power [W] under the
-        applied ``X`` (the rigid plant's ``keep``, on the robot without its payload): the robot's ``T − g · Σ m c`` (the
+        mechanical energy [J] and the length's rate: the robot's ``T − g · Σ m c`` (the
         mass matrix and mass moments its equations of motion just formed at ``y``), the
         payload's ``½ m |v|² − m g · p``, the cable's strain energy ``½ EA s² / L`` while
         taut (``s = |ρ| − L``; the load cell's ρ) and a commanded winch's ``½ m_w L̇²``."""
@@ -140,7 +139,6 @@ def _make(stamp, commanded):
             E += 0.5 * P[16] * y[25] * y[25]
         EXTRA[k, 8] = E
         EXTRA[k, 9] = aux[3]
-        EXTRA[k, 10] = shared.power(unpack(P[3], P[4], P[5])[0], y[:9], y[12:21], X, P[18])
 
     @inline
     def inverse(P, i, y, qdd, X):
@@ -227,7 +225,7 @@ def params(plant) -> tuple:
             np.ascontiguousarray(plant.Lg), np.zeros(ep.CELL), np.zeros(ep.WORK),
             np.zeros(1, dtype=np.int64), np.zeros(ep.CELL), np.zeros(ep.WORK), np.zeros(24),
             np.zeros(9), np.full(27, np.nan), float(plant.winch_mass),
-            np.array(plant.winch_gains, dtype=float), np.zeros(18))
+            np.array(plant.winch_gains, dtype=float))
 
 
 def _commanded():

@@ -1,8 +1,8 @@
 """Compiled kernels of the hanging plant (:mod:`.hanging`) for the RK4 driver
 (:mod:`offshore_crane.simulation.loop`; imports Numba). ``P`` (:func:`params`): the
 plant's and the model's packed arrays with the cable (their sway damping and drag), the
-legs' arrays (the model's; the plant's last, for the power), gravity and scratch. Closed
-over the formulas' hash (a formula edited rebuilds them)."""
+legs' arrays, gravity and scratch. Closed over the formulas' hash (a formula edited
+rebuilds them)."""
 
 from __future__ import annotations
 
@@ -100,11 +100,9 @@ def _make(stamp):
 
     @jit
     def keep(P, EXTRA, k, y, dy, X, aux):
-        """The sway, its rate and acceleration (2 each), the energy, on a cable of a
-        fixed length its tension (before the drag's share, which the plant's ``finish``
-        adds; NaN with a winch: ``finish`` forms the hoisted pull), and the actuators'
-        power [W] under the applied ``X`` (the plant's legs and arm joints,
-        :func:`~.shared_kernels.power`) into ``EXTRA[k]``."""
+        """The sway, its rate and acceleration (2 each), the energy and, on a cable of a
+        fixed length, its tension (before the drag's share, which the plant's ``finish``
+        adds; NaN with a winch: ``finish`` forms the hoisted pull) into ``EXTRA[k]``."""
         if len(stamp) == 0:
             return
         for j in range(2):
@@ -114,8 +112,6 @@ def _make(stamp):
         EXTRA[k, 6] = aux[1]
         EXTRA[k, 7] = (call_tension(P[0], P[1], P[2], P[5], y, dy, P[18])
                        if P[17].shape[0] == 1 else np.nan)
-        EXTRA[k, 8] = shared.power(unpack(P[19], P[20], P[21])[0], y[:9], y[11:20], X,
-                                   P[22])
 
     @jit
     def inverse(P, i, y, qdd, X):
@@ -186,7 +182,6 @@ def params(plant) -> tuple:
 
     a, m = plant.plant_arrays, plant.model_arrays
     legs = robot_arrays(plant.model.without_hanging_payload())
-    body = robot_arrays(plant.robot.without_hanging_payload())    # the plant's, for power
     Lh = plant.lengths
     # a winch writes its length into the arrays: the plant's and the model's own copies
     own = (lambda x: x.copy()) if len(Lh) > 1 else (lambda x: x)
@@ -194,5 +189,4 @@ def params(plant) -> tuple:
             plant.drag_p, np.array(plant.g, dtype=float), np.zeros(11), np.zeros(2),
             own(m.flat), m.layout, m.prismatic, np.asarray(plant.damp_c, float),
             plant.drag_c, legs.flat, legs.layout, legs.prismatic, np.zeros(11),
-            np.ascontiguousarray(Lh, dtype=float), np.zeros(ck.WORK), body.flat, body.layout,
-            body.prismatic, np.zeros(18))
+            np.ascontiguousarray(Lh, dtype=float), np.zeros(ck.WORK))

@@ -117,7 +117,7 @@ def _make(stamp):
             return
         ws = _ws(P)
         EXTRA[k, 0] = energy(ws[2], ws[9], y[9:18], 6 + P[2].shape[0], P[6])
-        EXTRA[k, 1] = shared.power(unpack(P[0], P[1], P[2])[0], y[:9], y[9:18], X, P[13])
+        EXTRA[k, 1] = shared.power(P[0], P[1], P[2], y[:9], y[9:18], X, P[13])
 
     @jit
     def own_inverse(P, y, qdd, X):

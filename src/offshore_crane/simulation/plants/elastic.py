@@ -36,7 +36,7 @@ class ElasticPlant(Plant):
     Q = slice(0, 9)
     QD = slice(12, 21)
     RECORDED = {"payload": 3, "payload_velocity": 3, "tension": 0, "length": 0, "energy": 0,
-                "length_rate": 0, "power": 0}
+                "length_rate": 0}
     KERNELS = "offshore_crane.simulation.plants._elastic_kernels"
 
     def __init__(self, robot, model, gravity, *, ea, damping, lengths, winch_mass=0.0,
@@ -154,7 +154,7 @@ class ElasticPlant(Plant):
             "ok": True, "tension": T, "length": L}
 
     def finish(self, res, rec, limits):
-        from offshore_crane.simulation.record import workspace_stop
+        from offshore_crane.simulation.record import actuator_power, workspace_stop
 
         n = len(res)
         res.tension, res.energy = rec["tension"][:n], rec["energy"][:n]
@@ -168,6 +168,6 @@ class ElasticPlant(Plant):
                             winch_power=-res.X[:, 9] * res.info["length_rate"])
             res.X, res.X_cmd = res.X[:, :9].copy(), res.X_cmd[:, :9].copy()
             res.saturated = res.saturated[:, :9].copy()
-        res.power = rec["power"][:n]
+        res.power = actuator_power(self.robot, res.q, res.qd, res.X)
         found = workspace_stop(self.robot, res, limits)
         return None if found is None else (found[0], StopCause.WORKSPACE, found[1])

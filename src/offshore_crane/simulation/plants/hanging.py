@@ -21,8 +21,7 @@ class HangingPlant(Plant):
     size = 22
     Q = slice(0, 9)
     QD = slice(11, 20)
-    RECORDED = {"sway": 2, "sway_rate": 2, "sway_acc": 2, "energy": 0, "tension": 0,
-                "power": 0}
+    RECORDED = {"sway": 2, "sway_rate": 2, "sway_acc": 2, "energy": 0, "tension": 0}
     KERNELS = "offshore_crane.simulation.plants._hanging_kernels"
 
     def __init__(self, robot, model, gravity, hoist=None, tt=None):
@@ -70,7 +69,6 @@ class HangingPlant(Plant):
 
             L = hoist_grid(self.hoist, res.t)
             res.info["length"] = L[:, 0]
-        res.power = rec["power"][:n]
         return finish(self.robot, res, rec["sway_acc"][:n], self.g, limits, L,
                       rec["tension"][:n])
 
@@ -85,12 +83,13 @@ def finish(robot, res, sway_acc, g, limits, L, tension):
 
 
 def _finish(robot, res, sway_acc, g, L, tension) -> None:
-    """The tension filled in from the recorded samples: on a cable of a fixed length the
-    ``tension`` the loop recorded (the Kane pass at each sample,
-    :func:`~offshore_crane.simulation.plants._hanging_kernels` ``keep``) and the drag's
-    share along the cable; with a winch's ``L`` ``(n, 3)`` [m, m/s, m/s²], the hoisted
-    pendulum's pull on NumPy arrays. (The actuators' power the loop records too.)"""
+    """The tension and the actuators' power filled in from the recorded samples: on a
+    cable of a fixed length the ``tension`` the loop recorded (the Kane pass at each
+    sample, :func:`~offshore_crane.simulation.plants._hanging_kernels` ``keep``) and the
+    drag's share along the cable; with a winch's ``L`` ``(n, 3)`` [m, m/s, m/s²], the
+    hoisted pendulum's pull on NumPy arrays."""
     from offshore_crane.dynamics.constants import cable_arrays
+    from offshore_crane.simulation.record import actuator_power
 
     n = len(res)
     if n == 0:
@@ -101,6 +100,7 @@ def _finish(robot, res, sway_acc, g, L, tension) -> None:
         Y = np.hstack([res.sway, res.sway_rate, sway_acc])
         res.tension = hoisted_pull(robot, cable_arrays(robot).kane, res.q, res.qd, res.qdd,
                                    Y, L, g)[2][:, 3]
+        res.power = actuator_power(robot, res.q, res.qd, res.X)
         return
     T = np.array(tension, dtype=float)
     if robot.hybrid.drag > 0.0:             # the pull along the cable takes the drag too
@@ -110,6 +110,7 @@ def _finish(robot, res, sway_acc, g, L, tension) -> None:
                                      res.qdd, np.hstack([res.sway, res.sway_rate]), None)
         T += np.einsum("ij,ij->i", f, e)
     res.tension = T
+    res.power = actuator_power(robot, res.q, res.qd, res.X)
 
 
 def _slack_or_workspace(robot, res, limits):
