@@ -194,8 +194,8 @@ def test_the_actuator_models_take_the_winchs_pull():
     """One lag for all: the winch's applied pull lags its command, ``τ Ẋ_a = X_cmd −
     X_a`` (the recorded applied pull against the trapezoids of that equation on the
     recorded command: ≤ 1e-3 of the pull's range, the trapezoids' error at 1 ms with τ =
-    10 ms; measured 3.5e-5); 9 lags leave the pull unlagged (applied = commanded); 10 without a commanded
-    winch are refused."""
+    10 ms; measured 3.5e-5); 9 lags leave the pull unlagged (applied = commanded); 10
+    without a commanded winch are refused."""
     from offshore_crane.simulation.instruments import Actuators
 
     robot = _robot()

@@ -81,9 +81,9 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
     ``out_every``-th step recorded (``RQ`` ... ``RQDR`` ``(n_out, 9)``, ``RXC``, ``RX``,
     ``SAT`` (bool) ``(n_out, nx)``, the plant's ``EXTRA``); ``nx``: the actuator forces,
     ``lo``'s length (9, or 10 with a commanded winch, its line pull last); ``hold`` steps
-    a control period (0: the law at every stage); the sensors (``sens``: ``delay`` steps, noise rows ``nq``, ``nqd`` per control instant,
-    resolutions ``resq``, ``resqd``), the rate limit ``rlim`` and lag ``lag`` (empty:
-    none). ``status``: (stop code, its output sample, samples recorded, control
+    a control period (0: the law at every stage); the sensors (``sens``: ``delay`` steps,
+    noise rows ``nq``, ``nqd`` per control instant, resolutions ``resq``, ``resqd``), the
+    rate limit ``rlim`` and lag ``lag`` (empty: none). ``status``: (stop code, its output sample, samples recorded, control
     instants); ends before a step when ``halt[0]`` is not zero (STOPPED). ``W``: the
     loop's zeroed scratch (:func:`scratch`)."""
     P, L = unowned(P), unowned(L)      # handed to the plant and the law at every stage

@@ -39,36 +39,36 @@ tip_kinematics = ck.tip_kinematics
 _OK = ep.OK
 
 
-@inline
-def _length(P, i, y, commanded):
-    """The cable's length L [m] and its rate L̇ [m/s]: the commanded winch's state, else
-    the profile's at stage point ``i`` (``commanded``: a constant of the kernels, so the
-    test is compiled away)."""
-    if commanded:
-        return y[24], y[25]
-    return P[7][i, 0], P[7][i, 1]
-
-
-@inline
-def _made_at(P, i, y, commanded):
-    """True when the plant's load cell ``P[8]`` was measured at stage point ``i`` and
-    state ``y`` (value for value; ``P[15]``: that state and ``i`` last, NaN before
-    any)."""
-    at = P[15]
-    if at[26] != i:
-        return False
-    for j in range(24):
-        if at[j] != y[j]:
-            return False
-    if commanded:                   # the winch's (L, L̇)
-        return at[24] == y[24] and at[25] == y[25]
-    return True
-
-
 def _make(stamp, commanded):
     """The kernels, closed over the formulas' hash and whether the winch is commanded (a
     constant of their code: a test of ``P[16]`` at run time cost the elastic lift 5 %,
-    measured)."""
+    measured). The helpers that test it are made here too, one pair per variant, so that
+    no inline helper is shared by the two variants' compiles (a plain lift run after a
+    commanded one in one process diverged at its first step once, with a development
+    cache; not reproduced from a cold cache, nor since)."""
+
+    @inline
+    def _length(P, i, y):
+        """The cable's length L [m] and its rate L̇ [m/s]: the commanded winch's state,
+        else the profile's at stage point ``i``."""
+        if commanded:
+            return y[24], y[25]
+        return P[7][i, 0], P[7][i, 1]
+
+    @inline
+    def _made_at(P, i, y):
+        """True when the plant's load cell ``P[8]`` was measured at stage point ``i`` and
+        state ``y`` (value for value; ``P[15]``: that state and ``i`` last, NaN before
+        any)."""
+        at = P[15]
+        if at[26] != i:
+            return False
+        for j in range(24):
+            if at[j] != y[j]:
+                return False
+        if commanded:                   # the winch's (L, L̇)
+            return at[24] == y[24] and at[25] == y[25]
+        return True
 
     @inline
     def prepare(P, i, y, aux):
@@ -79,7 +79,7 @@ def _make(stamp, commanded):
         if len(stamp) == 0:
             return
         at = P[15]
-        L, Ld = _length(P, i, y, commanded)
+        L, Ld = _length(P, i, y)
         measure(P[0], P[1], P[2], P[6], L, Ld, y, P[8], P[9])
         for j in range(24):
             at[j] = y[j]
@@ -97,9 +97,9 @@ def _make(stamp, commanded):
         if len(stamp) == 0:
             return False
         status = P[10]
-        L, Ld = _length(P, i, y, commanded)
+        L, Ld = _length(P, i, y)
         T = derivative(P[0], P[1], P[2], P[3], P[4], P[5], P[6], L, Ld, y, X,
-                       dy, P[8], P[9], status, _made_at(P, i, y, commanded))
+                       dy, P[8], P[9], status, _made_at(P, i, y))
         if commanded:
             dy[24] = y[25]
             dy[25] = (T - X[9]) / P[16]
@@ -148,10 +148,10 @@ def _make(stamp, commanded):
         if len(stamp) == 0:
             return
         cell, work = P[11], P[12]
-        if _made_at(P, i, y, commanded):
+        if _made_at(P, i, y):
             cell = P[8]
         else:
-            L, Ld = _length(P, i, y, commanded)
+            L, Ld = _length(P, i, y)
             measure(P[0], P[1], P[2], P[6], L, Ld, y, cell, work)
         computed_torque(P[0], P[1], P[2], P[6], y, qdd, cell, X, work)
 
@@ -161,7 +161,7 @@ def _make(stamp, commanded):
         if len(stamp) == 0:
             return
         cell, work, still = P[11], P[12], P[13]
-        L, Ld = _length(P, i, y, commanded)
+        L, Ld = _length(P, i, y)
         measure(P[0], P[1], P[2], P[6], L, Ld, y, cell, work)
         for j in range(24):
             still[j] = y[j] if (j < 12 or j >= 21) else 0.0
@@ -184,7 +184,7 @@ def _make(stamp, commanded):
         if len(stamp) == 0 or not commanded:
             return
         m, gains = P[16], P[17]
-        if _made_at(P, i, y, commanded):
+        if _made_at(P, i, y):
             T = P[8][9]
         else:
             T = measure(P[0], P[1], P[2], P[6], y[24], y[25], y, P[11], P[12])
