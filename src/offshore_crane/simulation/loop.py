@@ -83,9 +83,9 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
     ``lo``'s length (9, or 10 with a commanded winch, its line pull last); ``hold`` steps
     a control period (0: the law at every stage); the sensors (``sens``: ``delay`` steps,
     noise rows ``nq``, ``nqd`` per control instant, resolutions ``resq``, ``resqd``), the
-    rate limit ``rlim`` and lag ``lag`` (empty: none). ``status``: (stop code, its output sample, samples recorded, control
-    instants); ends before a step when ``halt[0]`` is not zero (STOPPED). ``W``: the
-    loop's zeroed scratch (:func:`scratch`)."""
+    rate limit ``rlim`` and lag ``lag`` (empty: none). ``status``: (stop code, its output
+    sample, samples recorded, control instants); ends before a step when ``halt[0]`` is
+    not zero (STOPPED). ``W``: the loop's zeroed scratch (:func:`scratch`)."""
     P, L = unowned(P), unowned(L)      # handed to the plant and the law at every stage
     # the arrays handed on at every stage, without their owner: the caller keeps them
     # alive for the call (their reference counts cost the rigid robot 3-4 %, measured)
