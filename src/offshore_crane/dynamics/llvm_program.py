@@ -45,6 +45,28 @@ def _parse(line: str) -> tuple[str, str, list]:
     return lhs, "neg", [rhs[1:]]
 
 
+#: The trace's non-finite literals (NumPy's names) as LLVM's doubles.
+_SPECIAL = {"np.nan": "0x7FF8000000000000", "np.inf": "0x7FF0000000000000",
+            "-np.inf": "0xFFF0000000000000"}
+
+
+def _constant(x: str) -> str:
+    """A literal of the trace in LLVM's text: its bits exactly (:func:`_literal`)."""
+    return _SPECIAL[x] if x in _SPECIAL else _literal(float(x))
+
+
+def _splat(body: list, tag: str, value: str, lanes: int) -> str:
+    """``value`` in each of ``lanes`` lanes: a constant vector for a constant, else the
+    register ``tag`` (its insertelement and shufflevector appended to ``body``)."""
+    vec = f"<{lanes} x double>"
+    if not value.startswith("%"):
+        return "<" + ", ".join([f"double {value}"] * lanes) + ">"
+    body.append(f"  {tag}.i = insertelement {vec} poison, double {value}, i32 0")
+    body.append(f"  {tag} = shufflevector {vec} {tag}.i, {vec} poison, "
+                f"<{lanes} x i32> zeroinitializer")
+    return tag
+
+
 def _literal(x: float) -> str:
     """A double in LLVM's text: its bits, exactly."""
     return "0x%016X" % struct.unpack("<Q", struct.pack("<d", x))[0]
@@ -128,9 +150,7 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
             return load(x, f"%{m[1]}", int(m[2]))
         if re.fullmatch(r"(g|pull|at)_\d", x):
             return f"%{x}"
-        special = {"np.nan": "0x7FF8000000000000", "np.inf": "0x7FF0000000000000",
-                   "-np.inf": "0xFFF0000000000000"}
-        return special[x] if x in special else _literal(float(x))
+        return _constant(x)
 
     def is_vector(x: str) -> bool:
         return x in vectors or x.startswith("V")
@@ -142,15 +162,7 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
         if m:
             return gather(x, int(m[1]), int(m[2]))
         if x not in splats:                   # a scalar or a literal in every lane
-            value = scalar(x)
-            if value.startswith("%"):
-                tag = f"%splat.{len(splats)}"
-                body.append(f"  {tag}.i = insertelement {_VEC} poison, double {value}, i32 0")
-                body.append(f"  {tag} = shufflevector {_VEC} {tag}.i, {_VEC} poison, "
-                            f"<{LANES} x i32> zeroinitializer")
-                splats[x] = tag
-            else:
-                splats[x] = "<" + ", ".join([f"double {value}"] * LANES) + ">"
+            splats[x] = _splat(body, f"%splat.{len(splats)}", scalar(x), LANES)
         return splats[x]
 
     for m, (f, col) in enumerate(trace.trig):
@@ -245,21 +257,13 @@ def block_ir(trace, name: str, lanes: int) -> str:
         if m:
             body.append(f"  %{x}.p = getelementptr double, ptr %flat, i64 {m[1]}")
             body.append(f"  %{x}.s = load double, ptr %{x}.p")
-            scalar = f"%{x}.s"
+            value = f"%{x}.s"
         elif re.fullmatch(r"g[012]", x):
-            scalar = f"%{x}"
+            value = f"%{x}"
         else:
-            special = {"np.nan": "0x7FF8000000000000", "np.inf": "0x7FF0000000000000",
-                       "-np.inf": "0xFFF0000000000000"}
-            value = special[x] if x in special else _literal(float(x))
-            known[x] = "<" + ", ".join([f"double {value}"] * lanes) + ">"
-            return known[x]
-        tag = f"%splat.{len(known)}"
-        body.append(f"  {tag}.i = insertelement {vec} poison, double {scalar}, i32 0")
-        body.append(f"  {tag} = shufflevector {vec} {tag}.i, {vec} poison, "
-                    f"<{lanes} x i32> zeroinitializer")
-        known[x] = tag
-        return tag
+            value = _constant(x)
+        known[x] = _splat(body, f"%splat.{len(known)}", value, lanes)
+        return known[x]
 
     stores: dict = {}
     for r, x in enumerate(trace.outputs):
