@@ -143,29 +143,31 @@ def _trace(arrays, leg_model: int, cable: bool):
         return None                       # symbols do not write (e.g. a power)
 
 
-def program(arrays, leg_model: int, key: str, cable: bool = False):
+def program(arrays, leg_model: int, key: str, cable: bool = False, trace=None):
     """``(name, LLVM text)`` of the block program (:func:`~.llvm_program.block_ir`) of
     the structure ``key``, or None when the formulas cannot be traced: traced in each
-    process (milliseconds), its compiled object cached by :mod:`.native`."""
+    process (milliseconds; ``trace``: :func:`_trace`'s, when made already), its compiled
+    object cached by :mod:`.native`."""
     from offshore_crane.dynamics import native
     from offshore_crane.dynamics.llvm_program import block_ir
 
-    tr = _trace(arrays, leg_model, cable)
+    tr = trace or _trace(arrays, leg_model, cable)
     if tr is None:
         return None
     name = f"offshore_crane_block_{native.stamp()}_{key}"
     return name, block_ir(tr, name, LANES)
 
 
-def source(arrays, leg_model: int, key: str = "", cable: bool = False) -> str | None:
+def source(arrays, leg_model: int, key: str = "", cable: bool = False,
+           trace=None) -> str | None:
     """The generated driver's text for the robot of ``arrays`` and ``leg_model`` (with
     ``cable``, the hanging load's driver), or None when the formulas cannot be traced
     (:class:`~.tracing.TraceError`): it gathers each block's inputs, calls the block
-    program (:func:`program`) in its slot and runs each sample's epilogue."""
-
+    program (:func:`program`) in its slot and runs each sample's epilogue (``trace``:
+    :func:`_trace`'s, when made already)."""
     from offshore_crane.dynamics import native
 
-    tr = _trace(arrays, leg_model, cable)
+    tr = trace or _trace(arrays, leg_model, cable)
     if tr is None:
         return None
     n = 6 + arrays.kane.n_arm
@@ -242,14 +244,15 @@ def kane_kernel(arrays, leg_model: int, cable: bool = False):
 def _load(key: str, arrays, leg_model: int, cable: bool):
     """The structure's kernel: its program read from the folder and checked, else traced
     and written (checked after writing); None when it cannot be traced, or written."""
+    trace = _trace(arrays, leg_model, cable)        # once: the driver's and the program's
+    if trace is None:
+        return None
     folder = cache_folder()
     version = _sources_hash()[:8]
     path = folder / f"kane_lanes_{version}_{key}.py"
     text, problem = _read_program(path)
     if text is None:
-        text = source(arrays, leg_model, key, cable)
-        if text is None:
-            return None
+        text = source(arrays, leg_model, key, cable, trace)
         if problem is not None:
             _warn(f"generated program {path} {problem}: generated again from the formulas")
         problem = _write_program(path, text, version)
@@ -257,8 +260,7 @@ def _load(key: str, arrays, leg_model: int, cable: bool):
             _warn(f"generated program {path} {problem}: the per-sample kernel runs instead "
                   "(the same numbers, slower)")
             return None
-    block = program(arrays, leg_model, key, cable)
-    return None if block is None else _run_program(path, key, text, block)
+    return _run_program(path, key, text, program(arrays, leg_model, key, cable, trace))
 
 
 def _digest(path: Path, text: bytes) -> str:

@@ -41,7 +41,7 @@ def _make(stamp):
             return
 
     @jit
-    def winch(P, flat, lay, prism, i):
+    def hoist_at(P, flat, lay, prism, i):
         """``(L̇, L̈)`` of the winch at stage point ``i``, its length written into the
         arrays ``flat, lay, prism`` (the plant's or the model's own copy); ``(0, 0)``
         and nothing written for a fixed length (``P[17]`` of one row)."""
@@ -60,7 +60,7 @@ def _make(stamp):
         if len(stamp) == 0:
             return False
         a, en = P[6], P[7]
-        Ld, Ldd = winch(P, P[0], P[1], P[2], i)
+        Ld, Ldd = hoist_at(P, P[0], P[1], P[2], i)
         ok = accelerations(P[0], P[1], P[2], P[3], P[4], y[:11], y[11:22], X, P[5], Ld, Ldd,
                            a, en, P[18])
         for j in range(11):
@@ -118,7 +118,7 @@ def _make(stamp):
         """X for ``qdd`` (9,) at the measured ``y`` on the model (the sway read)."""
         if len(stamp) == 0:
             return
-        Ld, Ldd = winch(P, P[8], P[9], P[10], i)
+        Ld, Ldd = hoist_at(P, P[8], P[9], P[10], i)
         computed_torque(P[8], P[9], P[10], P[11], P[12], y[:11], y[11:22], qdd, P[5], Ld,
                         Ldd, X, P[18])
 
@@ -129,7 +129,7 @@ def _make(stamp):
         if len(stamp) == 0:
             return
         zero = P[16]
-        winch(P, P[8], P[9], P[10], i)
+        hoist_at(P, P[8], P[9], P[10], i)
         computed_torque(P[8], P[9], P[10], P[11], P[12], y[:11], zero[:11], zero[:9], P[5],
                         0.0, 0.0, X, P[18])
 
@@ -146,7 +146,7 @@ def _make(stamp):
         winch's length and rate at stage point ``i``)."""
         if len(stamp) == 0:
             return
-        Ld = winch(P, P[8], P[9], P[10], i)[0]
+        Ld = hoist_at(P, P[8], P[9], P[10], i)[0]
         pay_kernel(P[8], P[9], P[10], y[:11], y[11:22], Ld, pay)
 
     @jit

@@ -1,6 +1,8 @@
 """Compiled kernels two plants share (:mod:`._rigid_kernels`, :mod:`._elastic_kernels`:
 both keep the legs' packed arrays at ``P[3:6]``, neither has a hanging payload, both stop
-on a singular mass matrix only). Closed over the formulas' hash."""
+on a singular mass matrix only), the no-op ``winch`` and ``winch_to`` of the plants
+without a commanded winch (the hanging load's too) and the rigid plant's power by
+address. Closed over the formulas' hash."""
 
 from __future__ import annotations
 
