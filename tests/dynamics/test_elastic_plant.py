@@ -178,7 +178,7 @@ def test_the_kernels_allocate_nothing_a_call(plants):
         for _ in range(n):
             ep.measure(*cell_head, L, Ld, y, cell, work)
             ep.computed_torque(*model_head, y, cmd, cell, Xc, work)
-            ep.derivative(*head, L, Ld, y, X, out, cell, work, status, False)
+            ep.derivative(*head, L, Ld, y, X, out, cell, work, status, False, Xc, False)
 
     args = (plant._plant, plant._cell, plant._model, y, X, L, Ld, cmd, np.empty(24),
             np.empty(9), plant.cell, plant.work, plant.status)
@@ -214,3 +214,45 @@ def test_the_carved_views_named_for_the_energy_are_the_mass_matrix_and_moments()
     assert mm.shape == (9, 9) and mc.shape == (1, 3)
     assert (mm.ctypes.data - w.ctypes.data) // 8 == ep._MM
     assert (mc.ctypes.data - w.ctypes.data) // 8 == ep._MC
+
+
+def test_the_law_and_the_pulls_share_from_one_program_are_the_separate_calls(plants):
+    """:func:`~.elastic_plant.computed_torque_share` (the law's Kane pass and the plant's
+    two, one program) gives the law's X of :func:`~.elastic_plant.computed_torque` bit
+    for bit, and :func:`~.elastic_plant.derivative` reading its pull's share (``fused``)
+    gives the rates of the unfused call bit for bit, slack and taut, damped and not."""
+    robot, _, plant = plants
+    D, share, work = np.zeros(9), np.zeros(ep.SHARE), np.zeros(ep.WORK)
+    for y, X, L, Ld, cmd in _states(robot, 8, seed=41):
+        plant.measure(y, L, Ld)
+        X_law = plant.computed_torque(y, cmd, np.empty(9))
+        X_fused = np.empty(9)
+        ep.computed_torque_share(*plant._model, y, cmd, plant.cell, X_fused, D, work, share)
+        np.testing.assert_array_equal(X_fused, X_law)
+        want, got = np.empty(24), np.empty(24)
+        T = ep.derivative(*plant._plant, L, Ld, y, X, want, plant.cell, plant.work,
+                          plant.status, True, D, False)
+        T_fused = ep.derivative(*plant._plant, L, Ld, y, X, got, plant.cell, plant.work,
+                                plant.status, True, D, True)
+        np.testing.assert_array_equal(got, want)
+        assert T_fused == T
+
+
+def test_the_stewart_solve_of_many_right_hand_sides_is_each_solve_bit_for_bit():
+    """:func:`~offshore_crane.dynamics.linear.solve6_many` against :func:`solve6` per
+    right-hand side (no tolerance: the same operations on each column), and NaN for a
+    singular A."""
+    from offshore_crane.dynamics.linear import solve6, solve6_many
+
+    rng = np.random.default_rng(42)
+    for _ in range(20):
+        A, R = rng.normal(size=(6, 6)), rng.normal(size=(3, 6))
+        X = np.empty((3, 6))
+        assert solve6_many(A, R, X, np.empty((6, 9)))
+        for j in range(3):
+            x = np.empty(6)
+            solve6(A, R[j], x, np.empty((6, 13)), False)
+            np.testing.assert_array_equal(X[j], x)
+    A[:, 2] = 0.0
+    assert not solve6_many(A, R, X, np.empty((6, 9)))
+    assert np.isnan(X).all()

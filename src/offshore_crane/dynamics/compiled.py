@@ -22,13 +22,15 @@ from offshore_crane.kernel_cache import njit
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.dynamics import backends
 from offshore_crane.dynamics.passes import (EXPLICIT, KANE, KANE_PULL,  # noqa: F401
-                                           call_explicit, call_kane, call_kane_pull,
-                                           explicit_sample, kane_constants_type, kane_pass,
-                                           kane_pull_pass)
+                                           KANE_PULL3, call_explicit, call_kane,
+                                           call_kane_pull, call_kane_pull3, explicit_sample,
+                                           kane_constants_type, kane_pass, kane_pull_pass,
+                                           kane_pull3_pass)
 from offshore_crane.dynamics.constants import FIELDS
 from offshore_crane.dynamics.formulas import KaneConstants
 from offshore_crane.dynamics.linear import (actuation_minus_bias, cholesky_solve,  # noqa: F401
-                                            kinetic_energy, leg_system, solve6)
+                                            kinetic_energy, leg_system, solve6,
+                                            solve6_many)
 from offshore_crane.dynamics.jit import JIT
 from offshore_crane.dynamics.views import c_view
 

@@ -68,6 +68,56 @@ def solve6(A, rhs, x, M, want_cond):
 
 
 @njit(**JIT)
+def solve6_many(A, R, X, M):
+    """:func:`solve6` of ``A`` for the k right-hand sides ``R`` (k, 6) at once (``M`` a
+    (6, 6 + k) workspace) into ``X`` (k, 6), row j the solution of row j, without the
+    condition number: each right-hand side's column goes through the same operations
+    as in :func:`solve6` (the pivots and factors come from A's columns alone), so each
+    solution is :func:`solve6`'s bit for bit; False, the solutions NaN, when A is
+    singular or not finite. Step k works on the columns past k only: the columns up to
+    k are never read again (step k reads its pivot column k and nothing before it)."""
+    n = 6
+    k_rhs = R.shape[0]
+    w = n + k_rhs
+    for i in range(n):
+        for j in range(n):
+            M[i, j] = A[i, j]
+        for j in range(k_rhs):
+            M[i, n + j] = R[j, i]
+    for k in range(n):
+        p = k
+        best = abs(M[k, k])
+        for r in range(k + 1, n):
+            v = abs(M[r, k])
+            if v > best:
+                best = v
+                p = r
+        if not best > 0.0:        # zero or NaN pivot
+            for j in range(k_rhs):
+                for i in range(n):
+                    X[j, i] = np.nan
+            return False
+        if p != k:
+            for j in range(k, w):
+                tmp = M[k, j]
+                M[k, j] = M[p, j]
+                M[p, j] = tmp
+        inv = 1.0 / M[k, k]
+        for j in range(k + 1, w):
+            M[k, j] *= inv
+        for r in range(n):
+            if r != k:
+                f = M[r, k]
+                if f != 0.0:
+                    for j in range(k + 1, w):
+                        M[r, j] -= f * M[k, j]
+    for j in range(k_rhs):
+        for i in range(n):
+            X[j, i] = M[i, n + j]
+    return True
+
+
+@njit(**JIT)
 def leg_system(B, J, inv_L, A, rhs):
     """The leg forces' linear system from the equations of motion, ``Jᵀ Fl = B[0:6]``
     (``J`` the leg-length Jacobian (6, 6), ``B`` the generalized forces (9,) [N, N·m]),

@@ -145,10 +145,10 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
             if fields[f][2] == "double":
                 return f"%c{f}"
             return load(x, f"%c{f}", i)
-        m = re.fullmatch(r"(q|qd|qdd)_(\d+)", x)
+        m = re.fullmatch(r"(q|qd|qdd|qz)_(\d+)", x)
         if m:
             return load(x, f"%{m[1]}", int(m[2]))
-        if re.fullmatch(r"(g|pull|at)_\d", x):
+        if re.fullmatch(r"(g|pull|pz|at)_\d", x):
             return f"%{x}"
         return _constant(x)
 
@@ -217,10 +217,13 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
             store(*item)
     inp = "ptr noalias readonly"
     params = [f"{inp if ty == 'ptr' else ty} %c{f}" for f, _, ty in fields]
-    params += [f"{inp} %q", f"{inp} %qd", f"{inp} %qdd", "double %g_0", "double %g_1",
-               "double %g_2"]
-    if kind == "kane_pull":
-        params += [f"double %{v}_{i}" for v in ("pull", "at") for i in range(3)]
+    params += [f"{inp} %q", f"{inp} %qd", f"{inp} %qdd"]
+    if kind == "kane_pull3":
+        params.append(f"{inp} %qz")
+    params += ["double %g_0", "double %g_1", "double %g_2"]
+    if kind.startswith("kane_pull"):
+        forces = ("pull", "pz", "at") if kind == "kane_pull3" else ("pull", "at")
+        params += [f"double %{v}_{i}" for v in forces for i in range(3)]
     for out, array in outputs.items():
         params.append(f"ptr noalias %{out}")
         if array.ndim == 2:

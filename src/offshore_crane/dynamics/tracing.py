@@ -187,8 +187,16 @@ def trace_kane(arrays, leg_model: int, inputs, trig_input, flat_name,
 
 #: The passes :func:`trace_pass` traces, and how many variants each has: the explicit
 #: pass with or without the mass matrix (``want_mass``), the fused pass for each
-#: ``static`` x ``leg_model`` x ``want_legs`` (:func:`kane_variant`), the pass with a pull.
-VARIANTS = {"explicit": 2, "kane": 12, "kane_pull": 1}
+#: ``static`` x ``leg_model`` x ``want_legs`` (:func:`kane_variant`), the pass with a pull,
+#: and that pass three times at one state (:data:`PULL3`).
+VARIANTS = {"explicit": 2, "kane": 12, "kane_pull": 1, "kane_pull3": 1}
+#: The three passes with a pull of ``"kane_pull3"``, by the names of their accelerations
+#: and pulls: at ``qdd`` with ``pull``, at ``qz`` with ``pull``, at ``qz`` with ``pz``
+#: (the elastic plant's law at its commanded accelerations, and its pull's share of X:
+#: the pass with the pull at rest less the same without it, ``qz`` zeros, ``pz`` the
+#: pull times 0). One program: what the three share (all that does not depend on the
+#: accelerations or the pull) is computed once, each pass's numbers bit for bit its own.
+PULL3 = (("qdd", "pull"), ("qz", "pull"), ("qz", "pz"))
 
 
 def kane_variant(static, leg_model, want_legs):
@@ -300,8 +308,10 @@ def trace_pass(kind: str, kane, variant: int) -> tuple:
             if kind == "kane":
                 F.kane_sample(C, q, qd, qdd, g, variant >= 6, (variant % 6) // 2,
                               variant % 2 == 1, *work.values())
-            else:
+            elif kind == "kane_pull":
                 F.kane_sample_pull(C, q, qd, qdd, g, pull, at, *work.values())
+            else:
+                work = _pull3(trace, F, C, n, r, q, qd, g, at, ns)
     finally:
         _TRACE = Trace([], [], [])
 
@@ -310,6 +320,29 @@ def trace_pass(kind: str, kane, variant: int) -> tuple:
 
     outputs = {name: np.vectorize(text, otypes=[object])(a) for name, a in work.items()}
     return trace, outputs
+
+
+def _pull3(trace: Trace, F, C, n: int, r: int, q, qd, g, at, ns) -> dict:
+    """The outputs of ``"kane_pull3"`` (:data:`PULL3`): ``rows`` (3, r) and ``rhs`` (3,
+    6), pass k in row k; ``A``, ``diag`` and ``store`` of the last pass (the Stewart
+    matrix is the same for all three). Each pass gets stand-ins of its own for the
+    per-leg formulas (a stand-in replays its first call's legs)."""
+    from offshore_crane.dynamics.formulas import DIAG_ROWS, STORE_WIDTH
+
+    rows, rhs = _unwritten(3, r), _unwritten(3, 6)
+    for k, (acc, force) in enumerate(PULL3):
+        ns["explicit_leg"] = _legs_as_lanes(trace, F, C, "explicit_leg",
+                                            {13: "row", 14: "all", 15: "all", 16: "column"})
+        ns["stewart_leg"] = _legs_as_lanes(trace, F, C, "stewart_leg",
+                                           {12: "column", 13: "column"})
+        work = {"rows": _unwritten(r), "A": _unwritten(6, 6), "rhs": _unwritten(6),
+                "diag": _unwritten(DIAG_ROWS, 6), "store": _unwritten(r, STORE_WIDTH)}
+        qdd = [Symbol(f"{acc}_{j}") for j in range(n)]
+        pull = tuple(Symbol(f"{force}_{i}") for i in range(3))
+        F.kane_sample_pull(C, q, qd, qdd, g, pull, at, *work.values())
+        rows[k], rhs[k] = work["rows"], work["rhs"]
+    return {"rows": rows, "A": work["A"], "rhs": rhs, "diag": work["diag"],
+            "store": work["store"]}
 
 
 #: The constants' per-leg fields (first axis: the six legs), by their names' prefixes.

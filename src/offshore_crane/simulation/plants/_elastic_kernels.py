@@ -6,7 +6,13 @@ at every stage, the load cells and scratch of the plant and of the law, a still 
 zeros, the state and stage point the plant's cell was measured at (:func:`prepare`), the
 winch's reflected mass [kg] (0: its length is the profile's; > 0: ``(L, L̇)`` are the
 state's last two entries and its line pull the 10th force, :func:`winch`) and its drive's
-gains ``(kp [1/s²], kd [1/s])``.
+gains ``(kp [1/s²], kd [1/s])``, then the pull's share of X at rest ``D`` (9,), the stage
+point it was made at (1,: −1 none since :func:`prepare`) and its scratch.
+
+The built-in law asked at the plant's state (:func:`inverse`) makes its Kane pass and
+the plant's two (the pull's share ``D``) in one program
+(:func:`~offshore_crane.dynamics.cable.elastic_plant.computed_torque_share`), which
+:func:`rhs` then reads: the same numbers bit for bit, one program for three.
 
 One load cell a stage: :func:`prepare` measures it before the law is evaluated, and the
 built-in law's :func:`inverse` and the plant's :func:`rhs` read it when they are asked
@@ -33,6 +39,7 @@ inline = njit(inline="always", **c.JIT)
 #: only (:mod:`offshore_crane.kernel_calls`).
 derivative, measure, computed_torque = (ep.DERIVATIVE.call, ep.MEASURE.call,
                                         ep.COMPUTED_TORQUE.call)
+computed_torque_share = ep.COMPUTED_TORQUE_SHARE.call
 carve, VIEW_MM, VIEW_MC = ep._carve, ep.VIEW_MM, ep.VIEW_MC
 unpack = c.unpack
 tip_kinematics = ck.tip_kinematics
@@ -79,6 +86,7 @@ def _make(stamp, commanded):
         if len(stamp) == 0:
             return
         at = P[15]
+        P[19][0] = -1.0                 # no pull's share made at this stage yet
         L, Ld = _length(P, i, y)
         measure(P[0], P[1], P[2], P[6], L, Ld, y, P[8], P[9])
         for j in range(24):
@@ -98,8 +106,9 @@ def _make(stamp, commanded):
             return False
         status = P[10]
         L, Ld = _length(P, i, y)
+        measured = _made_at(P, i, y)
         T = derivative(P[0], P[1], P[2], P[3], P[4], P[5], P[6], L, Ld, y, X,
-                       dy, P[8], P[9], status, _made_at(P, i, y))
+                       dy, P[8], P[9], status, measured, P[18], measured and P[19][0] == i)
         if commanded:
             dy[24] = y[25]
             dy[25] = (T - X[9]) / P[16]
@@ -149,10 +158,12 @@ def _make(stamp, commanded):
             return
         cell, work = P[11], P[12]
         if _made_at(P, i, y):
-            cell = P[8]
-        else:
-            L, Ld = _length(P, i, y)
-            measure(P[0], P[1], P[2], P[6], L, Ld, y, cell, work)
+            computed_torque_share(P[0], P[1], P[2], P[6], y, qdd, P[8], X, P[18], work,
+                                  P[20])
+            P[19][0] = i
+            return
+        L, Ld = _length(P, i, y)
+        measure(P[0], P[1], P[2], P[6], L, Ld, y, cell, work)
         computed_torque(P[0], P[1], P[2], P[6], y, qdd, cell, X, work)
 
     @jit
@@ -225,7 +236,8 @@ def params(plant) -> tuple:
             np.ascontiguousarray(plant.Lg), np.zeros(ep.CELL), np.zeros(ep.WORK),
             np.zeros(1, dtype=np.int64), np.zeros(ep.CELL), np.zeros(ep.WORK), np.zeros(24),
             np.zeros(9), np.full(27, np.nan), float(plant.winch_mass),
-            np.array(plant.winch_gains, dtype=float))
+            np.array(plant.winch_gains, dtype=float), np.zeros(9), np.full(1, -1.0),
+            np.zeros(ep.SHARE))
 
 
 def _commanded():
