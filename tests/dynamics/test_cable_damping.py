@@ -363,3 +363,25 @@ def test_a_urdf_drag_without_cable_or_with_bad_numbers_is_refused():
         hybrid_from_urdf(parse_urdf(text))
     with pytest.raises(ModelError, match=r"link 'payload' <drag>: area = -1 m² must be"):
         parse_urdf(text.replace('area="0.1"', 'area="-1"'))
+
+
+def test_the_tip_frame_is_the_tip_state_and_the_tip_motions_frame_bit_for_bit():
+    """``tip_frame`` (one call where the elastic cable wants the tip's place and frame)
+    gives :func:`tip_state`'s position and velocity and :func:`tip_motion`'s attitude
+    and angular velocity, bit for bit (the same operations), compiled and on Python
+    floats, for a revolute and a prismatic arm joint."""
+    from offshore_crane.dynamics import compiled as c
+
+    robot = _robot()
+    C = cable_arrays(robot).kane
+    rng = np.random.default_rng(43)
+    n = 6 + C.n_arm
+    for _ in range(10):
+        q, qd = rng.normal(0.0, 0.3, n), rng.normal(0.0, 0.5, n)
+        q[2] += 1.3
+        for K, args in ((c.KE, (q, qd)), (backends.PYTHON, (list(q), list(qd)))):
+            p, v, Rt, w = K.tip_frame(C, *args)
+            assert (p, v) == tuple(K.tip_state(C, *args))
+            Rm, wm = K.tip_motion(C, *args, [0.0] * n if K is backends.PYTHON
+                                  else np.zeros(n))[:2]
+            assert tuple(map(tuple, Rt)) == tuple(map(tuple, Rm)) and tuple(w) == tuple(wm)

@@ -188,6 +188,14 @@ def cable_force(C, store):
 def tip_state(C, q, qd):
     """The tip's (``arm_tip`` origin's) position [m] and velocity [m/s] in the base frame,
     under the robot's ``q, q̇`` (the arm chain ``C`` continued by the two sway joints)."""
+    p, v, _, _ = tip_frame(C, q, qd)
+    return p, v
+
+
+def tip_frame(C, q, qd):
+    """:func:`tip_state` and the tip's frame: ``(p [m], v [m/s], R_base_tip, ω
+    [rad/s])``, the attitude and angular velocity being :func:`tip_motion`'s (the same
+    operations: one call where both are wanted)."""
     R, w4, w5, w6 = attitude(q)
     omega = platform_rates(w4, w5, qd, qd)[0]          # ω needs no acceleration
     p = (q[0], q[1], q[2])
@@ -206,8 +214,8 @@ def tip_state(C, q, qd):
         else:
             R = mm(Rj, axis_rotation(axis, cos(q[6 + b]), sin(q[6 + b])))
             omega = axpy(qd[6 + b], z, omega)
-    r = arm_joint(R, mat3(C.arm_Ro, nb), row3(C.arm_t, nb), row3(C.arm_axis, nb))[0]
-    return add(p, r), add(v, cross(omega, r))
+    r, Rt, _ = arm_joint(R, mat3(C.arm_Ro, nb), row3(C.arm_t, nb), row3(C.arm_axis, nb))
+    return add(p, r), add(v, cross(omega, r)), Rt, omega
 
 
 def cable_tension(rho, rhod, L, Ld, EA, c):

@@ -41,7 +41,7 @@ from offshore_crane.conventions import GRAVITY
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics import views
 from offshore_crane.dynamics.cable.work import NA
-from offshore_crane.dynamics.cable.kernels import jit, tip_motion, tip_state
+from offshore_crane.dynamics.cable.kernels import jit, tip_frame
 from offshore_crane.dynamics.formulas import STORE_WIDTH
 
 dot = c.K.dot
@@ -134,12 +134,12 @@ def _helpers(stamp):
             qdd[j] = 0.0
 
     @jit
-    def cable(C, par, L, Ld, y, q, qd, qdd, cell):
-        """The cable at the state y (``q, qd`` the chain's, ``qdd`` zeros): fills
+    def cable(C, par, L, Ld, y, q, qd, cell):
+        """The cable at the state y (``q, qd`` the chain's): fills
         ``cell`` (:data:`CELL`,) and returns the tension [N] (0 slack)."""
         if len(stamp) == 0:
             return 0.0
-        pt, vt = tip_state(C, q, qd)
+        pt, vt, Rt, w = tip_frame(C, q, qd)
         rho = (y[9] - pt[0], y[10] - pt[1], y[11] - pt[2])
         rhod = (y[21] - vt[0], y[22] - vt[1], y[23] - vt[2])
         T, s, _ = cable_tension(rho, rhod, L, Ld, par[_EA], par[_DAMPING])
@@ -149,7 +149,6 @@ def _helpers(stamp):
         pull = (T * rho[0] / d, T * rho[1] / d, T * rho[2] / d)
         c1, c2 = par[_C1], par[_C2]
         if T > 0.0 and c1 + c2 > 0.0:          # the sway damping, carried by the cable
-            Rt, w, _, _ = tip_motion(C, q, qd, qdd)
             fs = sway_damping_force(Rt, w, rho, rhod, c1, c2)
             pull = (pull[0] - fs[0], pull[1] - fs[1], pull[2] - fs[2])
         f = (0.0, 0.0, 0.0)
@@ -228,7 +227,7 @@ PULLED = kernel_calls.Entry.typed(
     "none(C, V, V, V, T3, T3, T3, V, V, M, V, M, M, V, M)", c.STAMP,
     C=c.kane_constants_type())
 CABLE = kernel_calls.Entry.typed(
-    "elastic_cable", lambda: cable_kernel, "float64(C, V, float64, float64, V, V, V, V, V)",
+    "elastic_cable", lambda: cable_kernel, "float64(C, V, float64, float64, V, V, V, V)",
     c.STAMP, C=c.kane_constants_type())
 pulled, cable = PULLED.call, CABLE.call
 
@@ -247,7 +246,7 @@ def _make(stamp):
         C = unpack(flat, lay, prism)[0]
         q, qd, qdd = _carve(work)[:3]
         load(y, q, qd, qdd, 6 + C.n_arm)
-        return cable(C, par, L, Ld, y, q, qd, qdd, cell)
+        return cable(C, par, L, Ld, y, q, qd, cell)
 
     @jit
     def computed_torque(flat, lay, prism, par, y, qdd_cmd, cell, X, work):
@@ -309,7 +308,7 @@ def _make(stamp):
          Vs, mc, rhs, a) = _carve(work)
         na = C.n_arm
         load(y, q, qd, qdd, 6 + na)
-        T = cell[9] if measured else cable(C, par, L, Ld, y, q, qd, qdd, cell)
+        T = cell[9] if measured else cable(C, par, L, Ld, y, q, qd, cell)
         g = (par[0], par[1], par[2])
         pull = (cell[0], cell[1], cell[2])
         at = (cell[3], cell[4], cell[5])

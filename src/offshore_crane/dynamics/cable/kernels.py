@@ -49,7 +49,10 @@ TIP_MOTION = kernel_calls.Entry.typed(
 TIP_STATE = kernel_calls.Entry.typed("tip_state", lambda: c.KE.tip_state,
                                      f"UniTuple({_V3}, 2)(C, V, V)", c.STAMP,
                                      C=c.kane_constants_type())
-tip_motion, tip_state = TIP_MOTION.call, TIP_STATE.call
+TIP_FRAME = kernel_calls.Entry.typed("tip_frame", lambda: c.KE.tip_frame,
+                                     f"Tuple(({_V3}, {_V3}, UniTuple({_V3}, 3), {_V3}))"
+                                     "(C, V, V)", c.STAMP, C=c.kane_constants_type())
+tip_motion, tip_state, tip_frame = TIP_MOTION.call, TIP_STATE.call, TIP_FRAME.call
 pendulum, hoisted_pendulum, cable_force = c.K.pendulum, c.K.hoisted_pendulum, c.K.cable_force
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
 hanging_velocity, drag_force = c.K.hanging_velocity, c.K.drag_force
