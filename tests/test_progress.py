@@ -302,3 +302,25 @@ def test_a_cold_id_reports_its_compile_apart_from_kanes_time(tmp_path):
     kane_ms, compiled, seconds = float(m[1]), int(m[2]), float(m[3])
     assert compiled > 0 and seconds > 1.0 and kane_ms < 1000.0, line
     print(line)
+
+
+def test_run_polled_works_meanwhile_on_what_the_job_has_finished(bars):
+    """``meanwhile`` is called with the counter while the job runs in its thread, never
+    once it has finished (the caller does the rest after), and not at all when the job
+    runs in this thread."""
+    counter, seen = [0], []
+
+    def job():
+        for _ in range(6):
+            counter[0] += 1
+            time.sleep(0.03)
+        return "done"
+
+    assert progress.run_polled(job, lambda: counter[0], 6, "sample", "test",
+                               meanwhile=seen.append) == "done"
+    assert len(seen) >= 3 and seen == sorted(seen) and seen[-1] <= 6
+    progress.configure(False)
+    calls = []
+    assert progress.run_polled(lambda: 1, lambda: 0, 1, "x", "test",
+                               meanwhile=calls.append) == 1
+    assert calls == []

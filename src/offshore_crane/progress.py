@@ -24,6 +24,9 @@ import threading
 DELAY = 2.0
 #: How often a polled job's counter is read [s].
 POLL = 0.1
+#: How often it is read when there is work to do meanwhile (``run_polled``'s
+#: ``meanwhile``) [s].
+MEANWHILE_POLL = 0.01
 
 _state = {"enabled": False, "listener": None}
 _noticed: set = set()
@@ -85,7 +88,7 @@ def bar(total: int | None, unit: str, desc: str, enabled: bool | None = None):
                      delay=DELAY, dynamic_ncols=True)
 
 
-def run_polled(job, done, total: int, unit: str, desc: str, stop=None):
+def run_polled(job, done, total: int, unit: str, desc: str, stop=None, meanwhile=None):
     """Run ``job()`` (a compiled loop that releases the GIL) and return its result; with
     bars on, in a thread while this one shows ``done()`` (its own counter of finished
     units, read every :data:`POLL` s) against ``total``. Exceptions come back here.
@@ -97,7 +100,11 @@ def run_polled(job, done, total: int, unit: str, desc: str, stop=None):
     ends. The exception they raise sets ``stop``, waits for the loop to return (within
     one of its steps) and is raised: a run stops within :data:`POLL` s and a step. Without
     ``stop``, a Ctrl-C stops waiting (the loop's thread is a daemon: it ends with the
-    process)."""
+    process).
+
+    ``meanwhile``: called here with ``done()`` every :data:`MEANWHILE_POLL` s while the
+    job runs in its thread (work on what the job has finished, on this core); never
+    called when the job runs in this thread (its caller then does that work after)."""
     main = threading.current_thread() is threading.main_thread()
     if not (is_enabled() or (stop is not None and main)):
         return job()
@@ -106,8 +113,11 @@ def run_polled(job, done, total: int, unit: str, desc: str, stop=None):
         with bar(total, unit, desc) as b:
             finished = False
             while not finished:
-                finished = box["done"].wait(POLL)
-                b.update(max(0, min(int(done()), total) - b.n))
+                finished = box["done"].wait(POLL if meanwhile is None else MEANWHILE_POLL)
+                n = int(done())
+                b.update(max(0, min(n, total) - b.n))
+                if meanwhile is not None and not finished:
+                    meanwhile(n)
     except BaseException:
         halt(stop, box)
         raise

@@ -176,3 +176,42 @@ def test_check_workspace_in_threads_names_the_first_violation():
     assert errors[1:] == errors[:1] * 2
     with pytest.raises(InputError, match="threads must be a positive integer, got 0"):
         check_workspace(robot, q, t, threads=0)
+
+
+def test_a_watch_fed_while_the_motion_is_computed_gives_the_same_verdict():
+    """A :class:`WorkspaceWatch` fed with the first blocks of a motion as they are filled
+    (rows past ``ready`` hold NaN: not read), then given to :func:`check_workspace`: the
+    same error as the whole check, whether the first violation lies in a block fed
+    before (block 1) or in the rest, and the same pass; a watch that took more samples
+    than the motion checked holds is not used."""
+    from offshore_crane.errors import WorkspaceError
+    from offshore_crane.robot.kinematics import CHECK_BLOCK, WorkspaceWatch, check_workspace
+
+    robot = oc.load_robot()
+    n = 3 * CHECK_BLOCK + 17
+    q = np.tile(robot.home_pose(), (n, 1))
+    t = 0.01 * np.arange(n)
+
+    def watched(motion, ready):
+        watch, filling = WorkspaceWatch(robot), np.full_like(motion, np.nan)
+        for k in [*range(0, ready, 1000), ready]:   # the record as a loop fills it
+            filling[:k] = motion[:k]
+            watch.feed(filling, k)
+        filling[:] = motion
+        assert watch.done == (ready // CHECK_BLOCK) * CHECK_BLOCK
+        return watch
+
+    check_workspace(robot, q, t, watch=watched(q, n - 1))
+    for row in (CHECK_BLOCK + 5, 3 * CHECK_BLOCK + 2):
+        bad = q.copy()
+        bad[row, 2] = 5.0                                  # legs far too long
+        with pytest.raises(WorkspaceError) as whole:
+            check_workspace(robot, bad, t)
+        with pytest.raises(WorkspaceError, match=f"sample {row}") as fed:
+            check_workspace(robot, bad, t, watch=watched(bad, n - 1))
+        assert (str(fed.value), fed.value.index) == (str(whole.value), whole.value.index)
+    long_watch = watched(q, n - 1)
+    bad = q[:CHECK_BLOCK + 10].copy()
+    bad[3, 2] = 5.0                                        # not seen by the fed watch
+    with pytest.raises(WorkspaceError, match="sample 3"):
+        check_workspace(robot, bad, t[:len(bad)], watch=long_watch)

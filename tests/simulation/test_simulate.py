@@ -446,3 +446,52 @@ def test_every_plant_records_the_power_of_the_numpy_formula_bit_for_bit():
     for robot, res in runs:
         assert np.abs(res.power).max() > 1.0
         np.testing.assert_array_equal(res.power, actuator_power(robot, res.q, res.qd, res.X))
+
+
+def test_the_record_is_followed_while_the_loop_runs_with_the_same_numbers(monkeypatch):
+    """While the loop runs, the driver's thread checks the workspace and forms the
+    actuators' power of the blocks recorded so far (:class:`record.Follower`): on a run
+    of two blocks and more, the first is taken before the loop ends (the loop computes
+    the whole second block meanwhile, 0.1-0.2 s, against a poll every 10 ms), and the
+    result is the one of the whole record after the run (the power bit for bit, the same
+    workspace stop)."""
+    from offshore_crane.robot.kinematics import CHECK_BLOCK
+    from offshore_crane.simulation import record
+    from offshore_crane.simulation.elastic import simulate_elastic
+
+    fed = []
+    feed = record.Follower.feed
+
+    def spy(self, rec, ready):
+        feed(self, rec, ready)
+        fed.append((self._done, self.workspace.done if self.workspace else 0))
+
+    monkeypatch.setattr(record.Follower, "feed", spy)
+    seconds = (2 * CHECK_BLOCK + 300) * 1e-3
+    lift = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 1.0})
+    res = simulate_elastic(lift, seconds, table1, ea=2e4)
+    assert max(fed)[0] >= CHECK_BLOCK and max(fed)[1] >= CHECK_BLOCK
+    np.testing.assert_array_equal(res.power, record.actuator_power(lift, res.q, res.qd,
+                                                                   res.X))
+    rigid = oc.load_robot()
+    q0 = rigid.home_pose()
+    fed.clear()
+    with pytest.raises(SimulationError) as followed:     # leaves the workspace at ~19 s
+        oc.simulate(rigid, seconds, lambda t: _drift(t, q0))
+    assert max(fed)[1] >= CHECK_BLOCK
+    monkeypatch.setattr(record.Follower, "feed", lambda self, rec, ready: None)
+    with pytest.raises(SimulationError) as after:
+        oc.simulate(rigid, seconds, lambda t: _drift(t, q0))
+    assert str(followed.value) == str(after.value)
+    assert "outside its limits" in str(after.value)
+
+
+def _drift(t, q0):
+    """A reference that heaves the platform up at 5 cm/s from ``q0``: its legs reach
+    their stroke after some seconds."""
+    t = np.atleast_1d(np.asarray(t, dtype=float))
+    q = np.tile(q0, (len(t), 1))
+    q[:, 2] += 0.05 * t
+    qd = np.zeros_like(q)
+    qd[:, 2] = 0.05
+    return q, qd, np.zeros_like(q)

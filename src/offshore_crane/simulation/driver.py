@@ -128,12 +128,16 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
     W = scratch(len(y), n_p, n_z, delay, nx)
     P, L = plant.params(), law.params()
     lo, hi = (np.ascontiguousarray(np.asarray(b, dtype=float)) for b in (lower, upper))
+    follow = plant.follower(limits)     # on this core while the loop runs on another
+
+    def meanwhile(n):       # the rows before the last recorded one are written for sure
+        follow.feed(rec, n - 1)
     progress.run_polled(
         lambda: run(P, L, tt, qr, qdr, qddr, y, float(step), int(n_steps), int(out_every),
                     int(hold), lo, hi, np.asarray(lag, dtype=float),
                     np.asarray(rlim, dtype=float), int(delay), nq, nqd, res9[0], res9[1],
                     sens is not None, n_p, n_z, *rec, sat, extra, status, halt, W),
-        lambda: status[2], n_out, "sample", "simulate", halt)
+        lambda: status[2], n_out, "sample", "simulate", halt, meanwhile)
     done = int(status[2])
     t_out = tt[::2][::out_every][:n_out]
     names = ("q", "qd", "qdd", "q_ref", "qd_ref", "X_cmd", "X")
@@ -147,7 +151,7 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
     if code is not StopCause.NONE:
         stop = (int(status[1]), code, plant.words(code, res) if code is StopCause.SINGULAR
                 else "")
-    early = plant.finish(res, plant.recorded(extra), limits)   # what only the record shows
+    early = plant.finish(res, plant.recorded(extra), limits, follow)  # what the record shows
     if early is not None and (stop is None or early[0] < stop[0]):
         stop = early
     if stop is None:

@@ -182,6 +182,50 @@ def actuator_power(robot, q: np.ndarray, qd: np.ndarray, X: np.ndarray) -> np.nd
     return (X[:, :3] * v[:, :3]).sum(axis=1) + (X[:, 3:] * v[:, 3:]).sum(1)
 
 
+class Follower:
+    """What the driver works out from a run's record on this core while the loop fills
+    it on another (:func:`~offshore_crane.progress.run_polled`'s ``meanwhile``): the
+    workspace check (a :class:`~offshore_crane.robot.kinematics.WorkspaceWatch`) and,
+    for a plant that forms it from the record, the actuators' power
+    (:func:`actuator_power`, row by row: the same numbers in blocks), block by block of
+    :data:`~offshore_crane.robot.kinematics.CHECK_BLOCK` samples; the plant's ``finish``
+    completes both from where they are.
+
+    Args:
+        robot: The simulated robot.
+        limits: Check the workspace.
+        power: Form the actuators' power.
+    """
+
+    def __init__(self, robot, limits: bool, power: bool):
+        from offshore_crane.robot.kinematics import CHECK_BLOCK, WorkspaceWatch
+
+        self.robot, self.block = robot, CHECK_BLOCK
+        self.workspace = WorkspaceWatch(robot) if limits else None
+        self._power: list | None = [] if power else None
+        self._done = 0
+
+    def feed(self, rec: list, ready: int) -> None:
+        """Take the whole blocks among the first ``ready`` rows of the driver's record
+        ``rec`` (q, q̇, q̈, q_ref, q̇_ref, X_cmd, X) not taken yet."""
+        if self.workspace is not None:
+            self.workspace.feed(rec[0], ready)
+        while self._power is not None and self._done + self.block <= ready:
+            a, b = self._done, self._done + self.block
+            self._power.append(actuator_power(self.robot, rec[0][a:b], rec[1][a:b],
+                                              rec[6][a:b, :9]))
+            self._done = b
+
+    def power(self, q: np.ndarray, qd: np.ndarray, X: np.ndarray) -> np.ndarray:
+        """:func:`actuator_power` of the run's record ``(N,)`` [W] (its first blocks
+        those fed)."""
+        if not self._power or self._done > len(q):
+            return actuator_power(self.robot, q, qd, X)
+        k = self._done
+        return np.concatenate([*self._power, actuator_power(self.robot, q[k:], qd[k:],
+                                                            X[k:])])
+
+
 #: A coordinate beyond this [m or rad] is a diverging state, whatever stopped the run: no
 #: platform moves a million metres or turns a million radians (an integration blowing up
 #: reaches the attitude "singularity" with q5 ~ 1e15 rad on its way to overflow).
@@ -244,18 +288,19 @@ def initial_state(q0, qd0, reference_q: np.ndarray, reference_qd: np.ndarray):
     return out[0], out[1]
 
 
-def workspace_stop(robot, res, limits: bool):
+def workspace_stop(robot, res, limits: bool, watch=None):
     """``(sample, cause)`` of a recorded run's first workspace violation (the cause in
     the words of :func:`~offshore_crane.robot.kinematics.check_workspace`), or None;
     None too without ``limits`` or without a finite sample (the run's own stop says
-    why)."""
+    why). ``watch``: a :class:`~offshore_crane.robot.kinematics.WorkspaceWatch` fed with
+    the record's first blocks while the run was computing them, or None."""
     if not limits or len(res) == 0:
         return None
     from offshore_crane.errors import WorkspaceError
     from offshore_crane.robot.kinematics import check_workspace
 
     try:
-        check_workspace(robot, res.q, res.t)
+        check_workspace(robot, res.q, res.t, watch=watch)
     except WorkspaceError as exc:
         return exc.index, str(exc).split(" at sample")[0] + " (outside its limits)"
     return None

@@ -148,7 +148,47 @@ def leg_positions(robot, q) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.stack(length, axis=1), np.stack(height, axis=1), np.stack(theta, axis=1)
 
 
-def check_workspace(robot, q, t=None, *, pose: str | None = None, threads: int = 1) -> None:
+class WorkspaceWatch:
+    """:func:`check_workspace` of a motion while it is being computed: :meth:`feed` takes
+    the blocks of :data:`CHECK_BLOCK` samples a record has filled so far (a simulation's
+    q, while its loop runs on another core), and :func:`check_workspace` given the
+    watch checks only the samples past them: the same blocks, the same verdict.
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot`.
+    """
+
+    def __init__(self, robot):
+        from offshore_crane.robot.kinematics import workspace as ws
+
+        self.robot, self.limits = robot, ws.limits_of(robot.hybrid)
+        self.health = ws.new_health()
+        #: Samples taken so far (a multiple of :data:`CHECK_BLOCK` until the last block).
+        self.done = 0
+
+    def _take(self, q: np.ndarray, end: int) -> None:
+        from offshore_crane.robot.kinematics import workspace as ws
+
+        chunk = q[self.done:end]
+        ws.record_limits(self.health, self.limits, chunk, *leg_positions(self.robot, chunk),
+                         offset=self.done)
+        self.done = end
+
+    def feed(self, q: np.ndarray, ready: int) -> None:
+        """Take the whole blocks among the first ``ready`` rows of ``q`` ``(N, 9)`` [m,
+        rad] not taken yet (rows past ``ready`` are not read)."""
+        while self.done + CHECK_BLOCK <= ready:
+            self._take(q, self.done + CHECK_BLOCK)
+
+    def health_of(self, q: np.ndarray) -> np.ndarray:
+        """The health record of all of ``q`` (its first :attr:`done` rows those fed)."""
+        while self.done < len(q):
+            self._take(q, min(self.done + CHECK_BLOCK, len(q)))
+        return self.health
+
+
+def check_workspace(robot, q, t=None, *, pose: str | None = None, threads: int = 1,
+                    watch: WorkspaceWatch | None = None) -> None:
     """Raise :class:`~offshore_crane.errors.WorkspaceError` for the first sample of ``q``
     ``(N, 9)`` [m, rad] outside the robot's workspace: arm joints outside their limits,
     a sphere centre not above its U-joint (platform below the base), a leg length outside
@@ -164,6 +204,9 @@ def check_workspace(robot, q, t=None, *, pose: str | None = None, threads: int =
             a sample, and asks for a pose inside the workspace.
         threads: Threads sharing the blocks of :data:`CHECK_BLOCK` samples (NumPy
             releases the GIL in its loops); the same verdict in any count.
+        watch: A :class:`WorkspaceWatch` fed with the first blocks of ``q`` as it was
+            being filled: only the samples past them are checked now (one thread);
+            ignored when it took more samples than ``q`` holds.
 
     Raises:
         InputError: q is not finite or has the wrong shape, a bad ``threads``.
@@ -183,7 +226,9 @@ def check_workspace(robot, q, t=None, *, pose: str | None = None, threads: int =
         return health
 
     threads = min(thread_count(threads), len(starts))
-    if threads <= 1:
+    if watch is not None and threads <= 1 and watch.done <= len(q):
+        health = watch.health_of(q)
+    elif threads <= 1:
         health = record(starts)
     else:                                  # every thread-th block: equal shares
         from concurrent.futures import ThreadPoolExecutor

@@ -34,6 +34,8 @@ class Plant:
     QD: ClassVar[slice] = slice(9, 18)
     #: Arrays the plant records beside the driver's, ``{name: width}`` (0: a scalar).
     RECORDED: ClassVar[dict] = {}
+    #: The actuators' power is formed from the record (not recorded by the loop).
+    POWER_FROM_RECORD: ClassVar[bool] = False
 
     #: The plant's compiled kernels for the driver (a module of
     #: :mod:`offshore_crane.simulation.plants`: ``prepare`` (what the plant makes at a
@@ -95,10 +97,20 @@ class Plant:
         q5 = f", q5 = {res.q[-1, 4]:.4g} rad" if len(res) else ""
         return f"the mass matrix became singular (attitude singularity{q5})"
 
-    def finish(self, res, rec: dict, limits: bool):
+    def follower(self, limits: bool):
+        """The :class:`~offshore_crane.simulation.record.Follower` the driver feeds with
+        the record while the loop runs (the workspace with ``limits``; the power when
+        :attr:`POWER_FROM_RECORD`)."""
+        from offshore_crane.simulation.record import Follower
+
+        return Follower(self.robot, limits, self.POWER_FROM_RECORD)
+
+    def finish(self, res, rec: dict, limits: bool, follow=None):
         """Complete the result from the recorded samples (tension, power, ...) and
         return ``(sample, StopCause, words)`` of the first stop found on the record (a
-        workspace violation, a slack cable), or None."""
+        workspace violation, a slack cable), or None. ``follow``: the
+        :meth:`follower` the driver fed with the record's first blocks while the loop
+        ran (what is left of its work is done here), or None."""
         return None
 
     # ----------------------------------------------------------- the law's side

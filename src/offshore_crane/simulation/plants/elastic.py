@@ -35,6 +35,7 @@ class ElasticPlant(Plant):
     size = 24
     Q = slice(0, 9)
     QD = slice(12, 21)
+    POWER_FROM_RECORD = True
     RECORDED = {"payload": 3, "payload_velocity": 3, "tension": 0, "length": 0, "energy": 0,
                 "length_rate": 0}
     KERNELS = "offshore_crane.simulation.plants._elastic_kernels"
@@ -153,8 +154,8 @@ class ElasticPlant(Plant):
         return np.concatenate([y[12:21], y[21:24], a, a_p, winch]), {
             "ok": True, "tension": T, "length": L}
 
-    def finish(self, res, rec, limits):
-        from offshore_crane.simulation.record import actuator_power, workspace_stop
+    def finish(self, res, rec, limits, follow=None):
+        from offshore_crane.simulation.record import Follower, workspace_stop
 
         n = len(res)
         res.tension, res.energy = rec["tension"][:n], rec["energy"][:n]
@@ -168,6 +169,7 @@ class ElasticPlant(Plant):
                             winch_power=-res.X[:, 9] * res.info["length_rate"])
             res.X, res.X_cmd = res.X[:, :9].copy(), res.X_cmd[:, :9].copy()
             res.saturated = res.saturated[:, :9].copy()
-        res.power = actuator_power(self.robot, res.q, res.qd, res.X)
-        found = workspace_stop(self.robot, res, limits)
+        follow = follow or Follower(self.robot, False, True)
+        res.power = follow.power(res.q, res.qd, res.X)
+        found = workspace_stop(self.robot, res, limits, follow.workspace)
         return None if found is None else (found[0], StopCause.WORKSPACE, found[1])

@@ -21,6 +21,7 @@ class HangingPlant(Plant):
     size = 22
     Q = slice(0, 9)
     QD = slice(11, 20)
+    POWER_FROM_RECORD = True
     RECORDED = {"sway": 2, "sway_rate": 2, "sway_acc": 2, "energy": 0, "tension": 0}
     KERNELS = "offshore_crane.simulation.plants._hanging_kernels"
 
@@ -59,7 +60,7 @@ class HangingPlant(Plant):
         return ("the mass matrix became singular (the attitude coordinates at q5 = ±π/2, "
                 "or the sway at cos φ2 = 0)")
 
-    def finish(self, res, rec, limits):
+    def finish(self, res, rec, limits, follow=None):
         n = len(res)
         res.sway, res.sway_rate = rec["sway"][:n], rec["sway_rate"][:n]
         res.energy = rec["energy"][:n]
@@ -70,26 +71,28 @@ class HangingPlant(Plant):
             L = hoist_grid(self.hoist, res.t)
             res.info["length"] = L[:, 0]
         return finish(self.robot, res, rec["sway_acc"][:n], self.g, limits, L,
-                      rec["tension"][:n])
+                      rec["tension"][:n], follow)
 
 
-def finish(robot, res, sway_acc, g, limits, L, tension):
+def finish(robot, res, sway_acc, g, limits, L, tension, follow=None):
     """The hanging plant's record completed (:func:`_finish`) and its first slack-cable
-    sample or workspace violation ``(sample, StopCause, words)``, or None."""
-    from offshore_crane.simulation.record import finite_rows
+    sample or workspace violation ``(sample, StopCause, words)``, or None (``follow``:
+    the driver's :class:`~offshore_crane.simulation.record.Follower`, or None)."""
+    from offshore_crane.simulation.record import Follower, finite_rows
 
-    _finish(robot, res, sway_acc, g, L, tension)
-    return _slack_or_workspace(robot, res.truncated(finite_rows(res)), limits)
+    follow = follow or Follower(robot, False, True)
+    _finish(robot, res, sway_acc, g, L, tension, follow)
+    return _slack_or_workspace(robot, res.truncated(finite_rows(res)), limits,
+                               follow.workspace)
 
 
-def _finish(robot, res, sway_acc, g, L, tension) -> None:
+def _finish(robot, res, sway_acc, g, L, tension, follow) -> None:
     """The tension and the actuators' power filled in from the recorded samples: on a
     cable of a fixed length the ``tension`` the loop recorded (the Kane pass at each
     sample, :func:`~offshore_crane.simulation.plants._hanging_kernels` ``keep``) and the
     drag's share along the cable; with a winch's ``L`` ``(n, 3)`` [m, m/s, m/s²], the
     hoisted pendulum's pull on NumPy arrays."""
     from offshore_crane.dynamics.constants import cable_arrays
-    from offshore_crane.simulation.record import actuator_power
 
     n = len(res)
     if n == 0:
@@ -100,7 +103,7 @@ def _finish(robot, res, sway_acc, g, L, tension) -> None:
         Y = np.hstack([res.sway, res.sway_rate, sway_acc])
         res.tension = hoisted_pull(robot, cable_arrays(robot).kane, res.q, res.qd, res.qdd,
                                    Y, L, g)[2][:, 3]
-        res.power = actuator_power(robot, res.q, res.qd, res.X)
+        res.power = follow.power(res.q, res.qd, res.X)
         return
     T = np.array(tension, dtype=float)
     if robot.hybrid.drag > 0.0:             # the pull along the cable takes the drag too
@@ -110,10 +113,10 @@ def _finish(robot, res, sway_acc, g, L, tension) -> None:
                                      res.qdd, np.hstack([res.sway, res.sway_rate]), None)
         T += np.einsum("ij,ij->i", f, e)
     res.tension = T
-    res.power = actuator_power(robot, res.q, res.qd, res.X)
+    res.power = follow.power(res.q, res.qd, res.X)
 
 
-def _slack_or_workspace(robot, res, limits):
+def _slack_or_workspace(robot, res, limits, watch=None):
     """``(sample, StopCause, words)`` of the first slack-cable sample or workspace
     violation, or None."""
     from offshore_crane.simulation.record import workspace_stop
@@ -124,7 +127,7 @@ def _slack_or_workspace(robot, res, limits):
         k = int(np.argmax(slack))
         first = (k, StopCause.SLACK, f"the cable went slack (tension {res.tension[k]:.4g} "
                  "N: a cable cannot push, the pendulum model no longer holds)")
-    outside = workspace_stop(robot, res, limits)
+    outside = workspace_stop(robot, res, limits, watch)
     if outside is not None and (first is None or outside[0] < first[0]):
         first = (outside[0], StopCause.WORKSPACE, outside[1])
     return first

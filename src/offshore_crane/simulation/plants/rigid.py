@@ -18,10 +18,11 @@ class RigidPlant(Plant):
     RECORDED = {"energy": 0, "power": 0}
     KERNELS = "offshore_crane.simulation.plants._rigid_kernels"
 
-    def finish(self, res, rec, limits):
+    def finish(self, res, rec, limits, follow=None):
         from offshore_crane.simulation.record import workspace_stop
 
         res.energy = rec["energy"][:len(res)]
         res.power = rec["power"][:len(res)]
-        found = workspace_stop(self.robot, res, limits)
+        found = workspace_stop(self.robot, res, limits,
+                               None if follow is None else follow.workspace)
         return None if found is None else (found[0], StopCause.WORKSPACE, found[1])
