@@ -32,16 +32,22 @@ from offshore_crane.dynamics.linear import (actuation_minus_bias, cholesky_solve
                                             kinetic_energy, leg_system, solve6,
                                             solve6_many)
 from offshore_crane.dynamics.jit import JIT
-from offshore_crane.dynamics.views import c_view
+from offshore_crane.dynamics.views import view_value
+from numba import types
+from numba.core import cgutils
+from numba.extending import intrinsic
+from numba.np.arrayobj import make_array
 
 
 def _jit_formula(f):
-    """Compile a formula, inlined into its caller, so that LLVM optimises the kernel
-    whole (measured on the fused Kane driver when it inlined the whole pass: 1.5 µs a
-    sample against 2.3 µs with calls, which pass tuples and the constants' arrays
-    through memory). The Kane passes themselves are programs of their own
-    (:mod:`.passes`)."""
-    return njit(inline="always", **JIT)(f)
+    """Compile a formula as a function of its own, typed and lowered once per argument
+    types, which LLVM inlines into its callers where it pays (its optimiser sees the
+    whole kernel). Inlined by Numba instead (``inline="always"``), each call site typed
+    and lowered the formula again: the serial chain's kernels compiled in 9.7 s against
+    3.1 s now, the whole set 83 s against 72 s, and no simulation or serial benchmark
+    ran slower (measured one core, 2026-11-28). The Kane passes themselves are programs
+    of their own (:mod:`.passes`)."""
+    return njit(**JIT)(f)
 
 
 K = backends.bind({}, _jit_formula)
@@ -61,41 +67,88 @@ _ujoint_angles = K.ujoint_angles
 _TAN_MARGIN = 1e-12
 
 
-@njit(inline="always", **JIT)
-def _v1(flat, lay, i):
-    return c_view(flat, lay[i, 0], (lay[i, 1],))
-
-
-@njit(inline="always", **JIT)
-def _v2(flat, lay, i):
-    return c_view(flat, lay[i, 0], (lay[i, 1], lay[i, 2]))
-
-
-@njit(inline="always", **JIT)
-def _v3(flat, lay, i):
-    return c_view(flat, lay[i, 0], (lay[i, 1], lay[i, 2], lay[i, 3]))
-
-
 assert FIELDS == ("plat_m", "plat_c", "plat_I", "arm_t", "arm_Ro", "arm_axis", "arm_m", "arm_c",
                   "arm_I", "leg_s", "leg_P", "leg_X", "leg_Y", "leg_Z", "lo_m", "lo_c", "up_m",
                   "up_c", "leg_I", "thin_It", "lo_cz", "up_cz", "L", "lim_arm", "lim_stroke",
                   "lim_ujoint"), "unpack() below follows constants.FIELDS"
 
 
+#: :func:`unpack`'s fields in :class:`~.formulas.KaneConstants` order: ``("at", i)`` the
+#: number ``flat[lay[i, 0]]``, ``("view", i, ndim)`` the view of layout row i, ``("n",)``
+#: the arm's joints (``prism``'s length), ``("prism",)`` the joint types; then the
+#: limits' views.
+_FIELDS = (("at", 0), ("view", 1, 1), ("view", 2, 2), ("n",), ("view", 3, 2), ("view", 4, 3),
+           ("view", 5, 2), ("prism",), ("view", 6, 1), ("view", 7, 2), ("view", 8, 3),
+           ("view", 9, 2), ("view", 10, 2), ("view", 11, 2), ("view", 12, 2),
+           ("view", 13, 2), ("view", 14, 1), ("view", 15, 2), ("view", 16, 1),
+           ("view", 17, 2), ("view", 18, 3), ("view", 19, 1), ("view", 20, 1),
+           ("view", 21, 1), ("at", 22))
+_LIMITS = (("view", 23, 2), ("view", 24, 2), ("view", 25, 3))
+
+
+@intrinsic
+def _unpacked(typingctx, flat, lay, prism):
+    """:func:`unpack`'s tuple, written in one piece: each view as :func:`~.views.c_view`
+    writes it (no owner), ``prism`` without its owner (the kernel's argument). One call
+    for Numba to type and lower where the views as inlined calls were 29 (a kernel's
+    compile spent seconds on them, once per kernel that unpacks)."""
+    if not (isinstance(flat, types.Array) and flat.ndim == 1 and flat.layout == "C"
+            and isinstance(lay, types.Array) and lay.ndim == 2
+            and isinstance(lay.dtype, types.Integer) and isinstance(prism, types.Array)):
+        return None
+
+    def of(spec):
+        kind = spec[0]
+        return (flat.dtype if kind == "at" else flat.copy(ndim=spec[2], layout="C")
+                if kind == "view" else types.intp if kind == "n" else prism)
+
+    named = types.NamedTuple([of(f) for f in _FIELDS], KaneConstants)
+    limits = [of(f) for f in _LIMITS]
+    sig = types.Tuple([named, *limits])(flat, lay, prism)
+
+    def codegen(context, builder, signature, args):
+        src = make_array(flat)(context, builder, args[0])
+        table = make_array(lay)(context, builder, args[1])
+        joints = make_array(prism)(context, builder, args[2])
+        shape = cgutils.unpack_tuple(builder, table.shape)
+        strides = cgutils.unpack_tuple(builder, table.strides)
+
+        def row(i, j):
+            at = cgutils.get_item_pointer2(context, builder, table.data, shape, strides,
+                                           lay.layout, [context.get_constant(types.intp, i),
+                                                        context.get_constant(types.intp, j)])
+            return context.cast(builder, builder.load(at), lay.dtype, types.intp)
+
+        def value(spec, typ):
+            kind = spec[0]
+            if kind == "at":
+                return builder.load(builder.gep(src.data, [row(spec[1], 0)], inbounds=True))
+            if kind == "view":
+                return view_value(context, builder, typ, src, row(spec[1], 0),
+                                  [row(spec[1], 1 + k) for k in range(spec[2])])
+            if kind == "n":
+                return cgutils.unpack_tuple(builder, joints.shape)[0]
+            own = make_array(prism)(context, builder, value=args[2])
+            own.meminfo = cgutils.get_null_value(own.meminfo.type)
+            own.parent = cgutils.get_null_value(own.parent.type)
+            return own._getvalue()
+
+        C = context.make_tuple(builder, named, [value(f, t) for f, t in zip(
+            _FIELDS, named.types)])
+        return context.make_tuple(builder, signature.return_type, [C, *(
+            value(f, t) for f, t in zip(_LIMITS, limits))])
+
+    return sig, codegen
+
+
 @njit(inline="always", **JIT)
 def unpack(flat, lay, prism):
     """The constants' views from :attr:`~.constants.RobotArrays.flat`: ``(C, lim_arm,
     lim_stroke, lim_ujoint)`` (:data:`~.constants.FIELDS` order). Inlined, its views
-    written directly (:func:`~.views.c_view`): called, with NumPy's reshape, it cost each
-    kernel call 1.9 µs, what a one-sample call or a stage of a plant notices."""
-    C = KaneConstants(
-        flat[lay[0, 0]], _v1(flat, lay, 1), _v2(flat, lay, 2), prism.shape[0],
-        _v2(flat, lay, 3), _v3(flat, lay, 4), _v2(flat, lay, 5), prism, _v1(flat, lay, 6),
-        _v2(flat, lay, 7), _v3(flat, lay, 8), _v2(flat, lay, 9), _v2(flat, lay, 10),
-        _v2(flat, lay, 11), _v2(flat, lay, 12), _v2(flat, lay, 13), _v1(flat, lay, 14),
-        _v2(flat, lay, 15), _v1(flat, lay, 16), _v2(flat, lay, 17), _v3(flat, lay, 18),
-        _v1(flat, lay, 19), _v1(flat, lay, 20), _v1(flat, lay, 21), flat[lay[22, 0]])
-    return C, _v2(flat, lay, 23), _v2(flat, lay, 24), _v3(flat, lay, 25)
+    written directly (:func:`_unpacked`): called, with NumPy's reshape, it cost each
+    kernel call 1.9 µs, what a one-sample call or a stage of a plant notices; ``prism``
+    in C has no owner (it must outlive C, as ``flat`` must)."""
+    return _unpacked(flat, lay, prism)
 
 
 @njit(**JIT)

@@ -78,8 +78,8 @@ def _make(stamp):
     return explicit_sample, kane_pass, kane_pull_pass, kane_pull3_pass
 
 
-_index = njit(inline="always", **JIT)(native.program_index)
-_variant = njit(inline="always", **JIT)(kane_variant)
+_index = njit(**JIT)(native.program_index)
+_variant = njit(**JIT)(kane_variant)
 _call10, _call11, _call12, _call14 = (native.caller(n) for n in (10, 11, 12, 14))
 explicit_sample, kane_pass, kane_pull_pass, kane_pull3_pass = _make(STAMP + native.stamp())
 

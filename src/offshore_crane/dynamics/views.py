@@ -54,25 +54,31 @@ def c_view(typingctx, flat, offset, shape):
     sig = out_type(flat, offset, shape)
 
     def codegen(context, builder, signature, args):
-        flat_type = signature.args[0]
-        src = make_array(flat_type)(context, builder, args[0])
-        out = make_array(signature.return_type)(context, builder)
+        src = make_array(signature.args[0])(context, builder, args[0])
         dims = [context.cast(builder, d, t, types.intp)
                 for d, t in zip(cgutils.unpack_tuple(builder, args[2]),
                                 signature.args[2].types)]
         start = context.cast(builder, args[1], signature.args[1], types.intp)
-        stride = src.itemsize
-        strides = []
-        for d in reversed(dims):                  # C order: the last axis moves fastest
-            strides.insert(0, stride)
-            stride = builder.mul(stride, d)
-        populate_array(out, data=builder.gep(src.data, [start], inbounds=True), shape=dims,
-                       strides=strides, itemsize=src.itemsize,
-                       meminfo=cgutils.get_null_value(src.meminfo.type),
-                       parent=cgutils.get_null_value(src.parent.type))
-        return out._getvalue()
+        return view_value(context, builder, signature.return_type, src, start, dims)
 
     return sig, codegen
+
+
+def view_value(context, builder, out_type, src, start, dims):
+    """The LLVM value of :func:`c_view`'s array ``out_type``: ``dims`` (LLVM intp
+    values) C-ordered from element ``start`` of the array structure ``src``, no owner
+    (for intrinsics that make many views at once)."""
+    out = make_array(out_type)(context, builder)
+    stride = src.itemsize
+    strides = []
+    for d in reversed(dims):                  # C order: the last axis moves fastest
+        strides.insert(0, stride)
+        stride = builder.mul(stride, d)
+    populate_array(out, data=builder.gep(src.data, [start], inbounds=True), shape=dims,
+                   strides=strides, itemsize=src.itemsize,
+                   meminfo=cgutils.get_null_value(src.meminfo.type),
+                   parent=cgutils.get_null_value(src.parent.type))
+    return out._getvalue()
 
 
 @intrinsic

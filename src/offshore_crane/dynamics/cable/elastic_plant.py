@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import numpy as np
 from offshore_crane import kernel_calls
-from offshore_crane.kernel_cache import njit
 
 from offshore_crane.conventions import GRAVITY
 from offshore_crane.dynamics import compiled as c
@@ -57,7 +56,6 @@ solve6, solve6_many, cholesky_solve, unpack = (c.solve6, c.solve6_many, c.choles
                                                c.unpack)
 c_view = views.c_view
 actuation_minus_bias = c.actuation_minus_bias
-inline = njit(inline="always", **c.JIT)
 #: :func:`derivative`'s ``status[0]``: the mass matrix positive definite, or singular (the
 #: robot's accelerations are NaN: the attitude singularity q5 = ±π/2, or a state not
 #: finite).
@@ -95,14 +93,14 @@ _QZ, _ROWS3, _RHS3, _X3, _M9, SHARE = (sum(_SHARE_SIZES[:i])
                                        for i in range(len(_SHARE_SIZES) + 1))
 
 
-@inline
+@jit
 def _carve_share(w):
     """The views of :func:`computed_torque_share`'s scratch ``w`` (:data:`SHARE`,)."""
     return (c_view(w, _QZ, (_ROWS3 - _QZ,)), c_view(w, _ROWS3, (3, _MAX_ARM)),
             c_view(w, _RHS3, (3, 6)), c_view(w, _X3, (3, 6)), c_view(w, _M9, (6, 9)))
 
 
-@inline
+@jit
 def _carve(w):
     """The views of the work buffer ``w`` (:data:`WORK`,), each up to the next's start
     (written directly, :func:`~offshore_crane.dynamics.views.c_view`: four calls a stage)."""

@@ -39,7 +39,7 @@ _STARTS = tuple(sum(_ALL[:i]) for i in range(len(_ALL) + 1))
  WORK) = _STARTS
 
 
-@njit(inline="always", **JIT)
+@njit(**JIT)
 def carve_accelerations(w, na):
     """The views of :func:`~offshore_crane.dynamics.cable.kernels.accelerations` for a
     chain of ``na`` bodies: ``(B, J, M, L, Vw, Ww, Vs, diag, store, mc, rhs, zero,
@@ -52,7 +52,7 @@ def carve_accelerations(w, na):
             c_view(w, _RHS, (n,)), c_view(w, _ZERO, (n,)), c_view(w, _UNIT, (n,)))
 
 
-@njit(inline="always", **JIT)
+@njit(**JIT)
 def carve_law(w, na):
     """The views of :func:`~offshore_crane.dynamics.cable.kernels.computed_torque` for a
     chain of ``na`` bodies: ``(qdd, rows, A, rhs6, diag, store, x, M13, zero)``."""
@@ -63,7 +63,7 @@ def carve_law(w, na):
             c_view(w, _M13, (6, 13)), c_view(w, _LZERO, (n,)))
 
 
-@njit(inline="always", **JIT)
+@njit(**JIT)
 def carve_tension(w, na):
     """The views of the hanging plant's tension (its Kane pass at a recorded sample) for a
     chain of ``na`` bodies: ``(rows, A, rhs6, diag, store)``."""

@@ -38,20 +38,19 @@ MAX_TURN = 0.5
 # reference runs). Every compiled helper of the closure lives here: Numba's cache does not
 # follow a change of a function inlined from another file.
 jit = njit(cache=True, nogil=True, error_model="numpy")
-ijit = njit(cache=True, nogil=True, error_model="numpy", inline="always")
 
 # Small vectors and matrices are tuples here (kept in registers by the compiler).
-@ijit
+@jit
 def cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
             a[0] * b[1] - a[1] * b[0])
 
-@ijit
+@jit
 def lin(a, s, b, t):
     """``s a + t b``."""
     return (s * a[0] + t * b[0], s * a[1] + t * b[1], s * a[2] + t * b[2])
 
-@ijit
+@jit
 def rot(R, v):
     """``R v`` for R a tuple of rows."""
     return (R[0][0] * v[0] + R[0][1] * v[1] + R[0][2] * v[2],
@@ -59,13 +58,13 @@ def rot(R, v):
             R[2][0] * v[0] + R[2][1] * v[1] + R[2][2] * v[2])
 
 
-@ijit
+@jit
 def vec(a, c, j):
     """``a[c, j]`` of a (m, n, 3) array as a tuple."""
     return (a[c, j, 0], a[c, j, 1], a[c, j, 2])
 
 
-@ijit
+@jit
 def compose(R, P, c, j):
     """``R P[c, j]`` (R a tuple of rows, P a (m, n, 3, 3) array) as a tuple of rows."""
     return ((R[0][0] * P[c, j, 0, 0] + R[0][1] * P[c, j, 1, 0] + R[0][2] * P[c, j, 2, 0],
@@ -79,7 +78,7 @@ def compose(R, P, c, j):
              R[2][0] * P[c, j, 0, 2] + R[2][1] * P[c, j, 1, 2] + R[2][2] * P[c, j, 2, 2]))
 
 
-@ijit
+@jit
 def turn(R, k, q):
     """``R exp([k]× q)``: R's rows turned about the unit axis k (joint frame)."""
     c, s = np.cos(q), np.sin(q)
@@ -97,7 +96,7 @@ def turn(R, k, q):
              R[2][0] * e0[1] + R[2][1] * e1[1] + R[2][2] * e2[1],
              R[2][0] * e0[2] + R[2][1] * e1[2] + R[2][2] * e2[2]))
 
-@ijit
+@jit
 def solve3(M, b):
     """``M⁻¹ b`` for a 3x3 array ``M`` and a 3-tuple ``b`` (adjugate / determinant)."""
     c0 = cross((M[0, 1], M[1, 1], M[2, 1]), (M[0, 2], M[1, 2], M[2, 2]))
@@ -236,7 +235,7 @@ def bias_acceleration(prism_, c, X, Jc, org, zs, qd):
     return acc
 
 
-@ijit
+@jit
 def det3(M):
     """Determinant of a 3x3 array."""
     return (M[0, 0] * (M[1, 1] * M[2, 2] - M[1, 2] * M[2, 1])
