@@ -13,25 +13,26 @@ import os
 
 #: The kernel groups: name -> (warm-up calls, each ``(module, function, keyword
 #: arguments)``, run in order in one process; cold compile seconds). The seconds,
-#: measured on this project's 2-core machine, order the groups longest first (a
-#: longest-first schedule on the workers). Groups share no big kernel: two processes
-#: compiling one kernel at once both pay for it (the hanging load's kernels and its
-#: simulation loop both need the cable's Kane pass, 16 s: one group). The driver's loops
-#: (:mod:`offshore_crane.simulation.loop`) of ``simulate --scene``'s plants under computed
-#: torque are warmed; another law's loop compiles on its first use (~7 s).
+#: measured on this project's 2-core machine (one process, 2026-11-28), order the groups
+#: longest first (a longest-first schedule on the workers). Groups share no big kernel:
+#: two processes compiling one kernel at once both pay for it (the hanging load's
+#: kernels and its simulation loop share the cable's kernels: one group; apart, they
+#: took longer, measured). The driver's loops (:mod:`offshore_crane.simulation.loop`)
+#: of ``simulate --scene``'s plants under computed torque are warmed; another law's loop
+#: compiles on its first use (~5 s).
 PARTS = {
     "hanging load": ((("offshore_crane.dynamics.cable", "warm_up", {}),
-                      ("offshore_crane.simulation.swing", "warm_up", {})), 75),
-    "elastic cable": ((("offshore_crane.simulation.elastic", "warm_up", {}),), 37),
-    "kane kernels": ((("offshore_crane.dynamics", "warm_up",
-                       {"methods": ("kane",), "forward": False}),), 16),
+                      ("offshore_crane.simulation.swing", "warm_up", {})), 22),
+    "elastic cable": ((("offshore_crane.simulation.elastic", "warm_up", {}),), 11),
     "simulation loop": ((("offshore_crane.simulation.rigid", "warm_up", {"swing": False}),),
-                        16),
-    "serial chain kernels": ((("offshore_crane.serial.core", "warm_up", {}),), 11),
+                        9),
     "rnea kernels": ((("offshore_crane.dynamics", "warm_up",
-                       {"methods": ("rnea",), "forward": False}),), 8),
+                       {"methods": ("rnea",), "forward": False}),), 6),
+    "kane kernels": ((("offshore_crane.dynamics", "warm_up",
+                       {"methods": ("kane",), "forward": False}),), 2),
+    "serial chain kernels": ((("offshore_crane.serial.core", "warm_up", {}),), 2),
     "kane-explicit kernels and forward dynamics": (
-        (("offshore_crane.dynamics", "warm_up", {"methods": ("kane-explicit",)}),), 3),
+        (("offshore_crane.dynamics", "warm_up", {"methods": ("kane-explicit",)}),), 2),
 }
 
 
