@@ -214,3 +214,31 @@ def test_constant_arguments_do_not_make_a_called_kernel_compile_again():
     assert caller(1.0) == 2.0 + -1.0 + 4.0 + 2.0 + 3.0
     assert len(callee.signatures) == 1
     assert [str(t) for t in callee.signatures[0]] == ["float64", "bool", "int64"]
+
+
+def test_no_two_texts_of_compiled_kernels_share_a_symbols_name():
+    """Numba names a compiled function's symbol by its module, qualified name and
+    argument types, and a library loaded from the disk cache links its callees by that
+    name, the first loaded one winning: two texts with one name and types ran each
+    other's code (a plain elastic lift after a commanded one: a heap overrun). The
+    driver's loop instances (one per plant, variant and law) and the elastic plant's two
+    variants have names of their own; the compile-time record still names each by its
+    template."""
+    from offshore_crane.compile_times import kernel_name
+    from offshore_crane.simulation.loop import instantiate
+    from offshore_crane.simulation.laws.computed_torque import command
+    from offshore_crane.simulation.laws._registry import no_state
+    from offshore_crane.simulation.plants import _elastic_kernels as ek
+
+    laws = {"command": command, "law_rate": no_state}
+    a, b = (instantiate(ek, laws, {"IQ": 0, "IQD": 12}, False, key)
+            for key in ("elastic computed-torque", "elastic (commanded winch) computed-torque"))
+    for name in ("loop", "evaluate", "command"):
+        assert a[name].__qualname__ != b[name].__qualname__, name
+        assert a[name].__template__ == b[name].__template__ == name
+    assert kernel_name(a["loop"]) == ("offshore_crane.simulation.loop.loop "
+                                      "[elastic computed-torque]")
+    commanded = ek._commanded()
+    for name in ("keep", "gravity", "arm_tip", "winch_to"):
+        mine, theirs = getattr(ek, name).py_func, getattr(commanded, name).py_func
+        assert mine.__qualname__ != theirs.__qualname__, name

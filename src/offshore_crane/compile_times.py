@@ -96,7 +96,8 @@ def kernel_name(f) -> str:
     """A kernel's name in the compile-time record: its module and qualified name, and
     the instance of a template (:data:`INSTANCE`)."""
     instance = f.__globals__.get(INSTANCE)
-    return f"{f.__module__}.{f.__qualname__}" + (f" [{instance}]" if instance else "")
+    name = getattr(f, "__template__", None) or f.__qualname__   # an instance: its template's
+    return f"{f.__module__}.{name}" + (f" [{instance}]" if instance else "")
 
 
 #: The name, in an instantiated template's namespace, of what tells its instance apart

@@ -248,7 +248,15 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
     cache = all(f.__code__.co_filename.endswith(".py") and
                 os.path.isfile(f.__code__.co_filename) for f in templates.values())
     jit = njit(**{**c.JIT, "cache": cache and c.JIT.get("cache", False)})
+    tag = hashlib.sha256(key.encode()).hexdigest()[:12]
     for name, f in templates.items():
         fn = types.FunctionType(f.__code__, ns, name, f.__defaults__)
+        # a name of the instance's own: Numba names a compiled function's symbol by its
+        # module, qualified name and argument types, and a library loaded from the disk
+        # cache links its callees by those symbols, the first loaded one of a name
+        # winning; two instances with one name and types (two plants' ``sense``, the
+        # elastic plant's two variants' ``loop``) then ran each other's code (measured:
+        # a heap overrun, a segfault later)
+        fn.__qualname__, fn.__template__ = f"{name}__{tag}", name
         ns[name] = jit(fn) if compiled else fn
     return ns

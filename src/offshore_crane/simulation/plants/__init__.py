@@ -6,9 +6,15 @@ one file and its test."""
 
 from __future__ import annotations
 
+from offshore_crane.lazy import submodule_getattr
 from offshore_crane.simulation.plants._base import Plant
 from offshore_crane.simulation.plants.elastic import ElasticPlant
 from offshore_crane.simulation.plants.hanging import HangingPlant
 from offshore_crane.simulation.plants.rigid import RigidPlant
 
 __all__ = ["ElasticPlant", "HangingPlant", "Plant", "RigidPlant"]
+
+
+#: Sub-modules load on first use, as attributes (:mod:`offshore_crane.lazy`): the
+#: compiled kernels' modules too (they import Numba).
+__getattr__ = submodule_getattr(__name__)

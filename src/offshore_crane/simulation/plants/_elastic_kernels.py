@@ -49,10 +49,12 @@ _OK = ep.OK
 def _make(stamp, commanded):
     """The kernels, closed over the formulas' hash and whether the winch is commanded (a
     constant of their code: a test of ``P[16]`` at run time cost the elastic lift 5 %,
-    measured). The helpers that test it are made here too, one pair per variant, so that
-    no inline helper is shared by the two variants' compiles (a plain lift run after a
-    commanded one in one process diverged at its first step once, with a development
-    cache; not reproduced from a cold cache, nor since)."""
+    measured). The helpers that test it are made here too, one pair per variant. The
+    commanded variant's functions have names of their own (:func:`_named`): one name and
+    argument types for two texts made a library loaded from the disk cache call the other
+    variant's code (a plain lift after a commanded one in one process: a heap overrun,
+    a divergence or a segfault later)."""
+    jit = _named(commanded)
 
     @inline
     def _length(P, i, y):
@@ -213,6 +215,19 @@ def _make(stamp, commanded):
             winch_to(P, i, y, Lg[i, 0], Lg[i, 1], Lg[i, 2], X)
 
     return prepare, rhs, keep, inverse, gravity, arm_tip, winch, winch_to
+
+
+def _named(commanded):
+    """The compiled kernels' decorator of a variant: the commanded winch's functions'
+    qualified names end in ``_commanded`` (Numba names a symbol by module, qualified
+    name and argument types, the same for both variants)."""
+    if not commanded:
+        return jit
+
+    def named(f):
+        f.__qualname__ += "_commanded"
+        return jit(f)
+    return named
 
 
 #: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
