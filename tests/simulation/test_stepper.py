@@ -99,8 +99,12 @@ def test_the_observation_is_the_measured_state_and_reset_starts_again():
 def test_bad_actions_and_calls_are_refused_in_one_line():
     robot = oc.load_robot()
     sim = Stepper(robot, 0.02, table1, control_period=PERIOD, saturation=False)
+    assert sim.time == 0.0 and not (sim.terminated or sim.truncated)
     with pytest.raises(InputError, match=r"step\(\) before reset\(\)"):
         sim.step(np.zeros(9))
+    for before in (lambda: sim.state, sim.record):
+        with pytest.raises(InputError, match=r"no run yet: call reset\(\) first"):
+            before()
     y = sim.reset()
     X = oc.inverse_dynamics(robot, y[:9], y[9:], np.zeros(9))
     with pytest.raises(InputError, match=r"action of shape \(8,\): give 9 forces \(T1, "):

@@ -119,6 +119,11 @@ class Stepper:
         self.observation_names = run.plant.state_names()
         self.action_names = ACTUATORS + (("Fw",) if run.plant.nx > 9 else ())
         self._pieces = None
+        self._k = 0
+        #: The run stopped (the workspace left, a singular or diverged state).
+        self.terminated = False
+        #: The run reached its duration.
+        self.truncated = False
 
     # --------------------------------------------------------------- the run
     def reset(self, seed: int | None = None) -> np.ndarray:
@@ -190,7 +195,12 @@ class Stepper:
 
     @property
     def state(self) -> np.ndarray:
-        """The plant's state now, as simulated (no sensor model) ``(len(observation_names),)``."""
+        """The plant's state now, as simulated (no sensor model) ``(len(observation_names),)``.
+
+        Raises:
+            InputError: before :meth:`reset`."""
+        if self._pieces is None:
+            raise InputError("no run yet: call reset() first", name="reset")
         return self._pieces.y[:self._run.plant.size].copy()
 
     # --------------------------------------------------------------- inside
