@@ -30,11 +30,12 @@ def _law(robot):
     return law
 
 
-def _stepped(sim, law):
-    """Run ``sim`` to its end with ``law`` on its observations: its record."""
+def _stepped(sim, law, seed=5):
+    """Run ``sim`` to its end with ``law`` on its observations (the sensors' noise seeded
+    with ``seed``; None: their own seed): its record."""
     names = sim.observation_names
     iq, iqd = ([names.index(c) for c in cols] for cols in (Q_COLUMNS, QD_COLUMNS))
-    y = sim.reset(seed=5)
+    y = sim.reset(seed=seed)
     while not (sim.terminated or sim.truncated):
         t, qr, qdr, qddr = sim.reference_now
         y = sim.step(law(t, y[iq], y[iqd], qr, qdr, qddr))
@@ -156,3 +157,36 @@ def test_the_modules_example_runs():
     from offshore_crane.simulation import stepper
 
     assert doctest.testmod(stepper).failed == 0
+
+
+@pytest.mark.parametrize("scene", ["compensated_lift.toml", "hanging_load.toml"])
+def test_a_stepper_on_a_scene_is_its_simulations_run(scene):
+    """``scenes.stepper`` sets the run up as ``simulate --scene`` does
+    (``scenes.plant_options``: the compensated reference, the elastic cable and winch, or
+    the hanging load's sway; the sensors, actuators, step and gravity): a Python law
+    stepped on it gives the same law's ``simulate`` run on the scene's inputs, bit for
+    bit (but the last sample's forces)."""
+    from pathlib import Path
+
+    from offshore_crane import scenes
+    from offshore_crane.simulation.elastic import simulate_elastic
+
+    path = Path(__file__).parents[2] / "scenes" / scene
+    sc = scenes.load_scene(path)
+    robot = scenes.load_robot(sc)
+    traj, elastic, swing = scenes.plant_options(sc, robot, scenes.load_trajectory(sc, robot))
+    law = _law(robot)
+    control = Controller(function=law, rate=1 / PERIOD,
+                         saturation=scenes.controller(sc, robot).saturation)
+    run = simulate_elastic if elastic is not None else oc.simulate
+    want = run(robot, 0.2, traj.reference, controller=control, gravity=sc.gravity,
+               step=sc.control.get("step", 1e-3), t0=float(traj.t[0]),
+               **(elastic or swing), **scenes.instruments(sc))
+    sim = scenes.stepper(path, control_period=PERIOD, duration=0.2)
+    got = _stepped(sim, law, seed=None)             # the scene's own seed
+    for name in ("t", "q", "qd", "q_ref"):
+        np.testing.assert_array_equal(getattr(got, name), getattr(want, name), err_msg=name)
+    np.testing.assert_array_equal(got.X[:-1], want.X[:-1])
+    assert ("payload_x_m" in sim.observation_names) == (elastic is not None)
+    with pytest.raises(InputError, match="is longer than the scene's reference"):
+        scenes.stepper(path, control_period=PERIOD, duration=1e6)

@@ -164,7 +164,7 @@ class Pieces:
         """Steps ``s0 .. s0 + n`` (``s0`` on an output sample; ``finish``: the last
         step's sample evaluated and recorded too, else left to the next piece)."""
         k0 = s0 // self.timing.out_every
-        tt, qr, qdr, qddr = (x[2 * s0:] for x in self.grid)
+        tt, qr, qdr, qddr = self.grid          # read at the run's stage points
         rec = [r[k0:] for r in self.rec]
         status, t = self.status, self.timing
         status[2] = 0

@@ -105,9 +105,10 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
     not zero (STOPPED). ``W``: the loop's zeroed scratch (:func:`scratch`).
 
     A run in pieces (a stepper): ``s0`` is the run's step at ``y`` (0: its start; the
-    grid and the records start there, the control instants count on from
-    ``status[3]``), and without ``finish`` the piece ends at its last step's state,
-    neither evaluated nor recorded (the next piece's first sample)."""
+    grid, the plant's and the law's stage points count from the run's start, the records
+    from the piece's, the control instants on from ``status[3]``), and without
+    ``finish`` the piece ends at its last step's state, neither evaluated nor recorded
+    (the next piece's first sample)."""
     P, L = unowned(P), unowned(L)      # handed to the plant and the law at every stage
     # the arrays handed on at every stage, without their owner: the caller keeps them
     # alive for the call (their reference counts cost the rigid robot 3-4 %, measured)
@@ -129,8 +130,8 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
             status[0] = STOPPED
             status[1] = s
             return
-        i0 = 2 * s
         g = s0 + s
+        i0 = 2 * g
         if sens:
             for j in range(n_p):
                 hist[g % (delay + 1), j] = y[j]
