@@ -18,12 +18,21 @@ RK4's order drops) is done again in ``refine`` steps.
 
 from __future__ import annotations
 
+import hashlib
+import inspect
+
 import numpy as np
 
 from offshore_crane.dynamics import compiled as c
 from offshore_crane.stops import CODES
+from offshore_crane.dynamics.cable import kernels as _ck
 from offshore_crane.dynamics.cable.kernels import jit, tip
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
+
+#: What these kernels' disk cache is keyed by: the formulas' hash and the text of the
+#: cable's kernels they link (``tip``: Numba's cache checks only a function's own file,
+#: so a callee edited there was linked stale, calling an entry no longer registered).
+STAMP = c.STAMP + hashlib.sha256(inspect.getsource(_ck).encode()).hexdigest()
 
 cable_tension, sway_damping_force = c.K.cable_tension, c.K.sway_damping_force
 drag_force = c.K.drag_force
@@ -121,7 +130,7 @@ def _helpers(stamp):
     return quadratic, forcing, rhs, steps
 
 
-quadratic, forcing, rhs, steps = _helpers(c.STAMP)
+quadratic, forcing, rhs, steps = _helpers(STAMP)
 
 
 def _make(stamp):
@@ -204,4 +213,4 @@ def _make(stamp):
     return integrate
 
 
-integrate = _make(c.STAMP)
+integrate = _make(STAMP)

@@ -35,7 +35,7 @@ from offshore_crane.dynamics.cable.work import WORK, carve_accelerations, carve_
 from offshore_crane.dynamics.formulas import STORE_WIDTH
 from offshore_crane.dynamics.integrator import rk4_combine, rk4_stage
 
-#: The tip's motion and state (:data:`~offshore_crane.dynamics.compiled.KE`'s), called
+#: The tip's motion and frame (:data:`~offshore_crane.dynamics.compiled.KE`'s), called
 #: by address (:mod:`offshore_crane.kernel_calls`), not inlined: seven kernels here run
 #: them, and each inlined copy of the arm's kinematics cost its kernel seconds of compile
 #: (a first hanging-load ``simulate`` compiled them five times over); by address, a helper
@@ -46,13 +46,10 @@ TIP_MOTION = kernel_calls.Entry.typed(
     "tip_motion", lambda: c.KE.tip_motion,
     f"Tuple((UniTuple({_V3}, 3), {_V3}, {_V3}, {_V3}))(C, V, V, V)", c.STAMP,
     C=c.kane_constants_type())
-TIP_STATE = kernel_calls.Entry.typed("tip_state", lambda: c.KE.tip_state,
-                                     f"UniTuple({_V3}, 2)(C, V, V)", c.STAMP,
-                                     C=c.kane_constants_type())
 TIP_FRAME = kernel_calls.Entry.typed("tip_frame", lambda: c.KE.tip_frame,
                                      f"Tuple(({_V3}, {_V3}, UniTuple({_V3}, 3), {_V3}))"
                                      "(C, V, V)", c.STAMP, C=c.kane_constants_type())
-tip_motion, tip_state, tip_frame = TIP_MOTION.call, TIP_STATE.call, TIP_FRAME.call
+tip_motion, tip_frame = TIP_MOTION.call, TIP_FRAME.call
 pendulum, hoisted_pendulum, cable_force = c.K.pendulum, c.K.hoisted_pendulum, c.K.cable_force
 sway_direction, mv, axpy, scale = c.K.sway_direction, c.K.mv, c.K.axpy, c.K.scale
 hanging_velocity, drag_force = c.K.hanging_velocity, c.K.drag_force
@@ -95,7 +92,7 @@ def _helpers(stamp):
             out[12 + r] = al[r]
             out[15 + r] = a[r]
         if want_v:
-            v = tip_state(C, q, qd)[1]
+            v = tip_frame(C, q, qd)[1]
             for r in range(3):
                 out[18 + r] = v[r]
 
@@ -132,7 +129,7 @@ def _helpers(stamp):
             return (0.0, 0.0, 0.0)
         na = C.n_arm
         Rt, w, _, _ = tip_motion(C, q, qd, zero)
-        return hanging_velocity(Rt, w, tip_state(C, q, qd)[1], q[na + 4], q[na + 5],
+        return hanging_velocity(Rt, w, tip_frame(C, q, qd)[1], q[na + 4], q[na + 5],
                                 qd[na + 4], qd[na + 5], -C.arm_c[na - 1, 2], 0.0)
 
     @jit
@@ -157,7 +154,7 @@ def _helpers(stamp):
         na = C.n_arm
         L = -C.arm_c[na - 1, 2]
         e = mv(tip_motion(C, q, qd, zero)[0], sway_direction(q[na + 4], q[na + 5])[0])
-        vt = tip_state(C, q, qd)[1]
+        vt = tip_frame(C, q, qd)[1]
         k = 2.0 * Ld / L
         return e, (Ldd * e[0] + k * (v[0] - vt[0]), Ldd * e[1] + k * (v[1] - vt[1]),
                    Ldd * e[2] + k * (v[2] - vt[2]))
@@ -170,7 +167,7 @@ def _helpers(stamp):
         if len(stamp) == 0:
             return
         C = unpack(flat, lay, prism)[0]
-        p, v = tip_state(C, q, qd)
+        p, v = tip_frame(C, q, qd)[:2]
         a = tip_motion(C, q, qd, qdd)[3]
         for j in range(3):
             out[j] = p[j]
