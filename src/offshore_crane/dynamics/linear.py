@@ -10,20 +10,15 @@ from offshore_crane.kernel_cache import njit
 from offshore_crane.dynamics.jit import JIT
 
 
-@njit(**JIT)
-def solve6(A, rhs, x, M, want_cond):
-    """Gauss–Jordan elimination with partial pivoting on ``[A | I | rhs]`` (``M`` a
-    (6, 13) workspace): fills ``x = A⁻¹ rhs`` and returns the 1-norm condition number
-    ``‖A‖₁ ‖A⁻¹‖₁`` when ``want_cond``, else 0 (inf, and a NaN solution, when A is
-    singular or not finite). The inverse comes with the elimination: measured 0.20 µs,
-    against 0.17 µs for an LU solve alone and 0.31 µs for LU with the inverse's columns."""
-    n = 6
-    w = 2 * n + 1
-    for i in range(n):
-        for j in range(n):
-            M[i, j] = A[i, j]
-            M[i, n + j] = 1.0 if i == j else 0.0
-        M[i, 2 * n] = rhs[i]
+@njit(inline="always", **JIT)
+def _gauss_jordan(M, n, w):
+    """Gauss–Jordan elimination with partial pivoting of ``M``'s first ``n`` columns (an
+    n × n matrix), carried to its columns ``n .. w − 1`` (right-hand sides, the identity):
+    those hold the solutions after it. False at a zero or NaN pivot (``M`` then half
+    eliminated). Each column goes through its own operations, the pivots and factors
+    coming from the first n alone: a right-hand side's solution is the same bit for bit
+    whatever columns stand beside it. Inlined: the sizes are then constants of each
+    caller's loops (called, ``solve6`` took 0.29 µs against 0.20, measured)."""
     for k in range(n):
         p = k
         best = abs(M[k, k])
@@ -33,9 +28,7 @@ def solve6(A, rhs, x, M, want_cond):
                 best = v
                 p = r
         if not best > 0.0:        # zero or NaN pivot
-            for i in range(n):
-                x[i] = np.nan
-            return np.inf
+            return False
         if p != k:
             for j in range(w):
                 tmp = M[k, j]
@@ -50,6 +43,27 @@ def solve6(A, rhs, x, M, want_cond):
                 if f != 0.0:
                     for j in range(w):
                         M[r, j] -= f * M[k, j]
+    return True
+
+
+@njit(**JIT)
+def solve6(A, rhs, x, M, want_cond):
+    """Gauss–Jordan elimination with partial pivoting on ``[A | I | rhs]`` (``M`` a
+    (6, 13) workspace, :func:`_gauss_jordan`): fills ``x = A⁻¹ rhs`` and returns the
+    1-norm condition number ``‖A‖₁ ‖A⁻¹‖₁`` when ``want_cond``, else 0 (inf, and a NaN
+    solution, when A is singular or not finite). The inverse comes with the
+    elimination: measured 0.20 µs, against 0.17 µs for an LU solve alone and 0.31 µs
+    for LU with the inverse's columns."""
+    n = 6
+    for i in range(n):
+        for j in range(n):
+            M[i, j] = A[i, j]
+            M[i, n + j] = 1.0 if i == j else 0.0
+        M[i, 2 * n] = rhs[i]
+    if not _gauss_jordan(M, n, 2 * n + 1):
+        for i in range(n):
+            x[i] = np.nan
+        return np.inf
     for j in range(n):
         x[j] = M[j, 2 * n]
     if not want_cond:
@@ -72,45 +86,21 @@ def solve6_many(A, R, X, M):
     """:func:`solve6` of ``A`` for the k right-hand sides ``R`` (k, 6) at once (``M`` a
     (6, 6 + k) workspace) into ``X`` (k, 6), row j the solution of row j, without the
     condition number: each right-hand side's column goes through the same operations
-    as in :func:`solve6` (the pivots and factors come from A's columns alone), so each
-    solution is :func:`solve6`'s bit for bit; False, the solutions NaN, when A is
-    singular or not finite. Step k works on the columns past k only: the columns up to
-    k are never read again (step k reads its pivot column k and nothing before it)."""
+    as in :func:`solve6` (:func:`_gauss_jordan`: the pivots and factors come from A's
+    columns alone), so each solution is :func:`solve6`'s bit for bit; False, the
+    solutions NaN, when A is singular or not finite."""
     n = 6
     k_rhs = R.shape[0]
-    w = n + k_rhs
     for i in range(n):
         for j in range(n):
             M[i, j] = A[i, j]
         for j in range(k_rhs):
             M[i, n + j] = R[j, i]
-    for k in range(n):
-        p = k
-        best = abs(M[k, k])
-        for r in range(k + 1, n):
-            v = abs(M[r, k])
-            if v > best:
-                best = v
-                p = r
-        if not best > 0.0:        # zero or NaN pivot
-            for j in range(k_rhs):
-                for i in range(n):
-                    X[j, i] = np.nan
-            return False
-        if p != k:
-            for j in range(k, w):
-                tmp = M[k, j]
-                M[k, j] = M[p, j]
-                M[p, j] = tmp
-        inv = 1.0 / M[k, k]
-        for j in range(k + 1, w):
-            M[k, j] *= inv
-        for r in range(n):
-            if r != k:
-                f = M[r, k]
-                if f != 0.0:
-                    for j in range(k + 1, w):
-                        M[r, j] -= f * M[k, j]
+    if not _gauss_jordan(M, n, n + k_rhs):
+        for j in range(k_rhs):
+            for i in range(n):
+                X[j, i] = np.nan
+        return False
     for j in range(k_rhs):
         for i in range(n):
             X[j, i] = M[i, n + j]
