@@ -226,10 +226,10 @@ def check_workspace(robot, q, t=None, *, pose: str | None = None, threads: int =
         return health
 
     threads = min(thread_count(threads), len(starts))
-    if watch is not None and threads <= 1 and watch.done <= len(q):
+    if threads <= 1:
+        if watch is None or watch.done > len(q):
+            watch = WorkspaceWatch(robot)
         health = watch.health_of(q)
-    elif threads <= 1:
-        health = record(starts)
     else:                                  # every thread-th block: equal shares
         from concurrent.futures import ThreadPoolExecutor
 
