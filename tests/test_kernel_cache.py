@@ -94,6 +94,48 @@ def test_njit_keeps_numbas_forms():
     assert type(plain._cache).__name__ == "NullCache"
 
 
+def test_the_package_kernels_skip_the_lone_function_pass_and_others_keep_it():
+    """This package's kernels get LLVM's module pipeline only; a kernel of other code
+    compiled in the same process still gets Numba's function pass first; the two give
+    the same numbers (a loop with a callee, so that the module pass has inlining to do).
+    """
+    import numba
+    from numba.core import codegen
+
+    from offshore_crane import kernel_cache
+    from offshore_crane.kernel_cache import njit
+
+    def make(jit):
+        @jit
+        def callee(x, k):
+            return x * (k + 0.5) - 1.0 / (k + 1.0)
+
+        @jit
+        def total(n):
+            s = 0.0
+            for k in range(n):
+                s += callee(0.3, k)
+            return s
+
+        return total
+
+    ran = []
+    original = codegen.CPUCodeLibrary._optimize_functions
+    ours = make(njit)
+    before = kernel_cache.SKIPPED_FUNCTION_PASSES[0]
+    assert ours(1000) == ours(1000)
+    skipped = kernel_cache.SKIPPED_FUNCTION_PASSES[0] - before
+    assert skipped >= 2                     # the kernel's module and its callee's
+    codegen.CPUCodeLibrary._optimize_functions = lambda self, m: (ran.append(m),
+                                                                  original(self, m))
+    try:
+        theirs = make(numba.njit)
+        assert theirs(1000) == ours(1000)   # bit for bit
+    finally:
+        codegen.CPUCodeLibrary._optimize_functions = original
+    assert ran and kernel_cache.SKIPPED_FUNCTION_PASSES[0] - before == skipped
+
+
 RACE = '''
 import sys, time
 from numba.core import caching
