@@ -22,10 +22,10 @@ from offshore_crane.kernel_cache import njit
 from offshore_crane.robot.kinematics import workspace as ws
 from offshore_crane.dynamics import backends
 from offshore_crane.dynamics.passes import (EXPLICIT, KANE, KANE_PULL,  # noqa: F401
-                                           KANE_PULL3, call_explicit, call_kane,
-                                           call_kane_pull, call_kane_pull3, explicit_sample,
+                                           KANE_PULL2, call_explicit, call_kane,
+                                           call_kane_pull, call_kane_pull2, explicit_sample,
                                            kane_constants_type, kane_pass, kane_pull_pass,
-                                           kane_pull3_pass)
+                                           kane_pull2_pass)
 from offshore_crane.dynamics.constants import FIELDS
 from offshore_crane.dynamics.formulas import KaneConstants
 from offshore_crane.dynamics.linear import (actuation_minus_bias, cholesky_solve,  # noqa: F401

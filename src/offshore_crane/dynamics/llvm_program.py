@@ -218,11 +218,9 @@ def program_ir(kind: str, kane, variant: int, name: str) -> str:
     inp = "ptr noalias readonly"
     params = [f"{inp if ty == 'ptr' else ty} %c{f}" for f, _, ty in fields]
     params += [f"{inp} %q", f"{inp} %qd", f"{inp} %qdd"]
-    if kind == "kane_pull3":
-        params.append(f"{inp} %qz")
     params += ["double %g_0", "double %g_1", "double %g_2"]
     if kind.startswith("kane_pull"):
-        forces = ("pull", "pz", "at") if kind == "kane_pull3" else ("pull", "at")
+        forces = ("pull", "pz", "at") if kind == "kane_pull2" else ("pull", "at")
         params += [f"double %{v}_{i}" for v in forces for i in range(3)]
     for out, array in outputs.items():
         params.append(f"ptr noalias %{out}")

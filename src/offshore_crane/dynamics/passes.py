@@ -1,7 +1,7 @@
 """The Kane passes every compiled kernel calls by address (imports Numba).
 
 Each pass (:func:`explicit_sample`, :func:`kane_pass`, :func:`kane_pull_pass`,
-:func:`kane_pull3_pass`) runs the
+:func:`kane_pull2_pass`) runs the
 straight-line program of the robot's arm structure and of the pass's flags that
 :mod:`.native` compiles with LLVM from the formulas' trace; :data:`EXPLICIT`,
 :data:`KANE` and :data:`KANE_PULL` are them as
@@ -25,8 +25,8 @@ from offshore_crane.kernel_cache import njit
 STAMP = backends.source_stamp()
 _FAILED = ("a compiled Kane pass could not be loaded (the error is printed above): report "
            "this as a bug")
-_EXPLICIT, _KANE, _KANE_PULL, _KANE_PULL3 = (native.KINDS.index(k) for k in (
-    "explicit", "kane", "kane_pull", "kane_pull3"))
+_EXPLICIT, _KANE, _KANE_PULL, _KANE_PULL2 = (native.KINDS.index(k) for k in (
+    "explicit", "kane", "kane_pull", "kane_pull2"))
 
 
 def _make(stamp):
@@ -64,24 +64,24 @@ def _make(stamp):
             raise RuntimeError(_FAILED)
 
     @njit(**JIT)
-    def kane_pull3_pass(C, q, qd, qdd, qz, g, pull, pz, at, rows, A, rhs, diag, store):
-        """:func:`kane_pull_pass` at ``(qdd, pull)``, ``(qz, pull)`` and ``(qz, pz)``
-        (:data:`~offshore_crane.dynamics.tracing.PULL3`) in one program: ``rows`` (3,
-        r) and ``rhs`` (3, 6) pass k's in row k, ``A``, ``diag``, ``store`` the last's;
+    def kane_pull2_pass(C, q, qd, qdd, g, pull, pz, at, rows, A, rhs, diag, store):
+        """:func:`kane_pull_pass` at ``(qdd, pull)`` and ``(qdd, pz)``
+        (:data:`~offshore_crane.dynamics.tracing.PULL2`) in one program: ``rows`` (2,
+        r) and ``rhs`` (2, 6) pass k's in row k, ``A``, ``diag``, ``store`` the last's;
         each pass's numbers bit for bit its own call's."""
         if len(stamp) == 0:
             return
-        i = _index(_KANE_PULL3, C.n_arm, C.arm_prism, 0)
-        if not _call14(i, C, q, qd, qdd, qz, g, pull, pz, at, rows, A, rhs, diag, store):
+        i = _index(_KANE_PULL2, C.n_arm, C.arm_prism, 0)
+        if not _call13(i, C, q, qd, qdd, g, pull, pz, at, rows, A, rhs, diag, store):
             raise RuntimeError(_FAILED)
 
-    return explicit_sample, kane_pass, kane_pull_pass, kane_pull3_pass
+    return explicit_sample, kane_pass, kane_pull_pass, kane_pull2_pass
 
 
 _index = njit(**JIT)(native.program_index)
 _variant = njit(**JIT)(kane_variant)
-_call10, _call11, _call12, _call14 = (native.caller(n) for n in (10, 11, 12, 14))
-explicit_sample, kane_pass, kane_pull_pass, kane_pull3_pass = _make(STAMP + native.stamp())
+_call10, _call11, _call12, _call13 = (native.caller(n) for n in (10, 11, 12, 13))
+explicit_sample, kane_pass, kane_pull_pass, kane_pull2_pass = _make(STAMP + native.stamp())
 
 
 def kane_constants_type():
@@ -118,7 +118,7 @@ KANE = kernel_calls.Entry.typed(
 KANE_PULL = kernel_calls.Entry.typed(
     "kane_sample_pull", lambda: kane_pull_pass,
     "none(C, V, V, V, T3, T3, T3, V, M, V, M, M)", STAMP, C=kane_constants_type())
-KANE_PULL3 = kernel_calls.Entry.typed(
-    "kane_sample_pull3", lambda: kane_pull3_pass,
-    "none(C, V, V, V, V, T3, T3, T3, T3, M, M, M, M, M)", STAMP, C=kane_constants_type())
-call_kane, call_kane_pull, call_kane_pull3 = KANE.call, KANE_PULL.call, KANE_PULL3.call
+KANE_PULL2 = kernel_calls.Entry.typed(
+    "kane_sample_pull2", lambda: kane_pull2_pass,
+    "none(C, V, V, V, T3, T3, T3, T3, M, M, M, M, M)", STAMP, C=kane_constants_type())
+call_kane, call_kane_pull, call_kane_pull2 = KANE.call, KANE_PULL.call, KANE_PULL2.call

@@ -11,15 +11,18 @@ the pull ``P = T ρ̂ − F_s`` on the robot at the payload's place (``F_s``:
 robot's accelerations from its equations of motion (the explicit Kane pass,
 ``formulas.explicit_sample``, solved by Cholesky) under ``X − ΔX(P)``, with ``ΔX(P)`` the
 Kane pass with the pull at rest (``formulas.kane_sample_pull`` at ``q̈ = 0``) less the same
-without it; the payload's acceleration ``g + (F_d − P) / m`` (``F_d``:
+with ``0 × P`` (the pull's share of X: X is affine in the pull, its share the same at any
+accelerations); the payload's acceleration ``g + (F_d − P) / m`` (``F_d``:
 :func:`~offshore_crane.dynamics.sway.drag_force`). :func:`computed_torque` is the built-in
 law's X: the Kane pass with the measured pull at the commanded accelerations, and
 :func:`measure` the pull (the load cell) it reads. :func:`computed_torque_share` is the
-law's X and ``ΔX(P)`` from one program (the three Kane passes at one state share all but
-their accelerations' and pull's terms; each gives its own numbers bit for bit), which
-:func:`derivative` then reads (``fused``) instead of making its two passes: on the
-driver's built-in law at the plant's own state, 3.3 → 1.5 µs for the plant's rates and
-0.79 → 1.05 µs for the law (measured one core, 2026-11-28).
+law's X and ``ΔX(P)`` from one program: the law's pass less the same with ``0 × P``, at
+the commanded accelerations (the two share all but the pull's terms; each gives its own
+numbers bit for bit), which :func:`derivative` then reads (``fused``) instead of making
+its two passes at rest. The share differs from those two passes' by round-off only
+(tested). On the driver's built-in law at the plant's own state: 3.3 → 1.5 µs for the
+plant's rates (2026-11-28), and the law 1.14 → 0.93 µs when its program went from three
+passes (the share at rest) to two (measured one core, the same day).
 
 Every formula is the compiled text of :mod:`offshore_crane.dynamics.formulas` and
 :mod:`offshore_crane.dynamics.sway` (:data:`offshore_crane.dynamics.compiled.K`, ``KE``);
@@ -51,7 +54,7 @@ drag_force = c.K.drag_force
 #: :mod:`offshore_crane.dynamics.passes`), as the plant's own passes are by its loops
 #: (:data:`DERIVATIVE` below): linked, each loop (one per law) compiled them again.
 kane_sample_pull, explicit_sample = c.call_kane_pull, c.call_explicit
-kane_sample_pull3 = c.call_kane_pull3
+kane_sample_pull2 = c.call_kane_pull2
 solve6, solve6_many, cholesky_solve, unpack = (c.solve6, c.solve6_many, c.cholesky_solve,
                                                c.unpack)
 c_view = views.c_view
@@ -86,34 +89,42 @@ VIEW_MM, VIEW_MC = 15, 20
 
 
 #: The scratch of :func:`computed_torque_share` (:data:`SHARE`,), after the work buffer:
-#: zero accelerations ``qz`` (6 + the chain's bodies), the three passes' arm rows and
-#: right-hand sides, their leg forces and the Gauss–Jordan workspace (:func:`_carve_share`).
-_SHARE_SIZES = (6 + _MAX_ARM, 3 * _MAX_ARM, 18, 18, 6 * 9)
-_QZ, _ROWS3, _RHS3, _X3, _M9, SHARE = (sum(_SHARE_SIZES[:i])
-                                       for i in range(len(_SHARE_SIZES) + 1))
+#: the two passes' arm rows and right-hand sides, their leg forces and the Gauss–Jordan
+#: workspace (:func:`_carve_share`).
+_SHARE_SIZES = (2 * _MAX_ARM, 12, 12, 6 * 8)
+_ROWS2, _RHS2, _X2, _M8, SHARE = (sum(_SHARE_SIZES[:i])
+                                  for i in range(len(_SHARE_SIZES) + 1))
 
 
 @jit
 def _carve_share(w):
     """The views of :func:`computed_torque_share`'s scratch ``w`` (:data:`SHARE`,)."""
-    return (c_view(w, _QZ, (_ROWS3 - _QZ,)), c_view(w, _ROWS3, (3, _MAX_ARM)),
-            c_view(w, _RHS3, (3, 6)), c_view(w, _X3, (3, 6)), c_view(w, _M9, (6, 9)))
+    return (c_view(w, _ROWS2, (2, _MAX_ARM)), c_view(w, _RHS2, (2, 6)),
+            c_view(w, _X2, (2, 6)), c_view(w, _M8, (6, 8)))
+
+
+@jit
+def _carve_pass(w):
+    """The first ten views of :func:`_carve`, what a Kane pass with the pull reads and
+    writes (the law's and the load cell's calls carve these only: each view a kernel
+    returns is counted in and out, measured)."""
+    return (c_view(w, _Q, (_QD - _Q,)), c_view(w, _QD, (_QDD - _QD,)),
+            c_view(w, _QDD, (_ROWS - _QDD,)), c_view(w, _ROWS, (_A - _ROWS,)),
+            c_view(w, _A, (6, 6)), c_view(w, _RHS6, (_DIAG - _RHS6,)),
+            c_view(w, _DIAG, (7, 6)), c_view(w, _STORE, (_MAX_ARM, STORE_WIDTH)),
+            c_view(w, _X6, (_M13 - _X6,)), c_view(w, _M13, (6, 13)))
 
 
 @jit
 def _carve(w):
     """The views of the work buffer ``w`` (:data:`WORK`,), each up to the next's start
-    (written directly, :func:`~offshore_crane.dynamics.views.c_view`: four calls a stage)."""
-    return (c_view(w, _Q, (_QD - _Q,)), c_view(w, _QD, (_QDD - _QD,)),
-            c_view(w, _QDD, (_ROWS - _QDD,)), c_view(w, _ROWS, (_A - _ROWS,)),
-            c_view(w, _A, (6, 6)), c_view(w, _RHS6, (_DIAG - _RHS6,)),
-            c_view(w, _DIAG, (7, 6)), c_view(w, _STORE, (_MAX_ARM, STORE_WIDTH)),
-            c_view(w, _X6, (_M13 - _X6,)), c_view(w, _M13, (6, 13)),
-            c_view(w, _XP, (_X0 - _XP,)), c_view(w, _X0, (_XS - _X0,)),
-            c_view(w, _XS, (_B - _XS,)), c_view(w, _B, (_J - _B,)), c_view(w, _J, (6, 6)),
-            c_view(w, _MM, (9, 9)), c_view(w, _L, (9, 9)), c_view(w, _VW, (9, 3)),
-            c_view(w, _WW, (9, 3)), c_view(w, _VS, (9, 3)), c_view(w, _MC, (1, 3)),
-            c_view(w, _RHS, (_ACC - _RHS,)), c_view(w, _ACC, (WORK - _ACC,)))
+    (written directly, :func:`~offshore_crane.dynamics.views.c_view`)."""
+    return _carve_pass(w) + (
+        c_view(w, _XP, (_X0 - _XP,)), c_view(w, _X0, (_XS - _X0,)),
+        c_view(w, _XS, (_B - _XS,)), c_view(w, _B, (_J - _B,)), c_view(w, _J, (6, 6)),
+        c_view(w, _MM, (9, 9)), c_view(w, _L, (9, 9)), c_view(w, _VW, (9, 3)),
+        c_view(w, _WW, (9, 3)), c_view(w, _VS, (9, 3)), c_view(w, _MC, (1, 3)),
+        c_view(w, _RHS, (_ACC - _RHS,)), c_view(w, _ACC, (WORK - _ACC,)))
 
 
 def _helpers(stamp):
@@ -190,25 +201,24 @@ def _helpers(stamp):
         return ok
 
     @jit
-    def pulled_share(C, q, qd, qdd, qz, g, pull, at, X, D, rows3, A, rhs3, diag, store,
-                     x3, M9):
-        """X (9,) of :func:`pulled` at ``qdd`` and D (9,) the pull's share of X at rest:
-        :func:`pulled` at ``qz`` (zeros) with ``pull`` less the same with ``0 × pull``,
-        each of the three bit for bit its own call's (one program, one elimination for
-        the three right-hand sides: :func:`~offshore_crane.dynamics.linear.solve6_many`)."""
+    def pulled_share(C, q, qd, qdd, g, pull, at, X, D, rows2, A, rhs2, diag, store, x2,
+                     M8):
+        """X (9,) of :func:`pulled` at ``qdd`` and D (9,) the pull's share of X: X less
+        :func:`pulled` at ``qdd`` with ``0 × pull``, each pass bit for bit its own call's
+        (one program, one elimination for the two right-hand sides:
+        :func:`~offshore_crane.dynamics.linear.solve6_many`)."""
         if len(stamp) == 0:
             return
         pz = (0.0 * pull[0], 0.0 * pull[1], 0.0 * pull[2])
-        kane_sample_pull3(C, q, qd, qdd, qz, g, pull, pz, at, rows3, A, rhs3, diag, store)
-        solve6_many(A, rhs3, x3, M9)
+        kane_sample_pull2(C, q, qd, qdd, g, pull, pz, at, rows2, A, rhs2, diag, store)
+        solve6_many(A, rhs2, x2, M8)
         for b in range(3):
-            X[b] = rows3[0, b] if b < C.n_arm else np.nan
-            xp = rows3[1, b] if b < C.n_arm else np.nan
-            x0 = rows3[2, b] if b < C.n_arm else np.nan
-            D[b] = xp - x0
+            X[b] = rows2[0, b] if b < C.n_arm else np.nan
+            x0 = rows2[1, b] if b < C.n_arm else np.nan
+            D[b] = X[b] - x0
         for l in range(6):
-            X[3 + l] = x3[0, l]
-            D[3 + l] = x3[1, l] - x3[2, l]
+            X[3 + l] = x2[0, l]
+            D[3 + l] = x2[0, l] - x2[1, l]
 
     return load, cable, pulled, accelerate, pulled_share
 
@@ -242,7 +252,7 @@ def _make(stamp):
         if len(stamp) == 0:
             return 0.0
         C = unpack(flat, lay, prism)[0]
-        q, qd, qdd = _carve(work)[:3]
+        q, qd, qdd = _carve_pass(work)[:3]
         load(y, q, qd, qdd, 6 + C.n_arm)
         return cable(C, par, L, Ld, y, q, qd, cell)
 
@@ -256,7 +266,7 @@ def _make(stamp):
         if len(stamp) == 0:
             return
         C = unpack(flat, lay, prism)[0]
-        (q, qd, qdd, rows, A, rhs6, diag, store, x6, M13) = _carve(work)[:10]
+        (q, qd, qdd, rows, A, rhs6, diag, store, x6, M13) = _carve_pass(work)
         load(y, q, qd, qdd, 6 + C.n_arm)
         for j in range(9):
             qdd[j] = qdd_cmd[j]
@@ -266,21 +276,20 @@ def _make(stamp):
     @jit
     def computed_torque_share(flat, lay, prism, par, y, qdd_cmd, cell, X, D, work, share):
         """:func:`computed_torque` and, from the same program, the pull's share ``D``
-        (9,) of the actuator forces at rest that :func:`derivative` subtracts
-        (``fused``): the law's Kane pass and the plant's two at one state, on one model
-        (the plant's), each bit for bit its own call's. ``share`` (:data:`SHARE`,)
-        scratch."""
+        (9,) of the actuator forces that :func:`derivative` subtracts (``fused``): the
+        law's Kane pass less the same with ``0 × P``, on one model (the plant's), each
+        bit for bit its own call's. ``share`` (:data:`SHARE`,) scratch."""
         if len(stamp) == 0:
             return
         C = unpack(flat, lay, prism)[0]
-        q, qd, qdd, _, A, _, diag, store = _carve(work)[:8]
-        qz, rows3, rhs3, x3, M9 = _carve_share(share)
-        load(y, q, qd, qz, 6 + C.n_arm)
+        q, qd, qdd, _, A, _, diag, store = _carve_pass(work)[:8]
+        rows2, rhs2, x2, M8 = _carve_share(share)
+        load(y, q, qd, qdd, 6 + C.n_arm)
         for j in range(9):
             qdd[j] = qdd_cmd[j]
-        pulled_share(C, q, qd, qdd, qz, (par[0], par[1], par[2]),
-                     (cell[0], cell[1], cell[2]), (cell[3], cell[4], cell[5]), X, D, rows3,
-                     A, rhs3, diag, store, x3, M9)
+        pulled_share(C, q, qd, qdd, (par[0], par[1], par[2]), (cell[0], cell[1], cell[2]),
+                     (cell[3], cell[4], cell[5]), X, D, rows2, A, rhs2, diag, store, x2,
+                     M8)
 
     @jit
     def derivative(flat, lay, prism, eflat, elay, eprism, par, L, Ld, y, X, ydot, cell, work,
@@ -296,8 +305,8 @@ def _make(stamp):
         NaN); ``work`` (:data:`WORK`,) scratch. ``measured``: ``cell`` holds the load
         cell at this state and length already (:func:`measure`'s, the same numbers),
         which is then not measured again; ``fused``: ``D`` (9,) holds the pull's share
-        of X at rest at this state (:func:`computed_torque_share`'s), which is then not
-        formed again."""
+        of X at this state (:func:`computed_torque_share`'s), which is then not formed
+        again (unfused, it is formed at rest: the same up to round-off)."""
         if len(stamp) == 0:
             return 0.0
         C = unpack(flat, lay, prism)[0]

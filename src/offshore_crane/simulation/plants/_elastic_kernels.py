@@ -9,10 +9,11 @@ state's last two entries and its line pull the 10th force, :func:`winch`) and it
 gains ``(kp [1/s²], kd [1/s])``, then the pull's share of X at rest ``D`` (9,), the stage
 point it was made at (1,: −1 none since :func:`prepare`) and its scratch.
 
-The built-in law asked at the plant's state (:func:`inverse`) makes its Kane pass and
-the plant's two (the pull's share ``D``) in one program
+The built-in law asked at the plant's state (:func:`inverse`) makes its Kane pass and,
+less the same with ``0 × P``, the pull's share ``D`` the plant subtracts, in one program
 (:func:`~offshore_crane.dynamics.cable.elastic_plant.computed_torque_share`), which
-:func:`rhs` then reads: the same numbers bit for bit, one program for three.
+:func:`rhs` then reads: two passes where the plant alone makes two at rest, the share
+the same up to round-off.
 
 One load cell a stage: :func:`prepare` measures it before the law is evaluated, and the
 built-in law's :func:`inverse` and the plant's :func:`rhs` read it when they are asked
