@@ -209,7 +209,7 @@ def test_compile_runs_its_groups_and_refuses_no_workers(capsys):
     lines = out.splitlines()
     assert all(sum(line.startswith(f"{name}:") for line in lines) == 1 for name in
                ("kane kernels", "rnea kernels", "simulation loop", "hanging-load kernels",
-                "elastic-cable simulation loop"))
+                "elastic-cable simulation loop", "trajectory interpolation"))
     assert len(PARTS) == 7
     assert main(["compile", "--jobs", "0"]) == 2
     err = capsys.readouterr().err

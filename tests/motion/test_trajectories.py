@@ -466,3 +466,42 @@ def test_a_csv_with_the_bare_names_of_earlier_versions_reads_the_same(tmp_path):
         old, derivatives=True)
     for x, y in zip(a, b):
         np.testing.assert_array_equal(x, y)
+
+
+def _hermite_numpy(tk, qk, qdk, t):
+    """The cubic Hermite interpolant as NumPy expressions over all rows at once (the
+    text :func:`~offshore_crane.motion.trajectories.hermite` had before it was
+    compiled): the reference the compiled rows must equal bit for bit."""
+    i = np.clip(np.searchsorted(tk, t, side="right") - 1, 0, len(tk) - 2)
+    h = (tk[i + 1] - tk[i])[:, None]
+    s = ((t - tk[i])[:, None]) / h
+    p0, p1, m0, m1 = qk[i], qk[i + 1], qdk[i] * h, qdk[i + 1] * h
+    s2, s3 = s * s, s * s * s
+    q = (2 * s3 - 3 * s2 + 1) * p0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * p1 + \
+        (s3 - s2) * m1
+    dq = ((6 * s2 - 6 * s) * p0 + (3 * s2 - 4 * s + 1) * m0 + (-6 * s2 + 6 * s) * p1
+          + (3 * s2 - 2 * s) * m1) / h
+    ddq = ((12 * s - 6) * p0 + (6 * s - 4) * m0 + (-12 * s + 6) * p1 + (6 * s - 2) * m1) / h**2
+    return q, dq, ddq
+
+
+@pytest.mark.parametrize("m", [1, 9])
+def test_hermite_compiled_rows_equal_the_numpy_expressions_bit_for_bit(m):
+    """Non-uniform samples, times anywhere in the span (both ends, the samples
+    themselves), a Fortran-ordered input: the same numbers; a quadratic in t is
+    reproduced (value, rate, acceleration) to round-off; a time outside is refused."""
+    from offshore_crane.motion.trajectories import hermite
+
+    rng = np.random.default_rng(7)
+    tk = np.cumsum(rng.uniform(0.01, 0.05, 300))
+    qk, qdk = rng.normal(size=(300, m)), np.asfortranarray(rng.normal(size=(300, m)))
+    t = np.concatenate([tk[[0, -1, 5, 17]], rng.uniform(tk[0], tk[-1], 2000)])
+    for got, want in zip(hermite(tk, qk, qdk, t), _hermite_numpy(tk, qk, qdk, t)):
+        np.testing.assert_array_equal(got, want)
+    a, b, c = 0.3, -1.2, 2.5                        # q = a + b t + c t²: exact in a cubic
+    q, qd, qdd = hermite(tk, (a + b * tk + c * tk**2)[:, None], (b + 2 * c * tk)[:, None], t)
+    np.testing.assert_allclose(q[:, 0], a + b * t + c * t**2, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(qd[:, 0], b + 2 * c * t, rtol=1e-10, atol=1e-10)
+    np.testing.assert_allclose(qdd[:, 0], 2 * c, rtol=1e-7)  # 1/h² amplifies round-off
+    with pytest.raises(TrajectoryError, match="reach outside the trajectory"):
+        hermite(tk, qk, qdk, np.array([tk[-1] + 1.0]))

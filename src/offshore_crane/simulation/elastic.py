@@ -125,10 +125,13 @@ def simulate_elastic(robot, duration: float, reference, q0=None, qd0=None, contr
 
 def warm_up(robot=None) -> list[tuple[str, float]]:
     """Compile (or load from the cache) the elastic plant's kernels and the driver's loop
-    on it under computed torque: ``[(name, seconds)]``."""
+    on it under computed torque, and the interpolation of a sampled reference (a scene's
+    compensated lift, a CSV file: :func:`~offshore_crane.motion.trajectories.hermite`):
+    ``[(name, seconds)]``."""
     import time
 
     from offshore_crane.dynamics.cable.grid import cable_robot
+    from offshore_crane.motion.trajectories import hermite
     from offshore_crane.robot import load_robot
 
     t0 = time.perf_counter()
@@ -139,4 +142,7 @@ def warm_up(robot=None) -> list[tuple[str, float]]:
 
     rest = held(robot.home_pose())
     simulate_elastic(robot, 2e-3, rest, ea=1e4, step=1e-3, limits=False)
-    return [("elastic-cable simulation loop", time.perf_counter() - t0)]
+    t1 = time.perf_counter()
+    hermite(np.arange(2.0), np.zeros((2, 9)), np.zeros((2, 9)), np.array([0.5]))
+    return [("elastic-cable simulation loop", t1 - t0),
+            ("trajectory interpolation", time.perf_counter() - t1)]
