@@ -247,7 +247,8 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
     # a template from a file Numba cannot cache beside (a notebook, a snippet): not cached
     cache = all(f.__code__.co_filename.endswith(".py") and
                 os.path.isfile(f.__code__.co_filename) for f in templates.values())
-    jit = njit(**{**c.JIT, "cache": cache and c.JIT.get("cache", False)})
+    options = {**c.JIT, "cache": cache and c.JIT.get("cache", False)}
+    jit, inner = njit(**options), njit(**options, no_cpython_wrapper=True)
     tag = hashlib.sha256(key.encode()).hexdigest()[:12]
     for name, f in templates.items():
         fn = types.FunctionType(f.__code__, ns, name, f.__defaults__)
@@ -258,5 +259,6 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
         # elastic plant's two variants' ``loop``) then ran each other's code (measured:
         # a heap overrun, a segfault later)
         fn.__qualname__, fn.__template__ = f"{name}__{tag}", name
-        ns[name] = jit(fn) if compiled else fn
+        # called from Python: the loop alone; the rest only from it (no wrapper to make)
+        ns[name] = (jit if name == "loop" else inner)(fn) if compiled else fn
     return ns
