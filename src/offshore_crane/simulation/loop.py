@@ -259,6 +259,8 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
         # elastic plant's two variants' ``loop``) then ran each other's code (measured:
         # a heap overrun, a segfault later)
         fn.__qualname__, fn.__template__ = f"{name}__{tag}", name
-        # called from Python: the loop alone; the rest only from it (no wrapper to make)
+        # called from Python: the loop alone; the rest only from it, compiled without
+        # the wrapper that unboxes Python arguments (Numba's no_cpython_wrapper: such a
+        # function called from Python crashes the process; nothing here does)
         ns[name] = (jit if name == "loop" else inner)(fn) if compiled else fn
     return ns
