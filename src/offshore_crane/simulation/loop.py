@@ -221,7 +221,7 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
 
     Returns:
         The namespace: ``ns["loop"]`` the loop, ``ns["command"]``, ``ns["law_rate"]`` the
-        law's (compiled, or Python functions).
+        law's (compiled, callable from compiled code only; or Python functions).
     """
     from offshore_crane.dynamics import compiled as c
     from offshore_crane.kernel_cache import INSTANCE, PROGRAM_DIGEST, njit
