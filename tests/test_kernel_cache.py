@@ -12,6 +12,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import offshore_crane
@@ -134,6 +135,35 @@ def test_the_package_kernels_skip_the_lone_function_pass_and_others_keep_it():
     finally:
         codegen.CPUCodeLibrary._optimize_functions = original
     assert ran and kernel_cache.SKIPPED_FUNCTION_PASSES[0] - before == skipped
+
+
+def test_lean_kernels_run_on_their_callers_arrays_and_refuse_to_allocate():
+    """:data:`~offshore_crane.kernel_cache.LEAN` (no reference counts): a kernel that
+    writes into the arrays it is given runs; one that allocates is refused when it
+    compiles, not run without its array's owner. The stage kernels are compiled so."""
+    from numba.core.errors import TypingError
+
+    from offshore_crane.dynamics import linear
+    from offshore_crane.dynamics.cable import elastic_plant as ep
+    from offshore_crane.kernel_cache import LEAN, njit
+
+    @njit(**{**LEAN, "cache": False})
+    def fill(x, v):
+        for i in range(x.shape[0]):
+            x[i] = v
+        return x.shape[0]
+
+    @njit(**{**LEAN, "cache": False})
+    def allocate(n):
+        return np.empty(n).sum()
+
+    x = np.zeros(5)
+    assert fill(x, 2.0) == 5 and (x == 2.0).all()
+    with pytest.raises(TypingError, match="np_empty"):
+        allocate(3)
+    for kernel in (ep.measure, ep.computed_torque_share, ep.derivative, ep.accelerate,
+                   linear.cholesky_solve, linear.solve6, linear.solve6_many):
+        assert kernel.targetoptions.get("_nrt") is False, kernel.py_func.__qualname__
 
 
 RACE = '''

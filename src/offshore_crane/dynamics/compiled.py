@@ -31,7 +31,7 @@ from offshore_crane.dynamics.formulas import KaneConstants
 from offshore_crane.dynamics.linear import (actuation_minus_bias, cholesky_solve,  # noqa: F401
                                             kinetic_energy, leg_system, solve6,
                                             solve6_many)
-from offshore_crane.dynamics.jit import JIT
+from offshore_crane.dynamics.jit import JIT, LEAN  # noqa: F401  (LEAN: for its users)
 from offshore_crane.dynamics.views import view_value
 from numba import types
 from numba.core import cgutils

@@ -4,4 +4,4 @@ trajectory's interpolation) use too."""
 
 from __future__ import annotations
 
-from offshore_crane.kernel_cache import JIT  # noqa: F401
+from offshore_crane.kernel_cache import JIT, LEAN  # noqa: F401

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 from offshore_crane.kernel_cache import njit
 
-from offshore_crane.dynamics.jit import JIT
+from offshore_crane.dynamics.jit import JIT, LEAN
 
 
 @njit(inline="always", **JIT)
@@ -46,7 +46,7 @@ def _gauss_jordan(M, n, w):
     return True
 
 
-@njit(**JIT)
+@njit(**LEAN)
 def solve6(A, rhs, x, M, want_cond):
     """Gauss–Jordan elimination with partial pivoting on ``[A | I | rhs]`` (``M`` a
     (6, 13) workspace, :func:`_gauss_jordan`): fills ``x = A⁻¹ rhs`` and returns the
@@ -81,7 +81,7 @@ def solve6(A, rhs, x, M, want_cond):
     return norm_a * norm_inv
 
 
-@njit(**JIT)
+@njit(**LEAN)
 def solve6_many(A, R, X, M):
     """:func:`solve6` of ``A`` for the k right-hand sides ``R`` (k, 6) at once (``M`` a
     (6, 6 + k) workspace) into ``X`` (k, 6), row j the solution of row j, without the
@@ -107,7 +107,7 @@ def solve6_many(A, R, X, M):
     return True
 
 
-@njit(**JIT)
+@njit(**LEAN)
 def leg_system(B, J, inv_L, A, rhs):
     """The leg forces' linear system from the equations of motion, ``Jᵀ Fl = B[0:6]``
     (``J`` the leg-length Jacobian (6, 6), ``B`` the generalized forces (9,) [N, N·m]),
@@ -122,7 +122,7 @@ def leg_system(B, J, inv_L, A, rhs):
             A[r, l] = J[l, r] * f
 
 
-@njit(**JIT)
+@njit(**LEAN)
 def actuation_minus_bias(B, J, X, n_act, rhs):
     """The right-hand side ``A X − h`` of the equations of motion ``M q̈ + h = A X``:
     ``rhs[r] = Σ_l J[l, r] Fl_l − B[r]`` (r < 6, ``Aᵀ`` of the legs) and
@@ -137,7 +137,7 @@ def actuation_minus_bias(B, J, X, n_act, rhs):
         rhs[6 + b] = X[b] - B[6 + b]
 
 
-@njit(**JIT)
+@njit(**LEAN)
 def cholesky_solve(Mm, b, n, x, L):
     """``x = M⁻¹ b`` for the symmetric positive definite leading ``n x n`` block of
     ``Mm`` (lower triangle read) by Cholesky factorisation into ``L``; False (and NaN
@@ -170,7 +170,7 @@ def cholesky_solve(Mm, b, n, x, L):
     return True
 
 
-@njit(**JIT)
+@njit(**LEAN)
 def kinetic_energy(Mm, qd, n):
     """``½ q̇ᵀ M q̇`` [J] of the first ``n`` coordinates, reading the lower triangle of the
     mass matrix ``Mm`` (what the explicit Kane pass fills) [kg, kg·m, kg·m²]."""

@@ -248,7 +248,10 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
     cache = all(f.__code__.co_filename.endswith(".py") and
                 os.path.isfile(f.__code__.co_filename) for f in templates.values())
     options = {**c.JIT, "cache": cache and c.JIT.get("cache", False)}
-    jit, inner = njit(**options), njit(**options, no_cpython_wrapper=True)
+    # the templates the loop calls at every stage allocate nothing: no reference counts
+    # (kernel_cache.LEAN; the loop itself keeps them, as it boxes and unboxes arrays)
+    jit = njit(**options)
+    inner = njit(**{**c.LEAN, **options}, no_cpython_wrapper=True)
     tag = hashlib.sha256(key.encode()).hexdigest()[:12]
     for name, f in templates.items():
         fn = types.FunctionType(f.__code__, ns, name, f.__defaults__)

@@ -44,8 +44,14 @@ from offshore_crane.dynamics import compiled as c
 from offshore_crane.dynamics import views
 from offshore_crane.dynamics.cable.work import NA
 from offshore_crane.dynamics.cable.kernels import jit, tip_frame
+from offshore_crane.kernel_cache import njit
 from offshore_crane.dynamics.formulas import STORE_WIDTH
 
+#: The kernels a stage runs (the load cell, the law, the plant's rates and their pieces):
+#: compiled without Numba's reference counting (:data:`~offshore_crane.kernel_cache.
+#: LEAN`: they allocate nothing and return numbers), whose calls on each array argument
+#: at entry and exit were a tenth of the elastic lift's time (62 -> 69 real-time).
+lean = njit(**c.LEAN)
 dot = c.K.dot
 cable_tension, sway_damping_force = c.K.cable_tension, c.K.sway_damping_force
 drag_force = c.K.drag_force
@@ -131,7 +137,7 @@ def _helpers(stamp):
     """The pieces, closed over the formulas' hash (their disk cache key); the kernels
     reach them as module globals (a jitted closure variable would defeat the cache)."""
 
-    @jit
+    @lean
     def load(y, q, qd, qdd, n):
         """The chain's ``q, q̇`` (first ``n`` of 11) from the state y, the sway joints' at
         zero; ``q̈`` zero."""
@@ -142,7 +148,7 @@ def _helpers(stamp):
             qd[j] = y[12 + j] if j < 9 else 0.0
             qdd[j] = 0.0
 
-    @jit
+    @lean
     def cable(C, par, L, Ld, y, q, qd, cell):
         """The cable at the state y (``q, qd`` the chain's): fills
         ``cell`` (:data:`CELL`,) and returns the tension [N] (0 slack)."""
@@ -170,7 +176,7 @@ def _helpers(stamp):
         cell[9] = T
         return T
 
-    @jit
+    @lean
     def pulled(C, q, qd, qdd, g, pull, at, X, rows, A, rhs6, diag, store, x6, M13):
         """X (9,) of the robot moving at ``qdd`` with ``pull`` [N] on it at ``at`` [m]
         from the tip (the Kane pass; :func:`.kernels.kane_pulled`'s sample)."""
@@ -183,7 +189,7 @@ def _helpers(stamp):
         for l in range(6):
             X[3 + l] = x6[l]
 
-    @jit
+    @lean
     def accelerate(E, q, qd, X, g, a, B, J, Mm, L, store, Vw, Ww, Vs, diag, mc, rhs, zero):
         """``a`` (9,): q̈ of ``M q̈ + h = A X`` of the robot ``E`` (the explicit Kane pass,
         Cholesky; :func:`offshore_crane.dynamics.compiled.forward`'s sample; NaN past its
@@ -200,7 +206,7 @@ def _helpers(stamp):
             a[j] = np.nan
         return ok
 
-    @jit
+    @lean
     def pulled_share(C, q, qd, qdd, g, pull, at, X, D, rows2, A, rhs2, diag, store, x2,
                      M8):
         """X (9,) of :func:`pulled` at ``qdd`` and D (9,) the pull's share of X: X less
@@ -242,7 +248,7 @@ pulled, cable = PULLED.call, CABLE.call
 
 def _make(stamp):
 
-    @jit
+    @lean
     def measure(flat, lay, prism, par, L, Ld, y, cell, work):
         """The load cell at the state ``y`` (24,) on a cable of length ``L`` [m] paid out
         at ``Ld`` [m/s]: fills ``cell`` (:data:`CELL`,) and returns the tension [N]
@@ -256,7 +262,7 @@ def _make(stamp):
         load(y, q, qd, qdd, 6 + C.n_arm)
         return cable(C, par, L, Ld, y, q, qd, cell)
 
-    @jit
+    @lean
     def computed_torque(flat, lay, prism, par, y, qdd_cmd, cell, X, work):
         """The built-in law's actuator forces ``X`` (9,): the Kane pass of the model
         (``flat, lay, prism``: the controller's model with its payload, as
@@ -273,7 +279,7 @@ def _make(stamp):
         pulled(C, q, qd, qdd, (par[0], par[1], par[2]), (cell[0], cell[1], cell[2]),
                (cell[3], cell[4], cell[5]), X, rows, A, rhs6, diag, store, x6, M13)
 
-    @jit
+    @lean
     def computed_torque_share(flat, lay, prism, par, y, qdd_cmd, cell, X, D, work, share):
         """:func:`computed_torque` and, from the same program, the pull's share ``D``
         (9,) of the actuator forces that :func:`derivative` subtracts (``fused``): the
@@ -291,7 +297,7 @@ def _make(stamp):
                      (cell[3], cell[4], cell[5]), X, D, rows2, A, rhs2, diag, store, x2,
                      M8)
 
-    @jit
+    @lean
     def derivative(flat, lay, prism, eflat, elay, eprism, par, L, Ld, y, X, ydot, cell, work,
                    status, measured, D, fused):
         """``ydot`` (24,) at the state ``y`` (24,) under the applied actuator forces X
