@@ -34,7 +34,7 @@ from offshore_crane.dynamics.linear import kinetic_energy
 from offshore_crane.kernel_cache import njit
 from offshore_crane.simulation.plants import shared_kernels as shared
 
-jit = njit(**c.JIT)
+jit = njit(**c.LEAN)
 inline = njit(inline="always", **c.JIT)
 #: The plant's passes, called by address: each loop (one per law) compiles its own code
 #: only (:mod:`offshore_crane.kernel_calls`).

@@ -20,7 +20,7 @@ from offshore_crane.simulation.plants import shared_kernels as shared
 from offshore_crane.stops import CODES
 
 OK, _, SINGULAR, DIVERGED, _, _ = CODES
-jit = njit(**c.JIT)
+jit = njit(**c.LEAN)
 #: The plant's Kane passes, called by address: each loop (one per law) compiles its own
 #: code only (:mod:`offshore_crane.kernel_calls`).
 accelerations, computed_torque = ck.ACCELERATIONS.call, ck.COMPUTED_TORQUE.call

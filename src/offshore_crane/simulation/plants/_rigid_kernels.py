@@ -31,7 +31,7 @@ from offshore_crane.simulation.plants import shared_kernels as shared
 from offshore_crane.simulation import rigid_equations as eq
 from offshore_crane.simulation.laws import codes
 
-jit = njit(**c.JIT)
+jit = njit(**c.LEAN)
 equations, solve, law = eq.equations, eq.solve, eq.call_law
 carve, carve_ws = eq.carve, eq.carve_ws
 energy, ct_from = eq.energy, eq.ct_from

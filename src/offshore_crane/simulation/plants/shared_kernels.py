@@ -14,7 +14,7 @@ from offshore_crane.kernel_cache import njit
 from offshore_crane.stops import CODES
 
 OK, _, SINGULAR, _, _, _ = CODES
-jit = njit(**c.JIT)
+jit = njit(**c.LEAN)
 inline = njit(inline="always", **c.JIT)
 actuator_coordinates, unpack = c.KE.actuator_coordinates, c.unpack
 
