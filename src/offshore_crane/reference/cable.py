@@ -239,7 +239,7 @@ def forces(robot: Any, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, Y: np.nda
                 tau[:, k] -= jf
         T = read_tree(robot)
         X, cond = np.empty((n, 9)), np.empty(n)
-        project(np.asfortranarray(tau if hoist is None else tau[:-1]), G, T.plat_v,
+        project(np.ascontiguousarray((tau if hoist is None else tau[:-1]).T), G, T.plat_v,
                 T.legs.v_index, T.arm_v, 1.0 / T.L, conditioning, X, cond)
     F[:, 4:6] = tau[P.sway_v].T + P.damping * Y[:, 2:4]
     model, data = P.model, P.data

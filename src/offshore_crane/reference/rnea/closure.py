@@ -278,10 +278,13 @@ def newton(lR, lp, lax, lpr, lpe, l, S, th, iters, Jl, branch, org, zs):
 @jit
 def closure(pR, pp, pax, ppr, ppe, pco, pvi, lR, lp, lax, lpr, lpe, lvi,
             q, qd, qdd, Q, Vt, At, G, diag, status):
-    """Tree states closing the loops for samples of q, qd, qdd (N, 9); fills the
-    Fortran (nv, N) arrays Q, Vt, At, G (N, 6, 3, 6) = ∂(leg joint rates)/∂(q̇1..q̇6)
-    and diag (5, N, 6) (length, cos θ2, height of S above P, θ1, θ2). ``status[0]``
-    is the first sample whose Newton iteration failed (-1 if none)."""
+    """Tree states closing the loops for samples of q, qd, qdd (N, 9); fills Q, Vt, At
+    (N, nv) (a sample a row: the transposes of :func:`tree_state`'s Fortran (nv, N)
+    arrays, C-ordered for any N, so that one compiled signature serves every call; with
+    those arrays as given, an (nv, 1) one, C- and F-contiguous, was typed apart: a
+    second 2.5 s compile), G (N, 6, 3, 6) = ∂(leg joint rates)/∂(q̇1..q̇6) and diag
+    (5, N, 6) (length, cos θ2, height of S above P, θ1, θ2). ``status[0]`` is the first
+    sample whose Newton iteration failed (-1 if none)."""
     N = q.shape[0]
     qp = np.empty(6)
     vp = np.empty(6)
@@ -307,9 +310,9 @@ def closure(pR, pp, pax, ppr, ppe, pco, pvi, lR, lp, lax, lpr, lpe, lvi,
             qp[c] = q[k, pco[0, c]]
             vp[c] = qd[k, pco[0, c]]
             ap[c] = qdd[k, pco[0, c]]
-            Q[pvi[0, c], k] = qp[c]
-            Vt[pvi[0, c], k] = vp[c]
-            At[pvi[0, c], k] = ap[c]
+            Q[k, pvi[0, c]] = qp[c]
+            Vt[k, pvi[0, c]] = vp[c]
+            At[k, pvi[0, c]] = ap[c]
         frame = chain_frame(pR, pp, pax, ppr, 0, qp, vp, ap, porg, pzs)
         for l in range(6):
             S, vS, aS = end_point(frame, ppe, ppr, l, porg, pzs, JS)
@@ -339,9 +342,9 @@ def closure(pR, pp, pax, ppr, ppe, pco, pvi, lR, lp, lax, lpr, lpe, lvi,
             tdd = solve3(Jl, (aS[0] - at[0], aS[1] - at[1], aS[2] - at[2]))
             for j in range(3):
                 vi = lvi[l, j]
-                Q[vi, k] = th[l, j]
-                Vt[vi, k] = thd[j]
-                At[vi, k] = tdd[j]
+                Q[k, vi] = th[l, j]
+                Vt[k, vi] = thd[j]
+                At[k, vi] = tdd[j]
             for c in range(6):
                 g = solve3(Jl, (JS[0, c], JS[1, c], JS[2, c]))
                 for j in range(3):
@@ -381,7 +384,7 @@ def tree_state(robot: Any, q: np.ndarray, qd: np.ndarray,
     closure(p.R, p.p, p.axis, p.prismatic, p.p_end, p.coordinate, p.v_index,
             l.R, l.p, l.axis, l.prismatic, l.p_end, l.v_index,
             np.ascontiguousarray(q), np.ascontiguousarray(qd), np.ascontiguousarray(qdd),
-            Q, V, A, G, diag, status)
+            Q.T, V.T, A.T, G, diag, status)
     if status[0] >= 0:
         raise NumericalError(f"the RNEA reference could not close the legs' loops at sample "
                              f"{status[0]} (Newton's method did not converge): is the pose "

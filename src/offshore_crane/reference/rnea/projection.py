@@ -134,8 +134,10 @@ def project(tau: np.ndarray, G: np.ndarray, plat_v: np.ndarray, leg_v: np.ndarra
             cond: np.ndarray) -> None:
     """``B = Gᵀ τ`` and the actuator forces: ``(T1, T2, Fs) = τ_arm`` and the legs from
     ``Jlᵀ Fl = B[0:6]`` (rows of the rotation coordinates scaled by 1/L), solved by QR;
-    ``cond`` receives that system's 1-norm condition number."""
-    N = tau.shape[1]
+    ``cond`` receives that system's 1-norm condition number. ``tau`` (N, nv): a sample a
+    row (the transpose of the Fortran (nv, N) array Pinocchio fills: C-ordered for any
+    N, one compiled signature for every call)."""
+    N = tau.shape[0]
     na = arm_v.shape[0]
     A = np.empty((6, 6))
     rhs = np.empty(6)
@@ -144,12 +146,12 @@ def project(tau: np.ndarray, G: np.ndarray, plat_v: np.ndarray, leg_v: np.ndarra
     R = np.empty((6, 6))
     for k in range(N):
         for b in range(3):
-            X[k, b] = tau[arm_v[b], k] if b < na else np.nan
+            X[k, b] = tau[k, arm_v[b]] if b < na else np.nan
         for r in range(6):
-            B = tau[plat_v[r], k]
+            B = tau[k, plat_v[r]]
             for l in range(6):
                 for j in range(3):
-                    B += tau[leg_v[l, j], k] * G[k, l, j, r]
+                    B += tau[k, leg_v[l, j]] * G[k, l, j, r]
             f = iL if r >= 3 else 1.0
             rhs[r] = B * f
             for l in range(6):
@@ -202,7 +204,7 @@ def rnea_projected(robot: Any, Q: np.ndarray, V: np.ndarray, A: np.ndarray, G: n
     pin.rneaInParallel(threads, pool(robot, gravity, threads), Q, V, A, tau)
     X = np.empty((N, 9)) if X is None else X
     cond = np.empty(N)
-    project(tau, G, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, conditioning, X, cond)
+    project(tau.T, G, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, conditioning, X, cond)
     return X, cond, tau
 
 

@@ -79,7 +79,7 @@ def regressor(robot: Any, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray,
     cond = np.empty(P)
     for k in range(N):                     # Pinocchio's regressor takes one state
         Yt = pin.computeJointTorqueRegressor(model, data, Q[:, k], V[:, k], A[:, k])
-        tau = np.asfortranarray(Yt[:, cols])
+        tau = np.ascontiguousarray(Yt[:, cols].T)          # a column a row (project's)
         Gk = np.ascontiguousarray(np.broadcast_to(G[k], (P,) + G.shape[1:]))
         out = np.empty((P, 9))
         project(tau, Gk, T.plat_v, T.legs.v_index, T.arm_v, 1.0 / T.L, False, out, cond)
