@@ -305,7 +305,7 @@ def test_no_two_texts_of_compiled_kernels_share_a_symbols_name():
     laws = {"command": command, "law_rate": no_state}
     a, b = (instantiate(ek, laws, {"IQ": 0, "IQD": 12}, False, key)
             for key in ("elastic computed-torque", "elastic (commanded winch) computed-torque"))
-    for name in ("loop", "evaluate", "command"):
+    for name in ("loop", "evaluate", "sense", "command"):
         assert a[name].__qualname__ != b[name].__qualname__, name
         assert a[name].__template__ == b[name].__template__ == name
     assert kernel_name(a["loop"]) == ("offshore_crane.simulation.loop.loop "

@@ -28,13 +28,13 @@ from offshore_crane.dynamics import Result, inverse_dynamics
 from offshore_crane.dynamics.forward import (EquationsOfMotion, actuation_matrix,
                                              bias_forces, forward_dynamics, mass_matrix)
 from offshore_crane.robot import Robot, load_robot
-from offshore_crane.simulation import Controller, SimulationResult, simulate
+from offshore_crane.simulation import Controller, SimulationResult, Stepper, simulate
 
 __version__ = "0.1.0"
 
 __all__ = ["load_robot", "Robot", "inverse_dynamics", "forward_dynamics", "mass_matrix",
            "bias_forces", "actuation_matrix", "simulate", "Controller", "Result",
-           "CableResult", "EquationsOfMotion", "SimulationResult"]
+           "CableResult", "EquationsOfMotion", "SimulationResult", "Stepper"]
 
 #: The columns, loaded on first use as ``oc.<name>`` (as is every other sub-module, and
 #: theirs in turn: ``oc.dynamics.cable``; :mod:`offshore_crane.lazy`).

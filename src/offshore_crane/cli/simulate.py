@@ -113,15 +113,11 @@ def run(args) -> int:
                          "already commands it: drop one of them", name="--controller")
     extras = scenes.instruments(scene)
     c = scene.control
-    elastic = varying = None
-    if scene.varying_cable:             # a winch, a compensation: the cable's length varies
-        traj, varying = scenes.cable_simulation(scene, robot, traj)
-        if "ea" in varying:
-            elastic, varying = varying, None
-            if args.initial_sway is not None:
-                raise InputError("--initial-sway: the sway angles of a rigid cable; on an "
-                                 "elastic one the payload starts hanging at its static "
-                                 "stretch", name="--initial-sway")
+    traj, elastic, swing = scenes.plant_options(scene, robot, traj)
+    if elastic is not None and args.initial_sway is not None:
+        raise InputError("--initial-sway: the sway angles of a rigid cable; on an elastic "
+                         "one the payload starts hanging at its static stretch",
+                         name="--initial-sway")
     step = args.step if args.step is not None else c.get("step", 1e-3)
     span = float(traj.t[-1] - traj.t[0])
     duration = args.duration if args.duration is not None else span
@@ -135,18 +131,12 @@ def run(args) -> int:
     if error is not None:
         q0, qd0, _ = (x[0].copy() for x in traj.reference(traj.t[:1]))
         q0 += np.asarray(error, dtype=float)
-    swing = {}
-    if elastic is not None:
-        pass
-    elif robot.hybrid.cable is not None:
-        swing = (varying if varying is not None else
-                 {k: v for k, v in scene.cable.items() if k in ("initial", "initial_rate")})
-        if args.initial_sway is not None:
-            swing["initial"] = tuple(args.initial_sway)
-    elif args.initial_sway is not None:
+    if args.initial_sway is not None and robot.hybrid.cable is None:
         raise InputError("--initial-sway: applies to a payload on a cable; set "
                          "payload.cable_length > 0 (--set, or the scene's [payload])",
                          name="--initial-sway")
+    if args.initial_sway is not None:
+        swing["initial"] = tuple(args.initial_sway)
     stopped = None
     try:
         if elastic is not None:

@@ -102,8 +102,10 @@ from offshore_crane.scenes.assembly import (controller, instruments, deck_pose, 
                                             with_robot_overrides, load_trajectory,
                                             sea_workspace_error, with_trajectory,
                                             with_overrides)
+from offshore_crane.scenes.stepping import stepper
 from offshore_crane.scenes.running import (SceneRun, CABLE_METHODS, SwingPlan, compare_methods,
-                                           run, run_swing, swing_plan, cable_simulation)
+                                           run, run_swing, swing_plan, cable_simulation,
+                                           plant_options)
 from offshore_crane.scenes.fidelity import Fidelity, compare_fidelity, format_fidelity
 from offshore_crane.scenes.keys import (SECTIONS, TOP_KEYS, SUBSYSTEM_KEYS, PAYLOAD_KEYS,
                                         CABLE_KEYS, INERTIA_KEYS, TRAJECTORY_KEYS, SEA_KEYS,

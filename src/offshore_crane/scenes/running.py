@@ -189,6 +189,31 @@ def cable_simulation(scene: Scene, robot, traj) -> tuple:
     return traj, options
 
 
+def plant_options(scene: Scene, robot, traj) -> tuple:
+    """What a scene's simulation gives its plant (``simulate --scene`` and
+    :func:`~offshore_crane.scenes.stepping.stepper` alike): ``(reference
+    trajectory, elastic, swing)``. On an elastic cable whose length varies, ``elastic``
+    holds :func:`~offshore_crane.simulation.elastic.simulate_elastic`'s keyword
+    arguments (:func:`cable_simulation`) and ``swing`` is empty; else ``elastic`` is None
+    and ``swing`` the rigid cable's (its sway's start, a winch's profile; empty without
+    a cable). The reference is the compensated arm's commands under ``[control]
+    compensation``.
+
+    Raises:
+        SceneError: as :func:`cable_simulation`.
+    """
+    varying = None
+    if scene.varying_cable:             # a winch, a compensation: the cable's length varies
+        traj, varying = cable_simulation(scene, robot, traj)
+        if "ea" in varying:
+            return traj, varying, {}
+    if robot.hybrid.cable is None:
+        return traj, None, {}
+    return traj, None, (varying if varying is not None else
+                        {k: v for k, v in scene.cable.items()
+                         if k in ("initial", "initial_rate")})
+
+
 def _lift_event(scene: Scene, robot, traj, method: str, hoist, checked: dict):
     """A ``[lift]`` scene: the load lifted off the deck (resting on it, then flying:
     :func:`offshore_crane.dynamics.cable.lift_off`) or lowered onto it (flying, then

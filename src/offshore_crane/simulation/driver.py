@@ -48,15 +48,16 @@ class Timing:
     t0: float = 0.0
 
 
-#: Compiled (or Python) loops made in this process: ``{(plant, templates, compiled): loop}``.
+#: Compiled (or Python) loops made in this process, their namespaces:
+#: ``{(plant, templates, compiled): namespace}``.
 _LOOPS: dict = {}
 
 
-def loop_for(plant, law):
-    """The driver's loop for ``plant`` under ``law`` (made once per process; a compiled
-    one is cached on disk)."""
+def namespace_for(plant, law) -> dict:
+    """The driver's loop for ``plant`` under ``law`` in its namespace (``["loop"]``,
+    ``["sense"]``: the sensors' model it runs; made once per process, a compiled one
+    cached on disk)."""
     templates = law.templates()
-    # laws that share their templates (pd and pd-gravity: a flag in L) share a loop
     parts = " ".join(f"{name}={f.__module__}.{f.__qualname__}"
                      for name, f in sorted(templates.items()))
     name = f"{plant.name} ({plant.variant})" if plant.variant else plant.name
@@ -66,8 +67,13 @@ def loop_for(plant, law):
 
         _LOOPS[key] = instantiate(plant.kernels(), templates,
                                   {"IQ": plant.Q.start, "IQD": plant.QD.start},
-                                  law.compiled, f"{name} {parts}")["loop"]
+                                  law.compiled, f"{name} {parts}")
     return _LOOPS[key]
+
+
+def loop_for(plant, law):
+    """The driver's loop for ``plant`` under ``law`` (:func:`namespace_for`)."""
+    return namespace_for(plant, law)["loop"]
 
 
 def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
@@ -96,74 +102,125 @@ def drive(plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
         SimulationError: the run stopped (its cause a :class:`~offshore_crane.stops.
             StopCause`); ``error.result`` keeps every sample before it.
     """
-    from offshore_crane.simulation.record import (SimulationResult, divergence, diverging,
-                                                  finite_rows, stopped)
-
-    tt, qr, qdr, qddr = grid
-    step, n_steps, out_every, hold = timing.step, timing.n_steps, timing.out_every, timing.hold
-    sens = sensors if sensors is not None and sensors.active else None
-    limit = actuators is not None and actuators.rate_limit is not None
-    if (sens is not None or limit) and not hold:
-        what = "sensor models" if sens is not None else "an actuator rate limit"
-        raise InputError(f"{what} act at the control instants of a sampled law: give a "
-                         "control rate ([control] rate, --control-rate)", name="rate")
-    lag, rlim = (np.zeros(0), np.zeros(0)) if actuators is None else \
-        actuators.for_forces(plant.nx)
-    n_p, n_z = plant.size, law.state_size
-    delay = sens.delay_steps(step) if sens is not None else 0
-    nq, nqd = sens.noise(n_steps // hold + 2) if sens is not None else (np.zeros((1, 9)),) * 2
-    res9 = [np.zeros(9) if r is None else r for r in (
-        (sens.resolution_q, sens.resolution_qd) if sens is not None else (None, None))]
-    y = np.concatenate([np.asarray(y0, dtype=float), law.initial_state(), np.zeros(len(lag))])
-    n_out = n_steps // out_every + 1
-    nx = plant.nx
-    rec = [np.full((n_out, 9 if k < 5 else nx), np.nan) for k in range(7)]
-    sat = np.zeros((n_out, nx), dtype=bool)
-    extra = np.full((n_out, plant.extra_width()), np.nan)
-    status = np.zeros(4, dtype=np.int64)
-    halt = progress.stop_flag()
-    run = loop_for(plant, law)
-    from offshore_crane.simulation.loop import scratch
-
-    W = scratch(len(y), n_p, n_z, delay, nx)
-    P, L = plant.params(), law.params()
-    lo, hi = (np.ascontiguousarray(np.asarray(b, dtype=float)) for b in (lower, upper))
+    pieces = Pieces(plant, law, grid, y0, timing, lower, upper, sensors=sensors,
+                    actuators=actuators)
     follow = plant.follower(limits)     # on this core while the loop runs on another
 
     def meanwhile(n):       # the rows before the last recorded one are written for sure
-        follow.feed(rec, n - 1)
-    progress.run_polled(
-        lambda: run(P, L, tt, qr, qdr, qddr, y, float(step), int(n_steps), int(out_every),
-                    int(hold), lo, hi, np.asarray(lag, dtype=float),
-                    np.asarray(rlim, dtype=float), int(delay), nq, nqd, res9[0], res9[1],
-                    sens is not None, n_p, n_z, *rec, sat, extra, status, halt, W),
-        lambda: status[2], n_out, "sample", "simulate", halt, meanwhile)
-    done = int(status[2])
-    t_out = tt[::2][::out_every][:n_out]
-    names = ("q", "qd", "qdd", "q_ref", "qd_ref", "X_cmd", "X")
-    res = SimulationResult(t=t_out, **dict(zip(names, rec)), saturated=sat,
-                           energy=np.full(n_out, np.nan), power=np.full(n_out, np.nan),
-                           integrator="rk4", step=step,
-                           info=dict(info or {}, law=law.name, plant=plant.name))
-    res = res.truncated(done)
-    stop = None
-    code = StopCause(int(status[0]))
-    if code is not StopCause.NONE:
-        stop = (int(status[1]), code, plant.words(code, res) if code is StopCause.SINGULAR
-                else "")
-    early = plant.finish(res, plant.recorded(extra), limits, follow)  # what the record shows
-    if early is not None and (stop is None or early[0] < stop[0]):
-        stop = early
-    if stop is None:
-        return res
-    k, cause, words = stop
-    when = timing.t0 + (k if k < len(t_out) else len(t_out) - 1) * step * out_every
-    # the stop's own sample tells a divergence apart (a singular mass matrix at q5 = 1e15)
-    diverged = cause is StopCause.DIVERGED or diverging(res.truncated(k + 1))
-    res = res.truncated(min(k, finite_rows(res)))
-    if diverged:
-        res = res.truncated(finite_rows(res))
-        cause, words = StopCause.DIVERGED, divergence(res)
-    exc = stopped(res, when, words)
-    exc.stop_cause = cause
-    raise exc
+        follow.feed(pieces.rec, n - 1)
+    pieces.run(0, timing.n_steps, True, meanwhile)
+    return pieces.result(limits, follow, info)
+
+
+class Pieces:
+    """The driver's loop set up for one run (its arrays, scratch and record), run over
+    the whole span (:func:`drive`) or piece by piece (a stepper: :meth:`run` from any
+    step, the record filled in order); :meth:`result` makes the run's result of what
+    is recorded. Arguments as :func:`drive`.
+
+    Raises:
+        InputError: sensors or a rate limit without a sampled law.
+    """
+
+    def __init__(self, plant, law, grid, y0, timing: Timing, lower, upper, *, sensors=None,
+                 actuators=None):
+        self.plant, self.law, self.grid, self.timing = plant, law, grid, timing
+        step, n_steps, hold = timing.step, timing.n_steps, timing.hold
+        sens = sensors if sensors is not None and sensors.active else None
+        limit = actuators is not None and actuators.rate_limit is not None
+        if (sens is not None or limit) and not hold:
+            what = "sensor models" if sens is not None else "an actuator rate limit"
+            raise InputError(f"{what} act at the control instants of a sampled law: give "
+                             "a control rate ([control] rate, --control-rate)", name="rate")
+        self.lag, self.rlim = (np.zeros(0), np.zeros(0)) if actuators is None else \
+            actuators.for_forces(plant.nx)
+        self.n_p, self.n_z = plant.size, law.state_size
+        self.sens = sens is not None
+        self.delay = sens.delay_steps(step) if sens is not None else 0
+        self.nq, self.nqd = (sens.noise(n_steps // hold + 2) if sens is not None
+                             else (np.zeros((1, 9)),) * 2)
+        self.res = [np.zeros(9) if r is None else r for r in (
+            (sens.resolution_q, sens.resolution_qd) if sens is not None else (None, None))]
+        self.y = np.concatenate([np.asarray(y0, dtype=float), law.initial_state(),
+                                 np.zeros(len(self.lag))])
+        n_out = n_steps // timing.out_every + 1
+        nx = plant.nx
+        self.rec = [np.full((n_out, 9 if k < 5 else nx), np.nan) for k in range(7)]
+        self.sat = np.zeros((n_out, nx), dtype=bool)
+        self.extra = np.full((n_out, plant.extra_width()), np.nan)
+        self.status = np.zeros(4, dtype=np.int64)
+        self.halt = progress.stop_flag()
+        self.loop = loop_for(plant, law)
+        from offshore_crane.simulation.loop import scratch
+
+        self.W = scratch(len(self.y), self.n_p, self.n_z, self.delay, nx)
+        self.P, self.L = plant.params(), law.params()
+        self.lo, self.hi = (np.ascontiguousarray(np.asarray(b, dtype=float))
+                            for b in (lower, upper))
+        #: Output samples recorded so far.
+        self.done = 0
+
+    def run(self, s0: int, n: int, finish: bool, meanwhile=None) -> None:
+        """Steps ``s0 .. s0 + n`` (``s0`` on an output sample; ``finish``: the last
+        step's sample evaluated and recorded too, else left to the next piece)."""
+        k0 = s0 // self.timing.out_every
+        tt, qr, qdr, qddr = self.grid          # read at the run's stage points
+        rec = [r[k0:] for r in self.rec]
+        status, t = self.status, self.timing
+        status[2] = 0
+        progress.run_polled(
+            lambda: self.loop(self.P, self.L, tt, qr, qdr, qddr, self.y, float(t.step),
+                              int(n), int(t.out_every), int(t.hold), self.lo, self.hi,
+                              np.asarray(self.lag, dtype=float),
+                              np.asarray(self.rlim, dtype=float), int(self.delay), self.nq,
+                              self.nqd, self.res[0], self.res[1], self.sens, self.n_p,
+                              self.n_z, *rec, self.sat[k0:], self.extra[k0:], status,
+                              self.halt, self.W, int(s0), bool(finish)),
+            lambda: k0 + status[2], self.rec[0].shape[0], "sample", "simulate", self.halt,
+            meanwhile)
+        self.done = k0 + int(status[2])
+        if status[0] != 0:              # the stop's sample counted from the run's start
+            status[1] += k0
+
+    def result(self, limits: bool, follow=None, info: dict | None = None,
+               copy: bool = False):
+        """The run's result from its samples recorded (:attr:`done`), its stops found;
+        raises :class:`~offshore_crane.errors.SimulationError` as :func:`drive`.
+        ``copy``: of the record's arrays (a run that goes on fills them further)."""
+        from offshore_crane.simulation.record import (SimulationResult, divergence, diverging,
+                                                      finite_rows, stopped)
+
+        plant, law, timing, status = self.plant, self.law, self.timing, self.status
+        step, out_every = timing.step, timing.out_every
+        n_out = self.rec[0].shape[0]
+        tt = self.grid[0]
+        t_out = tt[::2][::out_every][:n_out]
+        names = ("q", "qd", "qdd", "q_ref", "qd_ref", "X_cmd", "X")
+        own = (lambda a: a.copy()) if copy else (lambda a: a)
+        res = SimulationResult(t=t_out, **{k: own(r) for k, r in zip(names, self.rec)},
+                               saturated=own(self.sat), energy=np.full(n_out, np.nan),
+                               power=np.full(n_out, np.nan), integrator="rk4", step=step,
+                               info=dict(info or {}, law=law.name, plant=plant.name))
+        res = res.truncated(self.done)
+        stop = None
+        code = StopCause(int(status[0]))
+        if code is not StopCause.NONE:
+            stop = (int(status[1]), code, plant.words(code, res)
+                    if code is StopCause.SINGULAR else "")
+        early = plant.finish(res, plant.recorded(own(self.extra)), limits, follow)
+        if early is not None and (stop is None or early[0] < stop[0]):
+            stop = early
+        if stop is None:
+            return res
+        k, cause, words = stop
+        when = timing.t0 + (k if k < len(t_out) else len(t_out) - 1) * step * out_every
+        # the stop's own sample tells a divergence apart (a singular mass matrix at q5 =
+        # 1e15)
+        diverged = cause is StopCause.DIVERGED or diverging(res.truncated(k + 1))
+        res = res.truncated(min(k, finite_rows(res)))
+        if diverged:
+            res = res.truncated(finite_rows(res))
+            cause, words = StopCause.DIVERGED, divergence(res)
+        exc = stopped(res, when, words)
+        exc.stop_cause = cause
+        raise exc

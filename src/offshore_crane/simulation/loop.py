@@ -74,9 +74,26 @@ def evaluate(P, L, i, t, y, dy, qr, qdr, qddr, lo, hi, held, Xh, Xhin, dzh, lag,
     return ok
 
 
+def sense(y, ym, hist, first, g, delay, nq, nqd, resq, resqd, sens, ctrl, n_p):
+    """The measured state ``ym`` (as ``y``) at global step ``g``, control instant
+    ``ctrl``: the state, with the sensors (``sens``) the plant's part ``delay`` steps old
+    (``hist``, its row ``g`` written; ``first`` before the history fills) and q, q̇ with
+    that instant's noise, quantised. The same numbers however often it is called at one
+    instant (a stepper's observation, then the loop's own)."""
+    for j in range(y.shape[0]):
+        ym[j] = y[j]
+    if sens:
+        r = (g - delay) % (delay + 1)
+        for j in range(n_p):
+            ym[j] = hist[r, j] if g >= delay else first[j]
+        for j in range(9):
+            ym[IQ + j] = quantised(ym[IQ + j] + nq[ctrl, j], resq[j])
+            ym[IQD + j] = quantised(ym[IQD + j] + nqd[ctrl, j], resqd[j])
+
+
 def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, rlim, delay,
          nq, nqd, resq, resqd, sens, n_p, n_z, RQ, RQD, RQDD, RQR, RQDR, RXC, RX, SAT, EXTRA,
-         status, halt, W):
+         status, halt, W, s0, finish):
     """RK4 from ``y`` (modified in place) for ``n_steps`` steps of ``h`` [s]; every
     ``out_every``-th step recorded (``RQ`` ... ``RQDR`` ``(n_out, 9)``, ``RXC``, ``RX``,
     ``SAT`` (bool) ``(n_out, nx)``, the plant's ``EXTRA``); ``nx``: the actuator forces,
@@ -85,7 +102,13 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
     noise rows ``nq``, ``nqd`` per control instant, resolutions ``resq``, ``resqd``), the
     rate limit ``rlim`` and lag ``lag`` (empty: none). ``status``: (stop code, its output
     sample, samples recorded, control instants); ends before a step when ``halt[0]`` is
-    not zero (STOPPED). ``W``: the loop's zeroed scratch (:func:`scratch`)."""
+    not zero (STOPPED). ``W``: the loop's zeroed scratch (:func:`scratch`).
+
+    A run in pieces (a stepper): ``s0`` is the run's step at ``y`` (0: its start; the
+    grid, the plant's and the law's stage points count from the run's start, the records
+    from the piece's, the control instants on from ``status[3]``), and without
+    ``finish`` the piece ends at its last step's state, neither evaluated nor recorded
+    (the next piece's first sample)."""
     P, L = unowned(P), unowned(L)      # handed to the plant and the law at every stage
     # the arrays handed on at every stage, without their owner: the caller keeps them
     # alive for the call (their reference counts cost the rigid robot 3-4 %, measured)
@@ -94,31 +117,26 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
     n = y.shape[0]
     n_pz = n_p + n_z
     nx = lo.shape[0]
-    for j in range(n_p):
-        first[j] = y[j]
+    if s0 == 0:
+        for j in range(n_p):
+            first[j] = y[j]
     held = hold > 0
     period = h * hold
-    ctrl = 0
+    ctrl = status[3]
     for s in range(n_steps + 1):
+        if s == n_steps and not finish:
+            return
         if halt[0] != 0:
             status[0] = STOPPED
             status[1] = s
             return
-        i0 = 2 * s
+        g = s0 + s
+        i0 = 2 * g
         if sens:
             for j in range(n_p):
-                hist[s % (delay + 1), j] = y[j]
-        if held and s % hold == 0:
-            for j in range(n):
-                ym[j] = y[j]
-            if sens:
-                r = (s - delay) % (delay + 1)
-                for j in range(n_p):
-                    ym[j] = hist[r, j] if s >= delay else first[j]
-                for j in range(9):
-                    ym[IQ + j] = quantised(ym[IQ + j] + nq[ctrl, j], resq[j])
-                    ym[IQD + j] = quantised(ym[IQD + j] + nqd[ctrl, j],
-                                            resqd[j])
+                hist[g % (delay + 1), j] = y[j]
+        if held and g % hold == 0:
+            sense(y, ym, hist, first, g, delay, nq, nqd, resq, resqd, sens, ctrl, n_p)
             winch(P, i0, ym, Xh)
             command(L, P, i0, tt[i0], ym, n_p, qr[i0], qdr[i0], qddr[i0], Xh)
             for j in range(nx):
@@ -137,7 +155,7 @@ def loop(P, L, tt, qr, qdr, qddr, y, h, n_steps, out_every, hold, lo, hi, lag, r
                     dzh[j] = dzb[n_p + j]
             ctrl += 1
             status[3] = ctrl
-        if s == 0 and lag.shape[0] > 0:
+        if g == 0 and lag.shape[0] > 0:
             if not held:
                 winch(P, i0, y, Xhin)
                 command(L, P, i0, tt[i0], y, n_p, qr[i0], qdr[i0], qddr[i0], Xhin)
@@ -194,7 +212,9 @@ def scratch(n: int, n_p: int, n_z: int, delay: int, nx: int = 9) -> tuple:
 
 
 #: The driver's own templates, instantiated in every namespace.
-TEMPLATES = (quantised, evaluate, loop)
+TEMPLATES = (quantised, evaluate, sense, loop)
+#: The templates Python calls (:func:`instantiate` compiles them with a CPython wrapper).
+FROM_PYTHON = ("loop", "sense")
 
 
 def _text(f) -> str:
@@ -262,8 +282,9 @@ def instantiate(kernels, law_templates: dict, names: dict, compiled: bool, key: 
         # elastic plant's two variants' ``loop``) then ran each other's code (measured:
         # a heap overrun, a segfault later)
         fn.__qualname__, fn.__template__ = f"{name}__{tag}", name
-        # called from Python: the loop alone; the rest only from it, compiled without
-        # the wrapper that unboxes Python arguments (Numba's no_cpython_wrapper: such a
-        # function called from Python crashes the process; nothing here does)
-        ns[name] = (jit if name == "loop" else inner)(fn) if compiled else fn
+        # called from Python: the loop and the sensors' model (a stepper's observation);
+        # the rest only from the loop, compiled without the wrapper that unboxes Python
+        # arguments (Numba's no_cpython_wrapper: such a function called from Python
+        # crashes the process; nothing here does)
+        ns[name] = (jit if name in FROM_PYTHON else inner)(fn) if compiled else fn
     return ns

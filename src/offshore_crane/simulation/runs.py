@@ -5,6 +5,7 @@ capacities, the sensors and actuators — checked once, here, for every plant
 
 from __future__ import annotations
 
+import contextvars
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,12 +34,44 @@ class Run:
     info: dict
 
     def drive(self, y0, limits: bool = True):
-        """Run the driver from the plant's state ``y0``."""
+        """Run the driver from the plant's state ``y0`` (within :func:`opened`: hand the
+        run over instead)."""
         from offshore_crane.simulation.driver import drive
+
+        if _OPENING.get():
+            raise _Opened(self, np.asarray(y0, dtype=float), limits)
 
         return drive(self.plant, self.law, self.grid, y0, self.timing, self.lower,
                      self.upper, sensors=self.sensors, actuators=self.actuators,
                      limits=limits, info=self.info)
+
+
+#: True while :func:`opened` runs a simulate function up to its driver.
+_OPENING = contextvars.ContextVar("offshore_crane_opening", default=False)
+
+
+class _Opened(Exception):
+    """A run handed over at :meth:`Run.drive` (:func:`opened`)."""
+
+    def __init__(self, run, y0, limits):
+        super().__init__("a run handed over before it was driven")
+        self.run, self.y0, self.limits = run, y0, limits
+
+
+def opened(call) -> tuple:
+    """Run ``call()`` (a simulate function with its arguments: it checks them and sets
+    its plant's run up, the initial state included) up to the driver, which it does not
+    run: ``(run, y0, limits)`` of :meth:`Run.drive` (a stepper drives it piece by
+    piece). Raises what ``call`` raises before that."""
+    token = _OPENING.set(True)
+    try:
+        call()
+    except _Opened as handed:
+        return handed.run, handed.y0, handed.limits
+    finally:
+        _OPENING.reset(token)
+    raise RuntimeError("the simulation returned without reaching its driver: report this "
+                       "as a bug")
 
 
 def bind_law(controller, plant):

@@ -6,8 +6,9 @@ test (``docs/simulation.md``, the PID law as the worked example).
 Built in: ``computed-torque`` (:mod:`.computed_torque`), ``pd-gravity`` and ``pd``
 (:mod:`.pd`), ``none`` (:mod:`.none`), ``pid`` (:mod:`.pid`), ``anti-sway``
 (:mod:`.anti_sway`), ``arm-compensation`` (:mod:`.arm_compensation`),
-``arm-winch-compensation`` (:mod:`.arm_winch_compensation`), and a user's Python callable
-(:mod:`.python`).
+``arm-winch-compensation`` (:mod:`.arm_winch_compensation`), a user's Python callable
+(:mod:`.python`) and the actions of a controller outside the simulation
+(:mod:`.held_action`, bound by a :class:`~offshore_crane.simulation.stepper.Stepper`).
 """
 
 from __future__ import annotations

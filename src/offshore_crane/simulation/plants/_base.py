@@ -79,6 +79,21 @@ class Plant:
         return out
 
     # ----------------------------------------------------------- the state
+    def state_names(self) -> tuple[str, ...]:
+        """The names of ``y``'s entries, with their units (the CSV's ``q1_m``,
+        ``qd4_rad_s``, ...): q1..q9 then their rates, and the plant's own between and
+        after them (:attr:`Q`, :attr:`QD`, :meth:`own_names`)."""
+        from offshore_crane.conventions import QD_COLUMNS, Q_COLUMNS
+
+        names = [""] * self.size
+        names[self.Q], names[self.QD] = Q_COLUMNS, QD_COLUMNS
+        own = iter(self.own_names())
+        return tuple(n or next(own) for n in names)
+
+    def own_names(self) -> tuple[str, ...]:
+        """The names of the plant's own entries of ``y`` beyond q and q̇, in order."""
+        return ()
+
     def q(self, y: np.ndarray) -> np.ndarray:
         """The robot's coordinates q1..q9 ``(9,)`` [m, rad] in ``y``."""
         return y[self.Q]

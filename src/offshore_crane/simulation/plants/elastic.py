@@ -154,6 +154,11 @@ class ElasticPlant(Plant):
         return np.concatenate([y[12:21], y[21:24], a, a_p, winch]), {
             "ok": True, "tension": T, "length": L}
 
+    def own_names(self) -> tuple[str, ...]:
+        winch = ("L_m", "Ld_m_s") if self.commanded else ()
+        return (*(f"payload_{a}_m" for a in "xyz"), *(f"payload_v{a}_m_s" for a in "xyz"),
+                *winch)
+
     def finish(self, res, rec, limits, follow=None):
         from offshore_crane.simulation.record import Follower, workspace_stop
 

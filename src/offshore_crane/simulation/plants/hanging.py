@@ -60,6 +60,9 @@ class HangingPlant(Plant):
         return ("the mass matrix became singular (the attitude coordinates at q5 = ±π/2, "
                 "or the sway at cos φ2 = 0)")
 
+    def own_names(self) -> tuple[str, ...]:
+        return ("phi1_rad", "phi2_rad", "phid1_rad_s", "phid2_rad_s")
+
     def finish(self, res, rec, limits, follow=None):
         n = len(res)
         res.sway, res.sway_rate = rec["sway"][:n], rec["sway_rate"][:n]

@@ -1,0 +1,259 @@
+"""A simulation you step (issue 38, item 1): a controller outside the simulation gives
+the actuator forces for one control period at a time and reads the measured state back.
+
+>>> import numpy as np
+>>> import offshore_crane as oc
+>>> from offshore_crane.motion.trajectories import table1
+>>> from offshore_crane.simulation.stepper import Stepper
+>>> robot = oc.load_robot()
+>>> sim = Stepper(robot, 0.05, table1, control_period=0.01)
+>>> y = sim.reset()
+>>> X = oc.inverse_dynamics(robot, y[:9], y[9:18], np.zeros(9))  # the robot held still
+>>> y = sim.step(X)
+>>> round(sim.time, 6), sim.observation_names[:2]
+(0.01, ('q1_m', 'q2_m'))
+
+The run is set up by the simulate function of its plant, with every check it makes
+(the rigid robot, a payload on a rigid cable: :func:`~offshore_crane.simulation.rigid.
+simulate`; on an elastic cable, given ``ea``: :func:`~offshore_crane.simulation.elastic.
+simulate_elastic`), and driven by the same compiled loop piece by piece: one period a
+:meth:`Stepper.step`, the action held over it as a sampled law's command is (the
+sensors, the rate limit, the lag and the capacities between them as for every law:
+:mod:`offshore_crane.simulation.laws.held_action`). The run's record is the result
+``simulate`` returns (:meth:`Stepper.record`): a sampled Python law stepped from outside
+gives ``simulate``'s run of that law bit for bit (tested), but for the last sample's
+forces and accelerations (the last action held: nothing acts after the end).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from offshore_crane.conventions import GRAVITY
+from offshore_crane.errors import InputError, SimulationError
+
+
+class Stepper:
+    """A run of ``duration`` seconds driven one control period at a time.
+
+    Args:
+        robot: From :func:`offshore_crane.load_robot` (with a payload on a cable: the
+            hanging load, or with ``ea`` the elastic cable).
+        duration: [s], a whole number of control periods.
+        reference: ``reference(t) -> (q, qd, qdd)`` as :func:`~offshore_crane.simulation.
+            rigid.simulate`'s (what the record's reference columns hold; the initial state
+            is its first sample unless given).
+        control_period: [s], a whole number of integration steps.
+        saturation: True: forces beyond the actuators' capacities are clipped to them
+            (flagged in the record's ``saturated``); False: such an action is refused.
+        q0, qd0, step, gravity, t0, sensors, actuators, limits: As ``simulate``.
+        **plant: The plant's own options (``initial``, ``initial_rate`` of a hanging
+            load's sway; ``ea``, ``damping``, ``hoist``, ... of an elastic cable:
+            :func:`~offshore_crane.simulation.elastic.simulate_elastic`).
+
+    Attributes:
+        observation_names: The names of :meth:`step`'s observation, the plant's state as
+            the sensors measure it (``q1_m`` ... ``qd9_m_s``; ``phi1_rad`` ... of a
+            hanging load; ``payload_x_m`` ... of an elastic cable).
+        action_names: The forces an action gives, in order (``T1`` ... ``Fl6``, and
+            ``Fw`` with a commanded winch).
+
+    Raises:
+        InputError: what the simulate function refuses; a control period that is not a
+            whole number of steps, or a duration not of periods.
+    """
+
+    def __init__(self, robot, duration: float, reference, *, control_period: float,
+                 saturation: bool = True, q0=None, qd0=None, step: float = 1e-3,
+                 gravity=GRAVITY, t0: float = 0.0, sensors=None, actuators=None,
+                 limits: bool = True, **plant):
+        from offshore_crane.conventions import ACTUATORS
+        from offshore_crane.simulation.control import Controller
+        from offshore_crane.simulation.laws.held_action import HeldAction
+        from offshore_crane.simulation.runs import opened
+
+        period = float(control_period)
+        if not (np.isfinite(period) and period > 0.0):
+            raise InputError(f"control_period = {control_period!r} s: give a positive "
+                             "period, a whole number of steps", name="control_period")
+        steps = period / float(step)
+        if not (round(steps) >= 1 and abs(steps - round(steps)) <= 1e-9 * steps):
+            raise InputError(f"control_period = {period:g} s is not a whole number of "
+                             f"integration steps of {float(step):g} s: give a multiple of "
+                             "the step", name="control_period")
+        controller = Controller(rate=1.0 / period, saturation=bool(saturation))
+
+        def simulate():
+            if "ea" in plant:
+                from offshore_crane.simulation.elastic import simulate_elastic
+
+                return simulate_elastic(robot, duration, reference, q0, qd0, controller,
+                                        gravity=gravity, step=step, t0=t0, limits=limits,
+                                        sensors=sensors, actuators=actuators, **plant)
+            from offshore_crane.simulation.rigid import simulate as rigid
+
+            return rigid(robot, duration, reference, q0, qd0, controller, gravity=gravity,
+                         step=step, t0=t0, limits=limits, sensors=sensors,
+                         actuators=actuators, **plant)
+
+        run, self._y0, self.limits = opened(simulate)
+        timing = run.timing
+        if timing.n_steps % timing.hold:
+            raise InputError(f"duration = {duration!r} s is not a whole number of control "
+                             f"periods of {period:g} s: give {timing.n_steps // timing.hold}"
+                             f" or {timing.n_steps // timing.hold + 1} periods' worth",
+                             name="duration")
+        if timing.hold % timing.out_every:
+            raise InputError("the output rate must divide the control period",
+                             name="rate")
+        run.law = HeldAction(controller, run.plant)
+        self._run = run
+        self._capacity = Controller().bounds(run.plant.robot)
+        if run.plant.nx > 9:
+            pull = run.plant.robot.winch.pull_max
+            self._capacity = tuple(np.append(b, s * pull) for b, s in
+                                   zip(self._capacity, (-1.0, 1.0)))
+        self.saturation = bool(saturation)
+        self.observation_names = run.plant.state_names()
+        self.action_names = ACTUATORS + (("Fw",) if run.plant.nx > 9 else ())
+        self._pieces = None
+        self._k = 0
+        #: The run stopped (the workspace left, a singular or diverged state).
+        self.terminated = False
+        #: The run reached its duration.
+        self.truncated = False
+
+    # --------------------------------------------------------------- the run
+    def reset(self, seed: int | None = None) -> np.ndarray:
+        """Start again at ``t0`` from the run's initial state; ``seed`` (given) seeds the
+        sensors' noise. Returns the first observation (:attr:`observation_names`)."""
+        from offshore_crane.simulation.driver import Pieces, namespace_for
+
+        run = self._run
+        sensors = run.sensors
+        if seed is not None and sensors is not None:
+            sensors = dataclasses.replace(sensors, seed=int(seed))
+        self._pieces = Pieces(run.plant, run.law, run.grid, self._y0, run.timing, run.lower,
+                              run.upper, sensors=sensors, actuators=run.actuators)
+        self._sense = namespace_for(run.plant, run.law)["sense"]
+        self._k = 0
+        self.terminated = self.truncated = False
+        first = self._pieces.W[-1]
+        first[:] = self._pieces.y[:run.plant.size]
+        return self._observe()
+
+    def step(self, action) -> np.ndarray:
+        """Apply ``action`` (:attr:`action_names`, ``(nx,)`` [N·m, N]) over one control
+        period; returns the observation at its end. :attr:`terminated` (the run stopped:
+        workspace, singular, diverged) and :attr:`truncated` (the duration reached) say
+        whether it can go on.
+
+        Raises:
+            InputError: no :meth:`reset`, a run that ended, an action of the wrong shape,
+                not finite, or beyond the actuators' capacities without ``saturation``.
+        """
+        pieces = self._check(action)
+        t = self._run.timing
+        pieces.run(self._k * t.hold, t.hold, False)
+        self._k += 1
+        if pieces.status[0] != 0:
+            self.terminated = True
+        elif self._k * t.hold >= t.n_steps:
+            pieces.run(t.n_steps, 0, True)          # the last sample, the action held
+            self.truncated = True
+        if self.limits and not self.terminated and self._outside():
+            self.terminated = True
+        return self._observe()
+
+    def record(self):
+        """The run so far: a :class:`~offshore_crane.simulation.record.SimulationResult`
+        as ``simulate`` returns (plots, CSV and ``size`` read it); a stopped run's with
+        its samples before the stop and ``stop`` saying why."""
+        if self._pieces is None:
+            raise InputError("no run yet: call reset() first", name="reset")
+        try:
+            return self._pieces.result(self.limits, info={"controller": "stepper"},
+                                       copy=True)
+        except SimulationError as exc:
+            return exc.result
+
+    @property
+    def time(self) -> float:
+        """The run's time now [s]."""
+        t = self._run.timing
+        return t.t0 + self._k * t.hold * t.step
+
+    @property
+    def reference_now(self) -> tuple:
+        """``(t [s], q_ref, qd_ref, qdd_ref (9,) each)``: the reference at this control
+        instant, the numbers a built-in or Python law reads there (the run's grid)."""
+        i = 2 * self._k * self._run.timing.hold
+        tt, qr, qdr, qddr = self._run.grid
+        return float(tt[i]), qr[i].copy(), qdr[i].copy(), qddr[i].copy()
+
+    @property
+    def state(self) -> np.ndarray:
+        """The plant's state now, as simulated (no sensor model) ``(len(observation_names),)``.
+
+        Raises:
+            InputError: before :meth:`reset`."""
+        if self._pieces is None:
+            raise InputError("no run yet: call reset() first", name="reset")
+        return self._pieces.y[:self._run.plant.size].copy()
+
+    # --------------------------------------------------------------- inside
+    def _check(self, action):
+        if self._pieces is None:
+            raise InputError("step() before reset(): call reset() first", name="reset")
+        if self.terminated or self.truncated:
+            why = "stopped" if self.terminated else "reached its duration"
+            raise InputError(f"step() after the run {why} at t = {self.time:g} s: call "
+                             "reset() to start again", name="step")
+        nx = self._run.plant.nx
+        a = np.asarray(action, dtype=float)
+        if a.shape != (nx,):
+            raise InputError(f"action of shape {a.shape}: give {nx} forces "
+                             f"({', '.join(self.action_names)})", name="action")
+        bad = np.flatnonzero(~np.isfinite(a))
+        if bad.size:
+            j = int(bad[0])
+            raise InputError(f"action {self.action_names[j]} = {float(a[j])} at t = "
+                             f"{self.time:g} s: give finite forces", name="action")
+        lo, hi = self._capacity
+        out = np.flatnonzero((a < lo) | (a > hi))
+        if out.size and not self.saturation:
+            j = int(out[0])
+            raise InputError(f"action {self.action_names[j]} = {a[j]:.6g} at t = "
+                             f"{self.time:g} s is beyond its capacity [{lo[j]:.6g}, "
+                             f"{hi[j]:.6g}]: give a force within it, or open the stepper "
+                             "with saturation=True to have it clipped", name="action")
+        self._run.law.action[:] = a
+        return self._pieces
+
+    def _observe(self) -> np.ndarray:
+        """The measured state at this control instant (the loop's own sensor model, the
+        numbers its next piece measures)."""
+        p, n_p = self._pieces, self._run.plant.size
+        g = self._k * self._run.timing.hold
+        hist, ym = p.W[-2], p.W[5]
+        if p.sens:
+            hist[g % (p.delay + 1)] = p.y[:n_p]
+        self._sense(p.y, ym, hist, p.W[-1], g, p.delay, p.nq, p.nqd, p.res[0], p.res[1],
+                    p.sens, int(p.status[3]), n_p)
+        return ym[:n_p].copy()
+
+    def _outside(self) -> bool:
+        """Whether the last period's samples left the workspace."""
+        from offshore_crane.errors import WorkspaceError
+        from offshore_crane.robot.kinematics import check_workspace
+
+        p, t = self._pieces, self._run.timing
+        a = max(0, (self._k - 1) * t.hold // t.out_every)
+        q = p.rec[0][a:p.done]
+        try:
+            check_workspace(self._run.plant.robot, q)
+        except WorkspaceError:
+            return True
+        return False

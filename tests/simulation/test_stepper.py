@@ -1,0 +1,192 @@
+"""A simulation you step (:mod:`offshore_crane.simulation.stepper`): a law stepped from
+outside gives ``simulate``'s run of the same law sampled at the control period, on the
+rigid robot, a hanging load and an elastic cable, with sensor models; bad input is
+refused in one line."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import offshore_crane as oc
+from offshore_crane.conventions import QD_COLUMNS, Q_COLUMNS
+from offshore_crane.errors import InputError
+from offshore_crane.motion.trajectories import table1
+from offshore_crane.simulation.control import Controller
+from offshore_crane.simulation.instruments import Sensors
+from offshore_crane.simulation.stepper import Stepper
+
+PERIOD = 0.01          # [s]: 100 Hz, ten 1 ms steps
+SECONDS = 0.3
+
+
+def _law(robot):
+    """Computed torque written in Python (the model's inverse dynamics), 9 forces."""
+    kp, kd = Controller().gains
+
+    def law(t, q, qd, q_ref, qd_ref, qdd_ref):
+        return oc.inverse_dynamics(robot.without_hanging_payload(), q, qd,
+                                   qdd_ref + kd * (qd_ref - qd) + kp * (q_ref - q))
+    return law
+
+
+def _stepped(sim, law, seed=5):
+    """Run ``sim`` to its end with ``law`` on its observations (the sensors' noise seeded
+    with ``seed``; None: their own seed): its record."""
+    names = sim.observation_names
+    iq, iqd = ([names.index(c) for c in cols] for cols in (Q_COLUMNS, QD_COLUMNS))
+    y = sim.reset(seed=seed)
+    while not (sim.terminated or sim.truncated):
+        t, qr, qdr, qddr = sim.reference_now
+        y = sim.step(law(t, y[iq], y[iqd], qr, qdr, qddr))
+    return sim.record()
+
+
+def _robots():
+    rigid = oc.load_robot()
+    hanging = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 0.5})
+    lift = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 1.0})
+    return {"rigid": (rigid, {}), "hanging": (hanging, {"initial": (0.05, -0.02)}),
+            "elastic": (lift, {"ea": 2e4})}
+
+
+@pytest.mark.parametrize("plant", ["rigid", "hanging", "elastic"])
+@pytest.mark.parametrize("sensed", [False, True])
+def test_a_law_stepped_from_outside_is_simulates_sampled_law(plant, sensed):
+    """The same law, sampled at 100 Hz: through ``simulate`` (a Python law at that
+    rate) and through the stepper: the same q, q̇, q̈ and forces bit for bit (the same
+    loop, the same sensor model), but the last sample's forces and accelerations (the
+    stepper holds its last action there). With sensors: noise, a 2 ms delay and
+    quantisation, seeded."""
+    from offshore_crane.simulation.elastic import simulate_elastic
+
+    robot, options = _robots()[plant]
+    sensors = Sensors(noise_q=1e-5, noise_qd=1e-4, delay=2e-3, resolution_q=1e-6,
+                      seed=5) if sensed else None
+    law = _law(robot)
+    run = simulate_elastic if "ea" in options else oc.simulate
+    want = run(robot, SECONDS, table1, controller=Controller(function=law, rate=1 / PERIOD),
+               sensors=sensors, **options)
+    got = _stepped(Stepper(robot, SECONDS, table1, control_period=PERIOD, sensors=sensors,
+                           **options), law)
+    assert len(got) == len(want) == round(SECONDS / 1e-3) + 1
+    for name in ("t", "q", "qd", "q_ref"):
+        np.testing.assert_array_equal(getattr(got, name), getattr(want, name), err_msg=name)
+    for name in ("qdd", "X_cmd", "X", "power"):     # the last: the last action held
+        np.testing.assert_array_equal(getattr(got, name)[:-1], getattr(want, name)[:-1],
+                                      err_msg=name)
+    if plant == "hanging":
+        np.testing.assert_array_equal(got.sway, want.sway)
+    if plant == "elastic":
+        np.testing.assert_array_equal(got.info["payload"], want.info["payload"])
+
+
+def test_the_observation_is_the_measured_state_and_reset_starts_again():
+    """Without sensors the observation is the state; with a seed, noise of that seed:
+    two resets with one seed give one run, another seed another."""
+    robot = oc.load_robot()
+    sim = Stepper(robot, 0.05, table1, control_period=PERIOD)
+    y = sim.reset()
+    np.testing.assert_array_equal(y, sim.state)
+    assert sim.observation_names[:3] == ("q1_m", "q2_m", "q3_m") and len(y) == 18
+    assert sim.action_names == ("T1", "T2", "Fs", "Fl1", "Fl2", "Fl3", "Fl4", "Fl5", "Fl6")
+    noisy = Stepper(robot, 0.05, table1, control_period=PERIOD,
+                    sensors=Sensors(noise_q=1e-4, seed=1))
+    a, b, c = noisy.reset(seed=3), noisy.reset(seed=3), noisy.reset(seed=4)
+    np.testing.assert_array_equal(a, b)
+    assert np.abs(a[:9] - noisy.state[:9]).max() > 0 and not np.array_equal(a, c)
+
+
+def test_bad_actions_and_calls_are_refused_in_one_line():
+    robot = oc.load_robot()
+    sim = Stepper(robot, 0.02, table1, control_period=PERIOD, saturation=False)
+    assert sim.time == 0.0 and not (sim.terminated or sim.truncated)
+    with pytest.raises(InputError, match=r"step\(\) before reset\(\)"):
+        sim.step(np.zeros(9))
+    for before in (lambda: sim.state, sim.record):
+        with pytest.raises(InputError, match=r"no run yet: call reset\(\) first"):
+            before()
+    y = sim.reset()
+    X = oc.inverse_dynamics(robot, y[:9], y[9:], np.zeros(9))
+    with pytest.raises(InputError, match=r"action of shape \(8,\): give 9 forces \(T1, "):
+        sim.step(X[:8])
+    bad = X.copy()
+    bad[4] = np.nan
+    with pytest.raises(InputError, match="action Fl2 = nan at t = 0 s: give finite forces"):
+        sim.step(bad)
+    bad[4] = 1e9
+    with pytest.raises(InputError, match=r"action Fl2 = 1e\+09 at t = 0 s is beyond its "
+                                         r"capacity \[.*\]: .*saturation=True"):
+        sim.step(bad)
+    sim.step(X)
+    sim.step(X)
+    assert sim.truncated and not sim.terminated and sim.time == pytest.approx(0.02)
+    with pytest.raises(InputError, match=r"step\(\) after the run reached its duration at "
+                                         r"t = 0.02 s: call reset\(\)"):
+        sim.step(X)
+    assert len(sim.record()) == 21
+    with pytest.raises(InputError, match=r"control_period = 0.00333333 s is not a whole "
+                                         r"number of integration steps of 0.001 s"):
+        Stepper(robot, 0.02, table1, control_period=1 / 300)
+    with pytest.raises(InputError, match="duration = 0.025 s is not a whole number of "
+                                         "control periods"):
+        Stepper(robot, 0.025, table1, control_period=PERIOD)
+
+
+def test_a_run_that_leaves_the_workspace_is_terminated_and_its_record_says_why():
+    """Forces that throw the platform out: ``terminated``, further steps refused, and
+    the record ends with its stop."""
+    robot = oc.load_robot()
+    sim = Stepper(robot, 2.0, table1, control_period=PERIOD)
+    y = sim.reset()
+    X = oc.inverse_dynamics(robot, y[:9], y[9:], np.zeros(9))
+    push = X + np.r_[0, 0, 0, [400.0] * 6]
+    while not sim.terminated:
+        sim.step(push)
+        assert not sim.truncated
+    res = sim.record()
+    assert res.stop is not None and "outside its limits" in res.stop
+    with pytest.raises(InputError, match=r"step\(\) after the run stopped"):
+        sim.step(push)
+
+
+def test_the_modules_example_runs():
+    """The example in :mod:`offshore_crane.simulation.stepper`'s docstring, as written."""
+    import doctest
+
+    from offshore_crane.simulation import stepper
+
+    assert doctest.testmod(stepper).failed == 0
+
+
+@pytest.mark.parametrize("scene", ["compensated_lift.toml", "hanging_load.toml"])
+def test_a_stepper_on_a_scene_is_its_simulations_run(scene):
+    """``scenes.stepper`` sets the run up as ``simulate --scene`` does
+    (``scenes.plant_options``: the compensated reference, the elastic cable and winch, or
+    the hanging load's sway; the sensors, actuators, step and gravity): a Python law
+    stepped on it gives the same law's ``simulate`` run on the scene's inputs, bit for
+    bit (but the last sample's forces)."""
+    from pathlib import Path
+
+    from offshore_crane import scenes
+    from offshore_crane.simulation.elastic import simulate_elastic
+
+    path = Path(__file__).parents[2] / "scenes" / scene
+    sc = scenes.load_scene(path)
+    robot = scenes.load_robot(sc)
+    traj, elastic, swing = scenes.plant_options(sc, robot, scenes.load_trajectory(sc, robot))
+    law = _law(robot)
+    control = Controller(function=law, rate=1 / PERIOD,
+                         saturation=scenes.controller(sc, robot).saturation)
+    run = simulate_elastic if elastic is not None else oc.simulate
+    want = run(robot, 0.2, traj.reference, controller=control, gravity=sc.gravity,
+               step=sc.control.get("step", 1e-3), t0=float(traj.t[0]),
+               **(elastic or swing), **scenes.instruments(sc))
+    sim = scenes.stepper(path, control_period=PERIOD, duration=0.2)
+    got = _stepped(sim, law, seed=None)             # the scene's own seed
+    for name in ("t", "q", "qd", "q_ref"):
+        np.testing.assert_array_equal(getattr(got, name), getattr(want, name), err_msg=name)
+    np.testing.assert_array_equal(got.X[:-1], want.X[:-1])
+    assert ("payload_x_m" in sim.observation_names) == (elastic is not None)
+    with pytest.raises(InputError, match="is longer than the scene's reference"):
+        scenes.stepper(path, control_period=PERIOD, duration=1e6)
