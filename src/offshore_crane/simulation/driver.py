@@ -160,15 +160,21 @@ class Pieces:
         #: Output samples recorded so far.
         self.done = 0
 
-    def run(self, s0: int, n: int, finish: bool, meanwhile=None) -> None:
+    def run(self, s0: int, n: int, finish: bool, meanwhile=None,
+            inline: bool = False) -> None:
         """Steps ``s0 .. s0 + n`` (``s0`` on an output sample; ``finish``: the last
-        step's sample evaluated and recorded too, else left to the next piece)."""
+        step's sample evaluated and recorded too, else left to the next piece).
+        ``inline``: in this thread, whatever its length (a stepper's control period:
+        a thread of its own and its start cost more than the period's steps; a Ctrl-C
+        then waits for the piece to end); else as :func:`~offshore_crane.progress.
+        run_polled` runs a loop (in a thread from the main one, with its bar)."""
         k0 = s0 // self.timing.out_every
         tt, qr, qdr, qddr = self.grid          # read at the run's stage points
         rec = [r[k0:] for r in self.rec]
         status, t = self.status, self.timing
         status[2] = 0
-        progress.run_polled(
+        polled = progress.run_polled if not inline else (lambda job, *_: job())
+        polled(
             lambda: self.loop(self.P, self.L, tt, qr, qdr, qddr, self.y, float(t.step),
                               int(n), int(t.out_every), int(t.hold), self.lo, self.hi,
                               np.asarray(self.lag, dtype=float),

@@ -156,12 +156,12 @@ class Stepper:
         """
         pieces = self._check(action)
         t = self._run.timing
-        pieces.run(self._k * t.hold, t.hold, False)
+        pieces.run(self._k * t.hold, t.hold, False, inline=True)
         self._k += 1
         if pieces.status[0] != 0:
             self.terminated = True
         elif self._k * t.hold >= t.n_steps:
-            pieces.run(t.n_steps, 0, True)          # the last sample, the action held
+            pieces.run(t.n_steps, 0, True, inline=True)   # the last sample, action held
             self.truncated = True
         if self.limits and not self.terminated and self._outside():
             self.terminated = True
