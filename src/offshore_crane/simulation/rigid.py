@@ -215,7 +215,8 @@ def _dop853(robot, t_out, reference, q0, qd0, controller, g, limits, rtol, atol,
 
 def warm_up(robot=None, swing: bool = True) -> list[tuple[str, float]]:
     """Compile (or load from the cache) the simulation loops, the rigid robot's and, with
-    ``swing``, the hanging load's (:func:`offshore_crane.simulation.swing.warm_up`):
+    ``swing``, the hanging load's (:func:`offshore_crane.simulation.swing.warm_up`), and
+    a stepper's workspace check (:mod:`offshore_crane.dynamics.outside`):
     ``[(name, seconds), ...]``."""
     import time
 
@@ -223,8 +224,13 @@ def warm_up(robot=None, swing: bool = True) -> list[tuple[str, float]]:
     from offshore_crane.motion.trajectories import table1
     from offshore_crane.simulation.swing import warm_up as warm_up_swing
 
+    from offshore_crane.dynamics import outside
+
     robot = robot or load_robot()
     t0 = time.perf_counter()
     simulate(robot.without_hanging_payload(), 2e-3, table1, step=1e-3)
-    return [("simulation loop", time.perf_counter() - t0)] + (
+    t1 = time.perf_counter()
+    outside.first_outside(robot.home_pose()[None, :], 0, 1, *outside.geometry(robot))
+    return [("simulation loop", t1 - t0),
+            ("stepper's workspace check", time.perf_counter() - t1)] + (
         warm_up_swing(robot) if swing else [])

@@ -119,6 +119,7 @@ class Stepper:
         self.observation_names = run.plant.state_names()
         self.action_names = ACTUATORS + (("Fw",) if run.plant.nx > 9 else ())
         self._pieces = None
+        self._geometry = None                   # the workspace check's (on first use)
         self._k = 0
         #: The run stopped (the workspace left, a singular or diverged state).
         self.terminated = False
@@ -245,15 +246,14 @@ class Stepper:
         return ym[:n_p].copy()
 
     def _outside(self) -> bool:
-        """Whether the last period's samples left the workspace."""
-        from offshore_crane.errors import WorkspaceError
-        from offshore_crane.robot.kinematics import check_workspace
+        """Whether the last period's samples left the workspace (the compiled check of
+        :mod:`offshore_crane.dynamics.outside`: ``check_workspace``'s tests, without
+        its NumPy passes' cost on a period's few samples; :meth:`record` says which
+        limit)."""
+        from offshore_crane.dynamics import outside
 
+        if self._geometry is None:
+            self._geometry = outside.geometry(self._run.plant.robot)
         p, t = self._pieces, self._run.timing
         a = max(0, (self._k - 1) * t.hold // t.out_every)
-        q = p.rec[0][a:p.done]
-        try:
-            check_workspace(self._run.plant.robot, q)
-        except WorkspaceError:
-            return True
-        return False
+        return outside.first_outside(p.rec[0], a, p.done, *self._geometry) >= 0
