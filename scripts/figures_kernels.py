@@ -232,6 +232,24 @@ def simulation_rows(r: dict) -> dict:
     return out
 
 
+def stepper_rows(r: dict) -> dict:
+    """benchmarks/stepper.py's figure: the stepper's time over the compiled run's, per
+    plant, against issue 38's bound."""
+    names = {"rigid": "the rigid robot along Table 1",
+             "elastic": "the elastic compensated lift (`scenes/compensated_lift.toml`)"}
+    parts = [f"{names.get(k, k)} {x['ratio']:.2f} × ({x['stepper_s'] * 1e3:.0f} ms against "
+             f"{x['compiled_s'] * 1e3:.0f} ms for {x['periods']} periods, the same run: "
+             f"largest |Δq| {x['dq_max']:.1g})" for k, x in r["rows"].items()]
+    worst = max(x["ratio"] for x in r["rows"].values())
+    others = max(x["others_cores"] for x in r["rows"].values())
+    return {("docs/simulation.md", "figure stepper"):
+            f"at {1 / r['period_s']:g} Hz control, the stepper's time over the compiled run "
+            f"of the same law and plant (its commands replayed): {'; '.join(parts)}; issue "
+            f"38's bound {r['target']:g} × ({_met(worst <= r['target'])}) "
+            f"(`benchmarks/stepper.py`, {r['date']}, median of {r['repeats']}, on "
+            f"{r['cores']} cores with other processes using up to {others:.1f} of them)"}
+
+
 def roofline_rows(r: dict) -> dict:
     """benchmarks/roofline.py's figures: one row per kernel, the machine in prose."""
     peak, width = r["peak_gflops"], r["vector_width"]
