@@ -80,11 +80,21 @@ def njit(*args, **options):
     from numba.core.dispatcher import Dispatcher
 
     _install_one_optimisation()
+    if "_nrt" in options and not hasattr(_default_options(), "_nrt"):
+        options = {k: v for k, v in options.items() if k != "_nrt"}   # (LEAN's, below)
     decorate = numba.njit(*args, **options)
     finish = _recovering if options.get("inline", "never") != "never" else _plain_calls
     if isinstance(decorate, Dispatcher):            # njit(f, ...)
         return finish(decorate)
     return lambda f: finish(decorate(f))            # njit(...)(f)
+
+
+def _default_options():
+    """Numba's table of its decorators' options (``_nrt`` is underscored there: a Numba
+    without it compiles :data:`LEAN` kernels with reference counts, as :data:`JIT`)."""
+    from numba.core import options
+
+    return getattr(options, "DefaultOptions", object)
 
 
 def _plain_calls(dispatcher):
