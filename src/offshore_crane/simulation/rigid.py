@@ -220,11 +220,10 @@ def warm_up(robot=None, swing: bool = True) -> list[tuple[str, float]]:
     ``[(name, seconds), ...]``."""
     import time
 
+    from offshore_crane.dynamics import outside
     from offshore_crane.robot import load_robot
     from offshore_crane.motion.trajectories import table1
     from offshore_crane.simulation.swing import warm_up as warm_up_swing
-
-    from offshore_crane.dynamics import outside
 
     robot = robot or load_robot()
     t0 = time.perf_counter()
