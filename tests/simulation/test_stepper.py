@@ -87,8 +87,14 @@ def test_the_observation_is_the_measured_state_and_reset_starts_again():
     robot = oc.load_robot()
     sim = Stepper(robot, 0.05, table1, control_period=PERIOD)
     y = sim.reset()
-    np.testing.assert_array_equal(y, sim.state)
-    assert sim.observation_names[:3] == ("q1_m", "q2_m", "q3_m") and len(y) == 18
+    np.testing.assert_array_equal(y[:18], sim.state)
+    assert sim.observation_names[:3] == ("q1_m", "q2_m", "q3_m") and len(y) == 36
+    assert sim.observation_names[18:20] == ("q1_ref_m", "q2_ref_m")
+    assert sim.observation_names[-1] == "qd9_ref_m_s"
+    for _ in range(3):          # the reference at the instant: Table 1's own numbers
+        q, qd, _ = table1(np.array([sim.time]))
+        np.testing.assert_allclose(y[18:], np.r_[q[0], qd[0]], rtol=0, atol=1e-15)
+        y = sim.step(oc.inverse_dynamics(robot, y[:9], y[9:18], np.zeros(9)))
     assert sim.action_names == ("T1", "T2", "Fs", "Fl1", "Fl2", "Fl3", "Fl4", "Fl5", "Fl6")
     noisy = Stepper(robot, 0.05, table1, control_period=PERIOD,
                     sensors=Sensors(noise_q=1e-4, seed=1))
@@ -107,12 +113,14 @@ def test_bad_actions_and_calls_are_refused_in_one_line():
         with pytest.raises(InputError, match=r"no run yet: call reset\(\) first"):
             before()
     y = sim.reset()
-    X = oc.inverse_dynamics(robot, y[:9], y[9:], np.zeros(9))
+    X = oc.inverse_dynamics(robot, y[:9], y[9:18], np.zeros(9))
     with pytest.raises(InputError, match=r"action of shape \(8,\): give 9 forces \(T1, "):
         sim.step(X[:8])
+    with pytest.raises(InputError, match=r"action 'nine' is not numbers: give 9 of them"):
+        sim.step("nine")
     bad = X.copy()
     bad[4] = np.nan
-    with pytest.raises(InputError, match="action Fl2 = nan at t = 0 s: give finite forces"):
+    with pytest.raises(InputError, match="action Fl2 = nan at t = 0 s: give finite numbers"):
         sim.step(bad)
     bad[4] = 1e9
     with pytest.raises(InputError, match=r"action Fl2 = 1e\+09 at t = 0 s is beyond its "
@@ -139,7 +147,7 @@ def test_a_run_that_leaves_the_workspace_is_terminated_and_its_record_says_why()
     robot = oc.load_robot()
     sim = Stepper(robot, 2.0, table1, control_period=PERIOD)
     y = sim.reset()
-    X = oc.inverse_dynamics(robot, y[:9], y[9:], np.zeros(9))
+    X = oc.inverse_dynamics(robot, y[:9], y[9:18], np.zeros(9))
     push = X + np.r_[0, 0, 0, [400.0] * 6]
     while not sim.terminated:
         sim.step(push)
@@ -187,6 +195,106 @@ def test_a_stepper_on_a_scene_is_its_simulations_run(scene):
     for name in ("t", "q", "qd", "q_ref"):
         np.testing.assert_array_equal(getattr(got, name), getattr(want, name), err_msg=name)
     np.testing.assert_array_equal(got.X[:-1], want.X[:-1])
-    assert ("payload_x_m" in sim.observation_names) == (elastic is not None)
+    assert "payload_x_m" in sim.observation_names        # a hanging load's, an elastic's
+    assert ("tension_N" in sim.observation_names) == (elastic is not None)
     with pytest.raises(InputError, match="is longer than the scene's reference"):
         scenes.stepper(path, control_period=PERIOD, duration=1e6)
+
+
+def test_what_the_plant_forms_of_the_state_is_the_records():
+    """The hanging load's position and the elastic cable's tension observed at each
+    control instant are the record's at that sample (the payload from the tip's and the
+    sway's formulas on NumPy arrays, :func:`~offshore_crane.dynamics.cable.tip.
+    payload_positions`; the tension as the loop recorded it). Without sensors the
+    measured state is the state, so they agree to round-off (1e-12 m: the compiled and
+    the NumPy kernels order their sums apart)."""
+    from offshore_crane.dynamics.cable.tip import payload_positions
+
+    robots = _robots()
+    for plant, name, cols in (("hanging", "payload_x_m", 3), ("elastic", "tension_N", 1)):
+        robot, options = robots[plant]
+        sim = Stepper(robot, 0.1, table1, control_period=PERIOD, **options)
+        law, names = _law(robot), sim.observation_names
+        j = names.index(name)
+        iq, iqd = ([names.index(c) for c in c_] for c_ in (Q_COLUMNS, QD_COLUMNS))
+        y, seen = sim.reset(), []
+        while not sim.truncated:
+            seen.append(y[j:j + cols])
+            t, qr, qdr, qddr = sim.reference_now
+            y = sim.step(law(t, y[iq], y[iqd], qr, qdr, qddr))
+        res = sim.record()
+        k = np.arange(len(seen)) * round(PERIOD / 1e-3)
+        if plant == "hanging":
+            from types import SimpleNamespace
+
+            cable = SimpleNamespace(q=res.q, qd=res.qd, qdd=res.qdd, sway=res.sway,
+                                    length=0.5, hoist=None)      # a CableResult's fields
+            want, atol = payload_positions(sim._run.plant.robot, cable)[k], 1e-12
+        else:
+            want, atol = res.tension[k, None], 1e-9 * float(np.abs(res.tension).max())
+        np.testing.assert_allclose(np.array(seen), want, rtol=0, atol=atol)
+
+
+def test_a_reference_as_the_action_is_simulates_run_of_that_reference():
+    """``action="reference"``: (q_ref, q̇_ref) given each period, held as a first-order
+    hold, for the built-in computed torque: the run ``simulate`` makes of the same law at
+    the control rate on that piecewise reference (≤ 1e-12 relative: the hold's times
+    are formed apart, an ulp of t). The actions: Table 1 at the control instants,
+    offset so they differ from the scene's own reference."""
+    robot = oc.load_robot()
+    seconds, n = 0.2, 20
+    tk = np.arange(n + 1) * PERIOD
+    q, qd, _ = table1(tk)
+    q = q + 0.01 * np.sin(7 * tk)[:, None]
+    sim = Stepper(robot, seconds, table1, control_period=PERIOD, action="reference")
+    assert sim.action_names[0] == "q1_ref_m" and len(sim.action_names) == 18
+    assert np.isinf(sim.action_bounds[0]).all()
+    sim.reset()
+    for k in range(n):
+        sim.step(np.r_[q[k], qd[k]])
+    got = sim.record()
+
+    def held(t):
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        k = np.minimum(np.floor(t / PERIOD + 1e-9).astype(int), n - 1)
+        return (q[k] + (t - tk[k])[:, None] * qd[k], qd[k].copy(), np.zeros((len(t), 9)))
+    want = oc.simulate(robot, seconds, held, table1(np.zeros(1))[0][0],
+                       table1(np.zeros(1))[1][0], Controller(rate=1 / PERIOD))
+    for name in ("q", "qd", "q_ref"):
+        a, b = getattr(got, name), getattr(want, name)
+        assert np.abs(a - b).max() <= 1e-12 * np.abs(b).max(), name
+    assert np.abs(got.q - table1(got.t)[0]).max() > 1e-3     # the action's, not Table 1's
+    with pytest.raises(InputError, match=r"action of shape \(9,\): give 18 reference "):
+        sim.reset()
+        sim.step(np.zeros(9))
+
+
+def test_the_reference_action_is_refused_where_it_cannot_be():
+    robot = oc.load_robot()
+    with pytest.raises(InputError, match="action = 'torques': give 'forces' or"):
+        Stepper(robot, 0.1, table1, control_period=PERIOD, action="torques")
+    with pytest.raises(InputError, match="a controller drives the run only with action="):
+        Stepper(robot, 0.1, table1, control_period=PERIOD, controller=Controller())
+    with pytest.raises(InputError, match="'arm-compensation' forms its reference once"):
+        Stepper(_robots()["hanging"][0], 0.1, table1, control_period=PERIOD,
+                action="reference", controller=Controller(law="arm-compensation"))
+
+
+def test_a_cable_below_its_slack_tension_terminates_the_run():
+    """A hanging load whose description asks ``T ≥ 0.9 m g``: the platform dropped by
+    pulling every leg in (20 N below holding it) takes part of the load's weight off
+    (T ≈ 0.58 m g), the run is terminated after its first period, whose record holds
+    those tensions."""
+    robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 0.5,
+                                     "payload.limits.tension_ratio_min": 0.9})
+    sim = Stepper(robot, 1.0, table1, control_period=PERIOD)
+    assert sim.slack_tension == pytest.approx(0.9 * 2.0 * 9.81, rel=1e-3)
+    y = sim.reset()
+    X = oc.inverse_dynamics(robot.without_hanging_payload(), y[:9], np.zeros(9),
+                            np.zeros(9))
+    while not sim.terminated:
+        y = sim.step(X - np.r_[0, 0, 0, [20.0] * 6])
+        assert not sim.truncated
+    res = sim.record()          # taut still (no stop of the model's): the criterion's end
+    assert res.stop is None and len(res) == 10 and sim.time == pytest.approx(PERIOD)
+    assert 0.0 < res.tension.min() < sim.slack_tension

@@ -13,7 +13,7 @@ from offshore_crane.scenes.scene import Scene
 
 
 def stepper(scene, *, control_period: float, duration: float | None = None,
-            limits: bool = True):
+            limits: bool = True, action: str = "forces"):
     """A :class:`~offshore_crane.simulation.stepper.Stepper` on ``scene`` (a path or a
     :class:`~offshore_crane.scenes.Scene`): the scene's robot, reference (the compensated
     arm's commands under a compensation), cable and winch (:func:`plant_options`, as
@@ -24,6 +24,8 @@ def stepper(scene, *, control_period: float, duration: float | None = None,
         control_period: [s], a whole number of integration steps.
         duration: [s] (default: the scene's, cut to whole control periods).
         limits: As ``simulate``.
+        action: ``"forces"`` or ``"reference"``: a reference for the scene's controller
+            (``[control]``'s law, at the control period).
 
     Raises:
         InputError, SceneError: what the scene or the run's set-up refuses; a duration
@@ -42,8 +44,10 @@ def stepper(scene, *, control_period: float, duration: float | None = None,
     elif duration > span + 1e-9:
         raise InputError(f"duration = {duration:g} s is longer than the scene's reference "
                          f"({span:g} s)", name="duration")
+    law = controller(scene, robot)
     return Stepper(robot, duration, traj.reference, control_period=period,
-                   saturation=controller(scene, robot).saturation,
+                   saturation=law.saturation, action=action,
+                   controller=law if action == "reference" else None,
                    step=float(scene.control.get("step", 1e-3)), gravity=scene.gravity,
                    t0=float(traj.t[0]), limits=limits, **(elastic or swing),
                    **instruments(scene))

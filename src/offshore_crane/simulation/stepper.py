@@ -48,28 +48,51 @@ class Stepper:
         control_period: [s], a whole number of integration steps.
         saturation: True: forces beyond the actuators' capacities are clipped to them
             (flagged in the record's ``saturated``); False: such an action is refused.
+        action: ``"forces"`` (the default): an action is the actuators' forces
+            (:attr:`action_names`). ``"reference"``: it is a reference for the built-in
+            law of ``controller``, ``(q_ref (9,), q̇_ref (9,))`` [m, rad, /s] held as a
+            first-order hold over the period (``q_ref + (t − t_k) q̇_ref``, q̈_ref = 0):
+            the caller replaces the outer loop only.
+        controller: With ``action="reference"``: the
+            :class:`~offshore_crane.simulation.control.Controller` whose law tracks it
+            (default: computed torque at the control period; its rate is the control
+            period's whatever it says). Not with forces.
         q0, qd0, step, gravity, t0, sensors, actuators, limits: As ``simulate``.
         **plant: The plant's own options (``initial``, ``initial_rate`` of a hanging
             load's sway; ``ea``, ``damping``, ``hoist``, ... of an elastic cable:
             :func:`~offshore_crane.simulation.elastic.simulate_elastic`).
 
     Attributes:
-        observation_names: The names of :meth:`step`'s observation, the plant's state as
-            the sensors measure it (``q1_m`` ... ``qd9_m_s``; ``phi1_rad`` ... of a
-            hanging load; ``payload_x_m`` ... of an elastic cable).
-        action_names: The forces an action gives, in order (``T1`` ... ``Fl6``, and
-            ``Fw`` with a commanded winch).
+        observation_names: The names of :meth:`step`'s observation, the CSV's columns:
+            the plant's state as the sensors measure it (``q1_m`` ... ``qd9_m_s``;
+            ``phi1_rad`` ... of a hanging load; ``payload_x_m`` ... of an elastic cable),
+            what the plant forms of it (a hanging load's position ``payload_x_m`` ...; an
+            elastic cable's ``tension_N``: :meth:`~offshore_crane.simulation.plants.Plant.
+            observe`), then the scene's reference at the instant, ``q1_ref_m`` ...
+            ``qd9_ref_rad_s`` (exact: the vessel's motion in q1..q6, the arm's plan in
+            q7..q9).
+        action_names: What an action gives, in order: the forces (``T1`` ... ``Fl6``, and
+            ``Fw`` with a commanded winch), or with ``action="reference"`` ``q1_ref_m``
+            ... ``qd9_ref_rad_s``.
+        action_bounds: ``(lower, upper)`` ``(len(action_names),)`` each: the actuators'
+            capacities [N·m, N] (±inf where none), or ±inf for a reference.
+        slack_tension: [N] a tension below which the run is :attr:`terminated` (the
+            description's ``payload.limits.tension_ratio_min`` × m|g|; 0 without it: a
+            slack cable), or None without a cable.
 
     Raises:
         InputError: what the simulate function refuses; a control period that is not a
-            whole number of steps, or a duration not of periods.
+            whole number of steps, or a duration not of periods; an unknown ``action``, a
+            ``controller`` with forces, a law that forms its reference once (the arm
+            compensations) given references.
     """
 
     def __init__(self, robot, duration: float, reference, *, control_period: float,
                  saturation: bool = True, q0=None, qd0=None, step: float = 1e-3,
                  gravity=GRAVITY, t0: float = 0.0, sensors=None, actuators=None,
-                 limits: bool = True, **plant):
-        from offshore_crane.conventions import ACTUATORS
+                 limits: bool = True, action: str = "forces", controller=None,
+                 **plant):
+        from offshore_crane.conventions import ACTUATORS, N_COORDINATES, coordinate_column
         from offshore_crane.simulation.control import Controller
         from offshore_crane.simulation.laws.held_action import HeldAction
         from offshore_crane.simulation.runs import opened
@@ -83,7 +106,15 @@ class Stepper:
             raise InputError(f"control_period = {period:g} s is not a whole number of "
                              f"integration steps of {float(step):g} s: give a multiple of "
                              "the step", name="control_period")
-        controller = Controller(rate=1.0 / period, saturation=bool(saturation))
+        if action not in ("forces", "reference"):
+            raise InputError(f"action = {action!r}: give 'forces' or 'reference'",
+                             name="action")
+        if controller is not None and action != "reference":
+            raise InputError("a controller drives the run only with action='reference' "
+                             "(an action of forces is the controller)", name="controller")
+        controller = dataclasses.replace(
+            controller if controller is not None else Controller(),
+            rate=1.0 / period, saturation=bool(saturation))
 
         def simulate():
             if "ea" in plant:
@@ -108,16 +139,40 @@ class Stepper:
         if timing.hold % timing.out_every:
             raise InputError("the output rate must divide the control period",
                              name="rate")
-        run.law = HeldAction(controller, run.plant)
+        self.reference_action = action == "reference"
+        self._scene = tuple(a.copy() for a in run.grid[1:3])   # the reference observed
+        if self.reference_action:
+            if type(run.law).reference_once:
+                raise InputError(f"the law {run.law.name!r} forms its reference once from "
+                                 "the scene's: it cannot take one as an action; give "
+                                 "another controller", name="controller")
+        else:
+            run.law = HeldAction(controller, run.plant)
         self._run = run
-        self._capacity = Controller().bounds(run.plant.robot)
+        lo, hi = dataclasses.replace(controller, saturation=True).bounds(run.plant.robot)
         if run.plant.nx > 9:
             pull = run.plant.robot.winch.pull_max
-            self._capacity = tuple(np.append(b, s * pull) for b, s in
-                                   zip(self._capacity, (-1.0, 1.0)))
+            lo, hi = np.append(lo, -pull), np.append(hi, pull)
+        self._capacity = lo, hi
         self.saturation = bool(saturation)
-        self.observation_names = run.plant.state_names()
-        self.action_names = ACTUATORS + (("Fw",) if run.plant.nx > 9 else ())
+        plant_ = run.plant
+        self._observed = np.zeros(len(plant_.observed_names()))
+        reference = tuple(coordinate_column(k, d, "_ref") for d in (0, 1)
+                          for k in range(N_COORDINATES))
+        self.observation_names = (plant_.state_names() + plant_.observed_names()
+                                  + reference)
+        if self.reference_action:
+            self.action_names = reference
+            self.action_bounds = (np.full(18, -np.inf), np.full(18, np.inf))
+        else:
+            self.action_names = ACTUATORS + (("Fw",) if plant_.nx > 9 else ())
+            self.action_bounds = (lo.copy(), hi.copy())
+        self.slack_tension = None
+        if "tension" in plant_.RECORDED:
+            ratio = plant_.robot.load_limits.tension_ratio_min
+            m = float(plant_.robot.hybrid.cable.mass[-1])
+            self.slack_tension = (0.0 if np.isnan(ratio) else
+                                  ratio * m * float(np.linalg.norm(run.plant.g)))
         self._pieces = None
         self._geometry = None                   # the workspace check's (on first use)
         self._k = 0
@@ -146,10 +201,11 @@ class Stepper:
         return self._observe()
 
     def step(self, action) -> np.ndarray:
-        """Apply ``action`` (:attr:`action_names`, ``(nx,)`` [N·m, N]) over one control
-        period; returns the observation at its end. :attr:`terminated` (the run stopped:
-        workspace, singular, diverged) and :attr:`truncated` (the duration reached) say
-        whether it can go on.
+        """Apply ``action`` (:attr:`action_names`: ``(nx,)`` forces [N·m, N], or a
+        reference ``(18,)``) over one control period; returns the observation at its end.
+        :attr:`terminated` (the run stopped: the workspace left, a singular or diverged
+        state, the cable's tension below :attr:`slack_tension`) and :attr:`truncated`
+        (the duration reached) say whether it can go on.
 
         Raises:
             InputError: no :meth:`reset`, a run that ended, an action of the wrong shape,
@@ -165,6 +221,8 @@ class Stepper:
             pieces.run(t.n_steps, 0, True, inline=True)   # the last sample, action held
             self.truncated = True
         if self.limits and not self.terminated and self._outside():
+            self.terminated = True
+        if self.slack_tension is not None and not self.terminated and self._slack():
             self.terminated = True
         return self._observe()
 
@@ -212,16 +270,24 @@ class Stepper:
             why = "stopped" if self.terminated else "reached its duration"
             raise InputError(f"step() after the run {why} at t = {self.time:g} s: call "
                              "reset() to start again", name="step")
-        nx = self._run.plant.nx
-        a = np.asarray(action, dtype=float)
+        nx = len(self.action_names)
+        try:
+            a = np.asarray(action, dtype=float)
+        except (TypeError, ValueError):
+            raise InputError(f"action {action!r} is not numbers: give {nx} of them "
+                             f"({', '.join(self.action_names)})", name="action") from None
         if a.shape != (nx,):
-            raise InputError(f"action of shape {a.shape}: give {nx} forces "
+            what = "forces" if not self.reference_action else "reference values"
+            raise InputError(f"action of shape {a.shape}: give {nx} {what} "
                              f"({', '.join(self.action_names)})", name="action")
         bad = np.flatnonzero(~np.isfinite(a))
         if bad.size:
             j = int(bad[0])
             raise InputError(f"action {self.action_names[j]} = {float(a[j])} at t = "
-                             f"{self.time:g} s: give finite forces", name="action")
+                             f"{self.time:g} s: give finite numbers", name="action")
+        if self.reference_action:
+            self._hold_reference(a)
+            return self._pieces
         lo, hi = self._capacity
         out = np.flatnonzero((a < lo) | (a > hi))
         if out.size and not self.saturation:
@@ -233,17 +299,41 @@ class Stepper:
         self._run.law.action[:] = a
         return self._pieces
 
+    def _hold_reference(self, a: np.ndarray) -> None:
+        """The law's reference over the coming period's stage points: ``a[:9] + (t −
+        t_k) a[9:]``, rate ``a[9:]``, no acceleration (the grid's rows the loop reads)."""
+        t = self._run.timing
+        i0 = 2 * self._k * t.hold
+        rows = slice(i0, i0 + 2 * t.hold + 1)
+        tt, qr, qdr, qddr = self._run.grid
+        qr[rows] = a[:9] + (tt[rows] - tt[i0])[:, None] * a[9:]
+        qdr[rows] = a[9:]
+        qddr[rows] = 0.0
+
     def _observe(self) -> np.ndarray:
         """The measured state at this control instant (the loop's own sensor model, the
-        numbers its next piece measures)."""
-        p, n_p = self._pieces, self._run.plant.size
+        numbers its next piece measures), what the plant forms of it and the scene's
+        reference there."""
+        p, plant = self._pieces, self._run.plant
+        n_p = plant.size
         g = self._k * self._run.timing.hold
         hist, ym = p.W[-2], p.W[5]
         if p.sens:
             hist[g % (p.delay + 1)] = p.y[:n_p]
         self._sense(p.y, ym, hist, p.W[-1], g, p.delay, p.nq, p.nqd, p.res[0], p.res[1],
                     p.sens, int(p.status[3]), n_p)
-        return ym[:n_p].copy()
+        plant.observe(2 * g, ym[:n_p], self._observed)
+        qr, qdr = self._scene
+        return np.concatenate([ym[:n_p], self._observed, qr[2 * g], qdr[2 * g]])
+
+    def _slack(self) -> bool:
+        """Whether a sample the last period recorded has the cable's tension below
+        :attr:`slack_tension` (NaN, a tension the record forms after the run: not
+        judged here)."""
+        p, t = self._pieces, self._run.timing
+        a = max(0, (self._k - 1) * t.hold // t.out_every)
+        T = self._run.plant.recorded(p.extra)["tension"][a:p.done]
+        return bool((T < self.slack_tension).any())
 
     def _outside(self) -> bool:
         """Whether the last period's samples left the workspace (the compiled check of

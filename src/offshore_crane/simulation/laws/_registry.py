@@ -55,6 +55,9 @@ class Law:
     #: :func:`offshore_crane.simulation.runs.prepare` before :meth:`params`), for a law
     #: that forms something from it once (an aim).
     grid: tuple | None = None
+    #: True for a law that forms something from :attr:`grid` once (an aim): it cannot
+    #: take a reference given as it goes (a stepper's ``action="reference"``).
+    reference_once: ClassVar[bool] = False
 
     def initial_state(self) -> np.ndarray:
         """The law's state at the start ``(state_size,)``."""

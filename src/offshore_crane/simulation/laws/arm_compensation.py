@@ -128,6 +128,7 @@ def command(L, P, i, t, y, n_p, qr, qdr, qddr, X):
 @register
 class ArmCompensation(ComputedTorque):
     name = "arm-compensation"
+    reference_once = True
     code = None
     plants = ("hanging", "elastic")
     refusal = ("it holds a hanging payload's aim against the platform's motion: give the "

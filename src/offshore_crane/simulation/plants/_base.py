@@ -107,6 +107,16 @@ class Plant:
         keyword arguments)."""
         return {}
 
+    def observed_names(self) -> tuple[str, ...]:
+        """The names of what :meth:`observe` adds to the state a stepper observes
+        (``()``: nothing; the CSV's names with their units)."""
+        return ()
+
+    def observe(self, i: int, y: np.ndarray, out: np.ndarray) -> None:
+        """The channels :meth:`observed_names` names, formed from the measured state
+        ``y`` ``(size,)`` at stage point ``i``, into ``out`` ``(len(observed_names),)``
+        (on the compiled kernels: a stepper calls it every control period)."""
+
     def words(self, cause: StopCause, res) -> str:
         """A stop's cause in words, from the samples kept (``res``)."""
         q5 = f", q5 = {res.q[-1, 4]:.4g} rad" if len(res) else ""

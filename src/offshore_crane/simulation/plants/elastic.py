@@ -136,6 +136,20 @@ class ElasticPlant(Plant):
                 "tension": T, "length": L, "length_rate": Ld, "pull": cell[0:3].copy(),
                 "pull_at": cell[3:6].copy()}
 
+    def observed_names(self) -> tuple[str, ...]:
+        return ("tension_N",)
+
+    def observe(self, i, y, out):
+        """The cable's tension [N] at the measured state (the load cell's measure:
+        :meth:`channels`' ``tension``)."""
+        from offshore_crane.dynamics.cable import elastic_plant as ep
+
+        P = self.params()
+        L, Ld = self.length(i, y)
+        out[0] = ep.measure(P[0], P[1], P[2], P[6], L, Ld,
+                            np.ascontiguousarray(y, dtype=float), np.zeros(ep.CELL),
+                            np.zeros(ep.WORK))
+
     def derivative(self, i, y, X):
         """``(ẏ (24,) or (26,), aux)`` from the vectorised public pieces (the Kane pass
         with the pull, forward dynamics, the tip's kinematics in NumPy): the reference the compiled
