@@ -74,8 +74,10 @@ class Stepper:
         action_names: What an action gives, in order: the forces (``T1`` ... ``Fl6``, and
             ``Fw`` with a commanded winch), or with ``action="reference"`` ``q1_ref_m``
             ... ``qd9_ref_rad_s``.
-        action_bounds: ``(lower, upper)`` ``(len(action_names),)`` each: the actuators'
-            capacities [N·m, N] (±inf where none), or ±inf for a reference.
+        capacities: ``(lower, upper)`` ``(nx,)`` each: the actuators' capacities [N·m,
+            N] (the description's, ±inf where it gives none; a winch's pull last).
+        action_bounds: ``(lower, upper)`` ``(len(action_names),)`` each: the
+            capacities for forces, ±inf for a reference.
         slack_tension: [N] a tension below which the run is :attr:`terminated` (the
             description's ``payload.limits.tension_ratio_min`` × m|g|; 0 without it: a
             slack cable), or None without a cable.
@@ -153,7 +155,7 @@ class Stepper:
         if run.plant.nx > 9:
             pull = run.plant.robot.winch.pull_max
             lo, hi = np.append(lo, -pull), np.append(hi, pull)
-        self._capacity = lo, hi
+        self.capacities = lo, hi
         self.saturation = bool(saturation)
         plant_ = run.plant
         self._observed = np.zeros(len(plant_.observed_names()))
@@ -244,6 +246,59 @@ class Stepper:
         t = self._run.timing
         return t.t0 + self._k * t.hold * t.step
 
+    def applied(self) -> np.ndarray:
+        """``(nx,)`` [N·m, N]: the forces the actuators applied over the last period (the
+        mean of its recorded samples: after the capacities and the lag); zeros before a
+        step."""
+        p, t = self._pieces, self._run.timing
+        if p is None or self._k == 0:
+            return np.zeros(self._run.plant.nx)
+        a = (self._k - 1) * t.hold // t.out_every
+        return p.rec[6][a:max(p.done, a + 1)].mean(axis=0)
+
+    def holding(self) -> np.ndarray:
+        """``(nx,)`` [N·m, N]: the forces that hold the robot still where it is now, on
+        the plant's model (its law's static forces: the robot's weight and the cable's
+        pull at the state as simulated; a commanded winch's pull the cable's tension).
+        What a controller starts from (the FMU's inputs' start values).
+
+        Raises:
+            InputError: before :meth:`reset`."""
+        plant, y = self._run.plant, self.state
+        X = np.zeros(plant.nx)
+        i = 2 * self._k * self._run.timing.hold
+        plant.kernels().gravity(plant.params(), i, y, X)
+        if plant.nx > 9:
+            tension = np.zeros(1)
+            plant.observe(i, y, tension)
+            X[9] = tension[0]
+        return X
+
+    def plan(self) -> tuple:
+        """``(t (n + 1,) [s], q_ref, q̇_ref (n + 1, 9))``: the scene's reference at every
+        control instant of the run's ``n`` periods (what the observation's reference
+        channels hold there)."""
+        t = self._run.timing
+        rows = slice(0, 2 * t.n_steps + 1, 2 * t.hold)
+        qr, qdr = self._scene
+        return self._run.grid[0][rows].copy(), qr[rows].copy(), qdr[rows].copy()
+
+    @property
+    def plant(self):
+        """The run's :class:`~offshore_crane.simulation.plants.Plant` (its robot, state
+        layout and kernels)."""
+        return self._run.plant
+
+    @property
+    def control_steps(self) -> int:
+        """Integration steps in a control period."""
+        return self._run.timing.hold
+
+    @property
+    def periods_done(self) -> int:
+        """Control periods stepped since :meth:`reset`."""
+        return self._k
+
     @property
     def reference_now(self) -> tuple:
         """``(t [s], q_ref, qd_ref, qdd_ref (9,) each)``: the reference at this control
@@ -254,7 +309,8 @@ class Stepper:
 
     @property
     def state(self) -> np.ndarray:
-        """The plant's state now, as simulated (no sensor model) ``(len(observation_names),)``.
+        """The plant's state now, as simulated (no sensor model) ``(plant.size,)``: the
+        observation's first entries without the sensors.
 
         Raises:
             InputError: before :meth:`reset`."""
@@ -288,7 +344,7 @@ class Stepper:
         if self.reference_action:
             self._hold_reference(a)
             return self._pieces
-        lo, hi = self._capacity
+        lo, hi = self.capacities
         out = np.flatnonzero((a < lo) | (a > hi))
         if out.size and not self.saturation:
             j = int(out[0])
