@@ -1,4 +1,5 @@
-"""``offshore-crane export``: the robot as a MuJoCo model (MJCF) with the loops closed.
+"""``offshore-crane export``: the robot as a MuJoCo model (MJCF) with the loops closed,
+or a scene's crane as an FMI co-simulation unit (``--fmu``, docs/control.md).
 
 Writes the robot of ``--robot``/``--set``/``--scene`` as an MJCF file: the legs as
 U-joint + slide with motors, the six spherical joints as equality constraints, the arm's
@@ -24,6 +25,16 @@ def add_parser(sub) -> None:
                            line.strip() for line in doc[2:7]))
     p.add_argument("--mjcf", metavar="FILE.xml", help="write the MuJoCo model to this file "
                    "('.xml'; '-': standard output)")
+    p.add_argument("--fmu", metavar="FILE.fmu", help="write the scene's crane as an FMI "
+                   "2.0 co-simulation FMU (needs --scene and --control-period; the extra "
+                   "'fmu')")
+    p.add_argument("--control-period", type=float, metavar="S", help="--fmu: the FMU's "
+                   "communication step [s], a whole number of the scene's integration steps")
+    p.add_argument("--duration", type=float, metavar="S", help="--fmu: the run [s] "
+                   "(default: the scene's)")
+    p.add_argument("--action", choices=("forces", "reference"), default="forces",
+                   help="--fmu: the FMU's inputs, the actuators' forces (default) or a "
+                   "reference for the scene's controller")
     p.add_argument("--scene", metavar="FILE.toml", help="scene whose robot and gravity "
                    "are exported")
     p.add_argument("--pose", metavar="Q1,...,Q9", help="configuration written (qpos0 and "
@@ -56,9 +67,10 @@ def run(args) -> int:
     from offshore_crane.io import plan_outputs, write_text
     from offshore_crane.cli.common import comma_numbers, robot_scene
 
+    if args.fmu is not None:
+        return _fmu(args)
     if args.mjcf is None:
-        raise InputError("export: give --mjcf FILE.xml (the only format so far)",
-                         name="--mjcf")
+        raise InputError("export: give --mjcf FILE.xml or --fmu FILE.fmu", name="--mjcf")
     pose = None if args.pose is None else np.array(comma_numbers(args.pose, 9, "--pose"))
     sway = None if args.sway is None else np.array(comma_numbers(args.sway, 2, "--sway"))
     scene = robot_scene(args, scenes.load_scene(args.scene) if args.scene else scenes.Scene())
@@ -89,6 +101,34 @@ def run(args) -> int:
            f"; keyframe 'hold': ctrl = {np.array2string(model.hold, precision=4)}"))
     say(f"wrote {args.mjcf}")
     return status
+
+
+def _fmu(args) -> int:
+    """``--fmu``: the scene's crane as an FMU (:func:`offshore_crane.fmu.export_fmu`),
+    every path checked before it is built."""
+    from offshore_crane import scenes
+    from offshore_crane.errors import require
+    from offshore_crane.io import plan_outputs
+
+    if args.mjcf is not None:
+        raise InputError("export: give --mjcf or --fmu, one at a time", name="--fmu")
+    for flag, value in (("--scene", args.scene), ("--control-period", args.control_period)):
+        if value is None:
+            raise InputError(f"export --fmu needs {flag}", name=flag)
+    scene = scenes.load_scene(args.scene)
+    target = plan_outputs({"--fmu": args.fmu}, [args.scene, *scene.inputs()],
+                          {"--fmu": ("fmu",)})["--fmu"]
+    if target.kind != "file":
+        raise InputError(f"--fmu {args.fmu}: an FMU is a zip archive: give a file",
+                         name="--fmu")
+    require("pythonfmu", '"offshore-crane[fmu]"', "export --fmu")
+    from offshore_crane.fmu import export_fmu
+
+    export_fmu(args.scene, target, control_period=args.control_period,
+               duration=args.duration, action=args.action)
+    print(f"wrote {args.fmu}: FMI 2.0 co-simulation, step {args.control_period:g} s "
+          f"(docs/control.md)")
+    return 0
 
 
 def _states(robot, gravity):

@@ -101,7 +101,7 @@ from offshore_crane.scenes.assembly import (controller, instruments, deck_pose, 
                                             still_water_level, target_deck, lift_deck,
                                             with_robot_overrides, load_trajectory,
                                             sea_workspace_error, with_trajectory,
-                                            with_overrides)
+                                            with_overrides, with_values)
 from offshore_crane.scenes.stepping import stepper
 from offshore_crane.scenes.running import (SceneRun, CABLE_METHODS, SwingPlan, compare_methods,
                                            run, run_swing, swing_plan, cable_simulation,

@@ -244,3 +244,25 @@ def with_overrides(scene: Scene, where: str, **changes) -> Scene:
     if not changes:
         return scene
     return replace(scene, origin=where, **changes)
+
+
+def with_values(scene: Scene, values: dict, origin: str | None = None) -> Scene:
+    """``scene`` with ``[sea]`` keys (``hs``, ``tp``, ``heading``, ``seed``, ...: the
+    scene file's, full scale) and robot fields (dotted names, ``payload.mass``) replaced
+    by ``values``, re-checked (a sweep's case, an FMU's parameters).
+
+    Raises:
+        SceneError: the result does not fit together (:func:`check_scene`).
+    """
+    from offshore_crane.scenes.keys import SEA_KEYS
+
+    sea = {k: v for k, v in values.items() if k in SEA_KEYS}
+    robot = {k: v for k, v in values.items() if k not in SEA_KEYS}
+    changes = {}
+    if sea:
+        changes["sea"] = {**scene.sea, **sea}
+    if robot:
+        changes.update(robot={**scene.robot, **robot}, arm=None, payload=None)
+    if not changes:
+        return scene
+    return replace(scene, origin=origin or f"{scene.where()} with {values}", **changes)

@@ -6,10 +6,9 @@ from __future__ import annotations
 
 import hashlib
 import itertools
-import json
 import math
 import os
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 from offshore_crane.errors import GridError
 from offshore_crane.io import toml_value
@@ -208,16 +207,9 @@ def check_grid(scene, grid: dict, where: str = "grid", max_cases: int = MAX_CASE
 def case_scene(scene, params: dict, origin: str | None = None):
     """``scene`` with a case's values: sea keys into ``[sea]``, robot fields (dotted
     names) over the scene's own (a grid value replaces the scene's, on purpose)."""
-    sea = {k: v for k, v in params.items() if k in SEA_KEYS}
-    robot = {k: v for k, v in params.items() if k not in SEA_KEYS}
-    changes = {}
-    if sea:
-        changes["sea"] = {**scene.sea, **sea}
-    if robot:
-        changes.update(robot={**scene.robot, **robot}, arm=None, payload=None)
-    if not changes:
-        return scene
-    return replace(scene, origin=origin or f"{scene.where()} case {params}", **changes)
+    from offshore_crane.scenes.assembly import with_values
+
+    return with_values(scene, params, origin or f"{scene.where()} case {params}")
 
 
 class CaseIds:
