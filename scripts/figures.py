@@ -33,7 +33,7 @@ from figures_kernels import (animate_rows, bench_rows, bench_serial_rows,  # noq
                              mjcf_agreement_rows, passes_rows, pinocchio_fd_rows,
                              read_summary,
                              roofline_rows, sea_synthesis_rows, simulation_rows,
-                             stepper_rows)
+                             stepper_rows, gym_rows)
 from figures_studies import (compensation_rows, design_rows, extremes_rows,  # noqa: E402
                              identification_memory_rows, identification_rows,
                              operability_rows, sweep_rows)
@@ -49,7 +49,7 @@ RENDERERS = {"sweep": sweep_rows, "animate": animate_rows, "cable_swing": cable_
              "identification_memory": identification_memory_rows, "extremes": extremes_rows,
              "compensation": compensation_rows, "operability": operability_rows,
              "simulation": simulation_rows, "design": design_rows, "passes": passes_rows,
-             "stepper": stepper_rows}
+             "stepper": stepper_rows, "gym": gym_rows}
 
 #: Saved results that are not ``benchmarks/results/NAME.json``, and how to read them.
 SOURCES = {"bench": (ROOT / "docs" / "bench" / "summary.md", read_summary)}

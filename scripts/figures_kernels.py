@@ -250,6 +250,25 @@ def stepper_rows(r: dict) -> dict:
             f"{r['cores']} cores with other processes using up to {others:.1f} of them)"}
 
 
+def gym_rows(r: dict) -> dict:
+    """benchmarks/gym.py's figures: the environment's real-time factor and the vector's
+    scaling, against issue 38's targets."""
+    e, v, t = r["env"], r["vector"], r["targets"]
+    return {("docs/control.md", "figure gym"):
+            f"Measured by `benchmarks/gym.py` ({r['date']}, median of {r['repeats']}, on "
+            f"{r['cores']} cores with other processes using up to {r['others_cores']:.1f} "
+            f"of them): the Gymnasium environment of the elastic compensated lift at "
+            f"{1 / r['period_s']:g} Hz control, the default reward included, runs "
+            f"{e['rtf']:.1f} × real time on one core ({e['steps']} steps in "
+            f"{e['env_s'] * 1e3:.0f} ms; {e['over_stepper']:.2f} × the bare stepper's time; "
+            f"the compiled run's commands replayed: the same run, largest |Δq| "
+            f"{e['dq_max']:.1g}), issue 38's target ≥ {t['rtf']:g} × "
+            f"({_met(e['rtf'] >= t['rtf'])}); {v['envs']} environments of it on 2 workers "
+            f"step {v['steps_per_s_2']:.0f} environment-steps per second against "
+            f"{v['steps_per_s_1']:.0f} on one, {v['scaling']:.2f} ×, target ≥ "
+            f"{t['scaling']:g} × ({_met(v['scaling'] >= t['scaling'])})"}
+
+
 def roofline_rows(r: dict) -> dict:
     """benchmarks/roofline.py's figures: one row per kernel, the machine in prose."""
     peak, width = r["peak_gflops"], r["vector_width"]

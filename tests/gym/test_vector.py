@@ -1,5 +1,5 @@
 """Many episodes at once (:class:`~offshore_crane.gym.CraneLiftVector`): in this process
-or in worker processes, each environment's run is the single environment's, bit for bit;
+and in worker processes, each environment's run is the single environment's, bit for bit;
 an episode that ended starts again on the next step."""
 
 from __future__ import annotations
@@ -36,7 +36,7 @@ def _actions(env, rng, n):
 
 def test_workers_give_each_environment_its_own_run_and_autoreset_on_the_next_step(
         tmp_path):
-    """Three seeds on 0 and 2 workers against three single environments: the same
+    """Three seeds on 1, 2 and 3 workers against three single environments: the same
     observations and rewards; after the duration (3 periods) the next step returns the
     first observation of a new episode, reward 0, neither flag."""
     path = _noisy(tmp_path)
@@ -50,7 +50,7 @@ def test_workers_give_each_environment_its_own_run_and_autoreset_on_the_next_ste
             o, r, term, trunc, _ = env.step(a)
             rows.append(np.r_[o, r, term, trunc])
         want.append(rows)
-    for workers in (0, 2):
+    for workers in (1, 2, 3):
         vec = CraneLiftVector(num_envs=N, workers=workers, **kw)
         try:
             obs, info = vec.reset(seed=10)
@@ -73,7 +73,7 @@ def test_make_vec_builds_it_and_a_worker_passes_an_environments_refusal_on():
     """``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")`` makes a
     :class:`CraneLiftVector`; an environment's InputError comes back naming it."""
     vec = gymnasium.make_vec("offshore_crane.gym:CraneLift-v0", num_envs=2,
-                             vectorization_mode="vector_entry_point", workers=1,
+                             vectorization_mode="vector_entry_point", workers=2,
                              scene=SCENE, control_period=0.01, duration=0.02)
     try:
         assert isinstance(vec, CraneLiftVector) and vec.observation_space.shape[0] == 2
@@ -86,3 +86,5 @@ def test_make_vec_builds_it_and_a_worker_passes_an_environments_refusal_on():
         vec.close()
     with pytest.raises(InputError, match="num_envs = 0: give 1 or more"):
         CraneLiftVector(num_envs=0, scene=SCENE)
+    with pytest.raises(InputError, match=r"workers = 0: give 1 \(this process\) or more"):
+        CraneLiftVector(num_envs=2, workers=0, scene=SCENE)

@@ -1,6 +1,6 @@
 """Many episodes of one scene at once (:class:`CraneLiftVector`): the environments split
-over worker processes, each stepping its share in turn, the actions and observations
-passed as one batch a step."""
+over workers (this process and worker processes), each stepping its share in turn, the
+actions and observations passed as one batch a step."""
 
 from __future__ import annotations
 
@@ -13,6 +13,11 @@ from gymnasium.vector.utils import batch_space
 
 from offshore_crane.errors import InputError, OffshoreCraneError
 
+#: [s] how long a process waits for the other side's answer by polling before it sleeps:
+#: a share's step takes milliseconds, and waking a sleeping process took about 0.1 ms on
+#: the 2-core machine of ``benchmarks/gym.py`` (twice a step: a tenth of it); past this
+#: the wait sleeps (an agent thinking between steps leaves its workers asleep).
+SPIN = 2e-3
 #: [s] the longest a worker may take to answer one call (a step of its share of the
 #: environments takes milliseconds; its start, the compiled kernels loaded from the
 #: disk cache, seconds; a cold compile, a minute): past it the worker is taken for hung.
@@ -24,8 +29,10 @@ class CraneLiftVector(VectorEnv):
 
     Args:
         num_envs: Environments (episodes stepped at once).
-        workers: Processes stepping them (each its share of the environments, in turn);
-            0: all in this process (default: ``min(num_envs, os.cpu_count())``).
+        workers: Processes stepping them, this one included (each its share of the
+            environments, in turn; 1: all in this process; default: ``min(num_envs,
+            os.cpu_count())``). This process steps its share while the others step
+            theirs.
         **kwargs: :class:`~offshore_crane.gym.CraneLift`'s (``scene``,
             ``control_period``, ...), the same for every environment.
 
@@ -35,7 +42,7 @@ class CraneLiftVector(VectorEnv):
     ``s + j`` (or a list of seeds, one each).
 
     Raises:
-        InputError: ``num_envs < 1``, ``workers < 0``; what an environment refuses (the
+        InputError: ``num_envs < 1``, ``workers < 1``; what an environment refuses (the
             first environment's message, with its index).
     """
 
@@ -48,26 +55,27 @@ class CraneLiftVector(VectorEnv):
             raise InputError(f"num_envs = {num_envs!r}: give 1 or more", name="num_envs")
         self.num_envs = int(num_envs)
         workers = min(self.num_envs, os.cpu_count() or 1) if workers is None else int(workers)
-        if workers < 0:
-            raise InputError(f"workers = {workers}: give 0 (this process) or more",
+        if workers < 1:
+            raise InputError(f"workers = {workers}: give 1 (this process) or more",
                              name="workers")
-        shares = np.array_split(np.arange(self.num_envs), max(workers, 1))
+        shares = np.array_split(np.arange(self.num_envs), workers)
         self._shares = [s for s in shares if len(s)]
-        self._conns, self._procs, self._local = [], [], None
-        if workers == 0:
+        self._conns, self._procs = [], []
+        ctx = mp.get_context("spawn")
+        for share in self._shares[1:]:        # started first: they build while we do
+            ours, theirs = ctx.Pipe()
+            proc = ctx.Process(target=_work, args=(theirs, len(share), kwargs),
+                               daemon=True)
+            proc.start()
+            theirs.close()
+            self._conns.append(ours)
+            self._procs.append(proc)
+        try:
             self._local = _Share(len(self._shares[0]), kwargs)
-            first = self._local.envs[0]
-        else:
-            ctx = mp.get_context("spawn")
-            for share in self._shares:
-                ours, theirs = ctx.Pipe()
-                proc = ctx.Process(target=_work, args=(theirs, len(share), kwargs),
-                                   daemon=True)
-                proc.start()
-                theirs.close()
-                self._conns.append(ours)
-                self._procs.append(proc)
-            first = self._call("spaces", [None] * len(self._conns))[0]
+            first = self._call("spaces", [None] * len(self._shares))[0]
+        except BaseException:
+            self.close_extras()
+            raise
         self.single_observation_space = first.observation_space
         self.single_action_space = first.action_space
         self.observation_names = first.observation_names
@@ -119,27 +127,38 @@ class CraneLiftVector(VectorEnv):
 
     # ----------------------------------------------------------------- inside
     def _call(self, what: str, parts: list) -> list:
-        if self._local is not None:
-            return [getattr(self._local, what)(parts[0])]
-        for conn, part in zip(self._conns, parts):
+        """``what`` on every share (``parts[k]`` its argument): the worker processes' sent
+        first, this process's done meanwhile; every answer received before an
+        environment's refusal is raised (the pipes stay in step)."""
+        for conn, part in zip(self._conns, parts[1:]):
             conn.send((what, part))
-        out = []
-        for k, (conn, proc) in enumerate(zip(self._conns, self._procs)):
-            if not conn.poll(ANSWER_TIMEOUT):
+        out, failed = [None] * len(self._shares), None
+        try:
+            out[0] = getattr(self._local, what)(parts[0])
+        except _Failed as exc:
+            failed = (0, exc.j, exc.message)
+        for k, (conn, proc) in enumerate(zip(self._conns, self._procs), start=1):
+            if not (_spin(conn) or conn.poll(ANSWER_TIMEOUT)):
                 raise OffshoreCraneError(f"worker {k} did not answer {what} within "
                                          f"{ANSWER_TIMEOUT:g} s (alive: {proc.is_alive()})"
                                          ": close the environment and start again")
             try:
                 status, value = conn.recv()
-            except EOFError:
-                raise OffshoreCraneError(f"worker {k} ended during {what} (exit code "
-                                         f"{proc.exitcode}): close the environment and "
-                                         "start again") from None
+            except (EOFError, ConnectionError):
+                proc.join(timeout=5.0)
+                raise OffshoreCraneError(
+                    f"worker {k} ended during {what} (exit code {proc.exitcode}): workers "
+                    "are spawned, so a script that makes a vector must do it under `if "
+                    "__name__ == '__main__':` (else each worker runs the script again); "
+                    "close the environment and start again") from None
             if status == "error":
-                j, message = value
-                raise InputError(f"environment {int(self._shares[k][0]) + j}: {message}",
-                                 name="actions")
-            out.append(value)
+                failed = failed or (k, *value)
+            else:
+                out[k] = value
+        if failed is not None:
+            k, j, message = failed
+            raise InputError(f"environment {int(self._shares[k][0]) + j}: {message}",
+                             name="actions")
         return out
 
 
@@ -204,6 +223,7 @@ def _work(conn, n: int, kwargs: dict) -> None:
         conn.send(("error", (0, str(exc))))
         return
     while True:
+        _spin(conn)
         what, part = conn.recv()
         if what == "close":
             return
@@ -211,3 +231,15 @@ def _work(conn, n: int, kwargs: dict) -> None:
             conn.send(("ok", getattr(share, what)(part)))
         except _Failed as exc:
             conn.send(("error", (exc.j, exc.message)))
+
+
+def _spin(conn) -> bool:
+    """Whether ``conn`` has something to read within :data:`SPIN` seconds, polled
+    without sleeping."""
+    import time
+
+    end = time.perf_counter() + SPIN
+    while time.perf_counter() < end:
+        if conn.poll():
+            return True
+    return False

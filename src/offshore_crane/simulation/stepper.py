@@ -1,5 +1,8 @@
 """A simulation you step (issue 38, item 1): a controller outside the simulation gives
-the actuator forces for one control period at a time and reads the measured state back.
+the actuator forces (or, ``action="reference"``, a reference for a built-in law) for one
+control period at a time and reads the measured state, what the plant forms of it and the
+reference back. The Gymnasium environment (:mod:`offshore_crane.gym`) and the FMU
+(:mod:`offshore_crane.fmu`) run on it.
 
 >>> import numpy as np
 >>> import offshore_crane as oc
@@ -142,7 +145,7 @@ class Stepper:
             raise InputError("the output rate must divide the control period",
                              name="rate")
         self.reference_action = action == "reference"
-        self._scene = tuple(a.copy() for a in run.grid[1:3])   # the reference observed
+        self._scene = tuple(a.copy() for a in run.grid[1:])   # the scene's reference
         if self.reference_action:
             if type(run.law).reference_once:
                 raise InputError(f"the law {run.law.name!r} forms its reference once from "
@@ -280,7 +283,7 @@ class Stepper:
         channels hold there)."""
         t = self._run.timing
         rows = slice(0, 2 * t.n_steps + 1, 2 * t.hold)
-        qr, qdr = self._scene
+        qr, qdr, _ = self._scene
         return self._run.grid[0][rows].copy(), qr[rows].copy(), qdr[rows].copy()
 
     @property
@@ -304,8 +307,8 @@ class Stepper:
         """``(t [s], q_ref, qd_ref, qdd_ref (9,) each)``: the reference at this control
         instant, the numbers a built-in or Python law reads there (the run's grid)."""
         i = 2 * self._k * self._run.timing.hold
-        tt, qr, qdr, qddr = self._run.grid
-        return float(tt[i]), qr[i].copy(), qdr[i].copy(), qddr[i].copy()
+        qr, qdr, qddr = self._scene
+        return float(self._run.grid[0][i]), qr[i].copy(), qdr[i].copy(), qddr[i].copy()
 
     @property
     def state(self) -> np.ndarray:
@@ -379,7 +382,7 @@ class Stepper:
         self._sense(p.y, ym, hist, p.W[-1], g, p.delay, p.nq, p.nqd, p.res[0], p.res[1],
                     p.sens, int(p.status[3]), n_p)
         plant.observe(2 * g, ym[:n_p], self._observed)
-        qr, qdr = self._scene
+        qr, qdr, _ = self._scene
         return np.concatenate([ym[:n_p], self._observed, qr[2 * g], qdr[2 * g]])
 
     def _slack(self) -> bool:
