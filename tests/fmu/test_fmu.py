@@ -184,3 +184,24 @@ def test_the_command_line_writes_it_and_refuses_bad_paths(tmp_path):
     assert scene.read_bytes() == before and not (tmp_path / "x.fmu").exists()
     with pytest.raises(InputError, match="give the scene file's path"):
         export_fmu(scenes.load_scene(scene), tmp_path / "y.fmu", control_period=0.01)
+
+
+def test_a_reference_as_the_input_drives_the_scenes_law(tmp_path):
+    """``action="reference"``: the inputs are ``q1_cmd_m ... qd9_cmd_m_s``, starting at
+    the scene's reference; held there, the scene's law keeps the platform near it."""
+    path = export_fmu(SCENES / "hanging_load.toml", tmp_path / "outer.fmu",
+                      control_period=PERIOD, duration=0.05, action="reference")
+    assert validate_fmu(str(path)) == []
+    md = read_model_description(str(path))
+    inputs = [v.name for v in md.modelVariables if v.causality == "input"]
+    assert inputs[0] == "q1_cmd_m" and inputs[-1] == "qd9_cmd_m_s" and len(inputs) == 18
+    unit = Unit(path)
+    try:
+        start = unit.get(inputs)
+        for k in range(5):
+            unit.fmu.doStep(currentCommunicationPoint=k * PERIOD,
+                            communicationStepSize=PERIOD)
+        q = unit.get(list(Q_COLUMNS))
+        assert np.abs(q - start[:9]).max() < 0.01       # [m, rad]: held near it
+    finally:
+        unit.close()

@@ -203,7 +203,7 @@ def test_a_stepper_on_a_scene_is_its_simulations_run(scene):
 
 def test_what_the_plant_forms_of_the_state_is_the_records():
     """The hanging load's position and the elastic cable's tension observed at each
-    control instant are the record's at that sample (the payload from the tip's and the
+    control instant are the record's at that sample, the cable's length its own (the payload from the tip's and the
     sway's formulas on NumPy arrays, :func:`~offshore_crane.dynamics.cable.tip.
     payload_positions`; the tension as the loop recorded it). Without sensors the
     measured state is the state, so they agree to round-off (1e-12 m: the compiled and
@@ -215,11 +215,12 @@ def test_what_the_plant_forms_of_the_state_is_the_records():
         robot, options = robots[plant]
         sim = Stepper(robot, 0.1, table1, control_period=PERIOD, **options)
         law, names = _law(robot), sim.observation_names
-        j = names.index(name)
+        j, jl = names.index(name), names.index("L_m")
         iq, iqd = ([names.index(c) for c in c_] for c_ in (Q_COLUMNS, QD_COLUMNS))
-        y, seen = sim.reset(), []
+        y, seen, lengths = sim.reset(), [], []
         while not sim.truncated:
             seen.append(y[j:j + cols])
+            lengths.append(y[jl])
             t, qr, qdr, qddr = sim.reference_now
             y = sim.step(law(t, y[iq], y[iqd], qr, qdr, qddr))
         res = sim.record()
@@ -233,6 +234,9 @@ def test_what_the_plant_forms_of_the_state_is_the_records():
         else:
             want, atol = res.tension[k, None], 1e-9 * float(np.abs(res.tension).max())
         np.testing.assert_allclose(np.array(seen), want, rtol=0, atol=atol)
+        profile = (np.full(len(k), 0.5) if plant == "hanging"      # the fixed length
+                   else sim.plant.Lg[2 * k, 0])                    # the winch's profile
+        np.testing.assert_array_equal(lengths, profile)
 
 
 def test_a_reference_as_the_action_is_simulates_run_of_that_reference():
@@ -247,7 +251,7 @@ def test_a_reference_as_the_action_is_simulates_run_of_that_reference():
     q, qd, _ = table1(tk)
     q = q + 0.01 * np.sin(7 * tk)[:, None]
     sim = Stepper(robot, seconds, table1, control_period=PERIOD, action="reference")
-    assert sim.action_names[0] == "q1_ref_m" and len(sim.action_names) == 18
+    assert sim.action_names[0] == "q1_cmd_m" and len(sim.action_names) == 18
     assert np.isinf(sim.action_bounds[0]).all()
     sim.reset()
     for k in range(n):

@@ -107,8 +107,9 @@ def _settings(scene, sim, control_period: float, action: str) -> dict:
         params["payload_mass"] = float(scene.payload.mass)
     start = sim.reset()
     names = sim.observation_names
-    action_start = (sim.holding().tolist() if action == "forces"
-                    else [float(start[names.index(n)]) for n in sim.action_names])
+    action_start = (sim.holding().tolist() if action == "forces" else           # the scene's
+                    [float(start[names.index(n.replace("_cmd_", "_ref_"))])   # reference
+                     for n in sim.action_names])
     return {"scene": Path(scene.path).name, "control_period": float(control_period),
             "duration": float(plan[-1] - plan[0]), "action": action,
             "seed": int(scene.sea.get("seed", 0)) if scene.trajectory == "sea" else 0,

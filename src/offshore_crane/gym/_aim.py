@@ -26,7 +26,7 @@ class Aim:
         tipped = plant if plant.name == "hanging" else HangingPlant(robot, robot, plant.g)
         self._K, self._P = tipped.kernels(), tipped.params()
         self._out, self._zero = np.empty(9), np.zeros(9)
-        self._pay = np.empty(3)
+        self._pay = np.empty(len(plant.observed_names()))
         self._plant = plant
         t, qr, _ = sim.plan()
         tip = np.array([self.tip(q) for q in qr])
@@ -45,8 +45,8 @@ class Aim:
         if self.kind == "elastic":
             return y[9:12].copy()
         if self.kind == "hanging":
-            self._plant.observe(i, y, self._pay)
-            return self._pay.copy()
+            self._plant.observe(i, y, self._pay)          # the position first
+            return self._pay[:3].copy()
         return self.tip(y[:9])
 
     @staticmethod

@@ -71,12 +71,12 @@ class Stepper:
             ``phi1_rad`` ... of a hanging load; ``payload_x_m`` ... of an elastic cable),
             what the plant forms of it (a hanging load's position ``payload_x_m`` ...; an
             elastic cable's ``tension_N``: :meth:`~offshore_crane.simulation.plants.Plant.
-            observe`), then the scene's reference at the instant, ``q1_ref_m`` ...
-            ``qd9_ref_rad_s`` (exact: the vessel's motion in q1..q6, the arm's plan in
-            q7..q9).
+            observe`: the cable's length ``L_m`` too), then the scene's reference at
+            the instant, ``q1_ref_m`` ... ``qd9_ref_m_s`` (exact: the vessel's motion in
+            q1..q6, the arm's plan in q7..q9).
         action_names: What an action gives, in order: the forces (``T1`` ... ``Fl6``, and
-            ``Fw`` with a commanded winch), or with ``action="reference"`` ``q1_ref_m``
-            ... ``qd9_ref_rad_s``.
+            ``Fw`` with a commanded winch), or with ``action="reference"`` the reference
+            commanded, ``q1_cmd_m`` ... ``qd9_cmd_m_s``.
         capacities: ``(lower, upper)`` ``(nx,)`` each: the actuators' capacities [N·m,
             N] (the description's, ±inf where it gives none; a winch's pull last).
         action_bounds: ``(lower, upper)`` ``(len(action_names),)`` each: the
@@ -167,7 +167,8 @@ class Stepper:
         self.observation_names = (plant_.state_names() + plant_.observed_names()
                                   + reference)
         if self.reference_action:
-            self.action_names = reference
+            self.action_names = tuple(coordinate_column(k, d, "_cmd") for d in (0, 1)
+                                      for k in range(N_COORDINATES))
             self.action_bounds = (np.full(18, -np.inf), np.full(18, np.inf))
         else:
             self.action_names = ACTUATORS + (("Fw",) if plant_.nx > 9 else ())

@@ -137,11 +137,12 @@ class ElasticPlant(Plant):
                 "pull_at": cell[3:6].copy()}
 
     def observed_names(self) -> tuple[str, ...]:
-        return ("tension_N",)
+        return ("tension_N",) + (() if self.commanded else ("L_m",))
 
     def observe(self, i, y, out):
         """The cable's tension [N] at the measured state (the load cell's measure:
-        :meth:`channels`' ``tension``)."""
+        :meth:`channels`' ``tension``) and, when the winch follows a profile, its length
+        there [m] (a commanded winch's is in the state)."""
         from offshore_crane.dynamics.cable import elastic_plant as ep
 
         P = self.params()
@@ -149,6 +150,8 @@ class ElasticPlant(Plant):
         out[0] = ep.measure(P[0], P[1], P[2], P[6], L, Ld,
                             np.ascontiguousarray(y, dtype=float), np.zeros(ep.CELL),
                             np.zeros(ep.WORK))
+        if not self.commanded:
+            out[1] = L
 
     def derivative(self, i, y, X):
         """``(ẏ (24,) or (26,), aux)`` from the vectorised public pieces (the Kane pass

@@ -64,17 +64,19 @@ class HangingPlant(Plant):
         return ("phi1_rad", "phi2_rad", "phid1_rad_s", "phid2_rad_s")
 
     def observed_names(self) -> tuple[str, ...]:
-        return tuple(f"payload_{a}_m" for a in "xyz")
+        return (*(f"payload_{a}_m" for a in "xyz"), "L_m")
 
     def observe(self, i, y, out):
         """The payload's position [m] in the base frame: the tip's (``arm_tip``) and the
-        payload's from it (``payload``) at the measured q, φ on the compiled kernels."""
+        payload's from it (``payload``) at the measured q, φ on the compiled kernels;
+        the cable's length [m] (a winch's profile there, else the fixed length)."""
         K, P = self.kernels(), self.params()
         y = np.ascontiguousarray(y, dtype=float)
         pay, tip = np.empty(6), np.empty(9)
         K.payload(P, i, y, pay)
         K.arm_tip(P, y[:9], y[11:20], np.zeros(9), tip)
         out[:3] = tip[:3] + pay[3:6]
+        out[3] = self.lengths[i if len(self.lengths) > 1 else 0, 0]
 
     def finish(self, res, rec, limits, follow=None):
         n = len(res)
