@@ -17,8 +17,9 @@ environment's ``reset`` and ``step``.
 2. ``vector``: :class:`~offshore_crane.gym.CraneLiftVector` of 16 environments (2 s
    each, the same actions in every one), stepped with ``workers=1`` (all in this
    process) and ``workers=2`` (this process and one worker process, 8 each) after their
-   start and a first episode not timed (the processes' first pass touches their memory):
-   steps per second of each and their ratio.
+   start and a first episode not timed (the processes' first pass touches their memory),
+   the two vectors timed in turn, an episode each a repeat: steps per second of each and
+   their ratio.
 
 ``--save`` writes ``benchmarks/results/gym.json``, from which ``python
 scripts/figures.py`` writes the figures of docs/control.md ("Speed").
@@ -102,25 +103,29 @@ def single(actions: np.ndarray, q_ref: np.ndarray, repeats: int) -> dict:
 
 
 def vector(actions: np.ndarray, repeats: int) -> dict:
-    """Steps per second of 16 environments on 1 and on 2 workers."""
+    """Steps per second of 16 environments on 1 and on 2 workers, both vectors open and
+    timed in turn (each repeat one episode of each: the machine's moods fall on both)."""
     from offshore_crane.gym import CraneLiftVector
 
-    out = {}
-    for workers in (1, 2):
-        vec = CraneLiftVector(num_envs=ENVS, workers=workers, scene=SCENE,
-                              control_period=PERIOD, duration=VECTOR_SECONDS)
-        try:
-            walls = []
-            for k in range(repeats + 1):          # the first: a warm-up, not timed
+    vecs = {}
+    try:
+        for workers in (1, 2):
+            vecs[workers] = CraneLiftVector(num_envs=ENVS, workers=workers, scene=SCENE,
+                                            control_period=PERIOD,
+                                            duration=VECTOR_SECONDS)
+        walls = {w: [] for w in vecs}
+        for k in range(repeats + 1):          # the first: a warm-up, not timed
+            for workers, vec in vecs.items():
                 vec.reset(seed=0)
                 t0 = time.perf_counter()
                 for a in actions:
                     vec.step(np.tile(a, (ENVS, 1)))
                 if k:
-                    walls.append(time.perf_counter() - t0)
-        finally:
+                    walls[workers].append(time.perf_counter() - t0)
+    finally:
+        for vec in vecs.values():
             vec.close()
-        out[workers] = ENVS * len(actions) / statistics.median(walls)
+    out = {w: ENVS * len(actions) / statistics.median(x) for w, x in walls.items()}
     return {"steps_per_s_1": out[1], "steps_per_s_2": out[2],
             "scaling": out[2] / out[1], "envs": ENVS, "steps": len(actions)}
 
