@@ -195,8 +195,8 @@ def test_a_stepper_on_a_scene_is_its_simulations_run(scene):
     for name in ("t", "q", "qd", "q_ref"):
         np.testing.assert_array_equal(getattr(got, name), getattr(want, name), err_msg=name)
     np.testing.assert_array_equal(got.X[:-1], want.X[:-1])
-    assert "payload_x_m" in sim.observation_names        # a hanging load's, an elastic's
-    assert ("tension_N" in sim.observation_names) == (elastic is not None)
+    for name in ("payload_x_m", "tension_N", "L_m"):      # a hanging load's, an elastic's
+        assert name in sim.observation_names
     with pytest.raises(InputError, match="is longer than the scene's reference"):
         scenes.stepper(path, control_period=PERIOD, duration=1e6)
 
@@ -302,3 +302,51 @@ def test_a_cable_below_its_slack_tension_terminates_the_run():
     res = sim.record()          # taut still (no stop of the model's): the criterion's end
     assert res.stop is None and len(res) == 10 and sim.time == pytest.approx(PERIOD)
     assert 0.0 < res.tension.min() < sim.slack_tension
+
+
+@pytest.mark.parametrize("case", ["fixed", "winch", "drag"])
+def test_a_rigid_cables_observed_tension_is_the_records_under_the_same_forces(case):
+    """A rigid cable's tension at a control instant is the pendulum's pull under the
+    forces acting there (the last period's): held the same over every period, the
+    record's tension at that sample (formed under the same forces by the next piece) is
+    the observed one, on a cable of a fixed length (the Kane pass's force), hoisted by
+    a winch (the hoisted pendulum's pull) and with the payload's air drag (its share
+    along the cable). 1e-12 relative: the same formulas on the same numbers."""
+    from offshore_crane.dynamics import cable
+
+    over = {"payload.mass": 2.0, "payload.cable_length": 0.5}
+    if case == "drag":
+        over["payload.drag_area"] = 0.5
+    robot = oc.load_robot(overrides=over)
+    plant = {"initial": (0.05, -0.02)}
+    if case == "winch":
+        plant["hoist"] = cable.hoist_profile([(0.02, 0.5), (0.2, 0.48)])
+    sim = Stepper(robot, 0.1, table1, control_period=PERIOD, **plant)
+    j = sim.observation_names.index("tension_N")
+    y = sim.reset()
+    X = sim.holding()
+    seen = [y[j]]
+    while not sim.truncated:
+        seen.append(sim.step(X)[j])
+    res = sim.record()
+    k = np.arange(1, len(seen) - 1) * round(PERIOD / 1e-3)    # the instants a step began
+    np.testing.assert_allclose(seen[1:-1], res.tension[k], rtol=1e-12)
+    assert np.all(np.isfinite(seen)) and np.ptp(seen) > 0          # it moves, it is read
+
+
+def test_a_hoisted_rigid_cable_that_goes_slack_terminates_the_run():
+    """A winch hauling 5 cm in 60 ms takes the load's weight off the cable: its tension,
+    formed by the record after the run (not in the loop), is judged at each control
+    instant, and the run is terminated at the first instant after the record's stop."""
+    from offshore_crane.dynamics import cable
+
+    robot = oc.load_robot(overrides={"payload.mass": 2.0, "payload.cable_length": 0.5})
+    sim = Stepper(robot, 0.2, table1, control_period=PERIOD, initial=(0.05, -0.02),
+                  hoist=cable.hoist_profile([(0.02, 0.5), (0.08, 0.45)]))
+    sim.reset()
+    X = sim.holding()
+    while not (sim.terminated or sim.truncated):
+        sim.step(X)
+    res = sim.record()
+    assert sim.terminated and "slack" in res.stop
+    assert sim.time - PERIOD <= res.t[-1] + 1e-3 <= sim.time

@@ -13,8 +13,8 @@ class Aim:
     The tip is the ``arm_tip`` frame's origin by the cable's compiled kernels (the
     hanging plant's ``arm_tip``; a rigid robot's through the same description with a
     cable hung at the tip, which moves nothing of the arm's kinematics). The payload: an
-    elastic cable's is in the state, a hanging load's is formed from q and the sway
-    (:meth:`~offshore_crane.simulation.plants.Plant.observe`), a welded one is the tip.
+    elastic cable's is in the state, a hanging load's is formed from q and the sway (the
+    hanging plant's ``payload`` kernel, as its observation), a welded one is the tip.
     """
 
     def __init__(self, sim):
@@ -26,7 +26,7 @@ class Aim:
         tipped = plant if plant.name == "hanging" else HangingPlant(robot, robot, plant.g)
         self._K, self._P = tipped.kernels(), tipped.params()
         self._out, self._zero = np.empty(9), np.zeros(9)
-        self._pay = np.empty(len(plant.observed_names()))
+        self._pay = np.empty(6)
         self._plant = plant
         t, qr, _ = sim.plan()
         tip = np.array([self.tip(q) for q in qr])
@@ -44,9 +44,9 @@ class Aim:
         ``i``."""
         if self.kind == "elastic":
             return y[9:12].copy()
-        if self.kind == "hanging":
-            self._plant.observe(i, y, self._pay)          # the position first
-            return self._pay[:3].copy()
+        if self.kind == "hanging":                  # from the tip, on the model
+            self._K.payload(self._P, i, np.ascontiguousarray(y, dtype=float), self._pay)
+            return self.tip(y[:9]) + self._pay[3:6]
         return self.tip(y[:9])
 
     @staticmethod

@@ -69,9 +69,11 @@ class Stepper:
         observation_names: The names of :meth:`step`'s observation, the CSV's columns:
             the plant's state as the sensors measure it (``q1_m`` ... ``qd9_m_s``;
             ``phi1_rad`` ... of a hanging load; ``payload_x_m`` ... of an elastic cable),
-            what the plant forms of it (a hanging load's position ``payload_x_m`` ...; an
-            elastic cable's ``tension_N``: :meth:`~offshore_crane.simulation.plants.Plant.
-            observe`: the cable's length ``L_m`` too), then the scene's reference at
+            what the plant forms of it (a hanging load's position ``payload_x_m`` ...; the
+            cable's tension ``tension_N``, a rigid cable's under the forces
+            :meth:`acting`; the cable's length ``L_m``:
+            :meth:`~offshore_crane.simulation.plants.Plant.observe`), then the scene's
+            reference at
             the instant, ``q1_ref_m`` ... ``qd9_ref_m_s`` (exact: the vessel's motion in
             q1..q6, the arm's plan in q7..q9).
         action_names: What an action gives, in order: the forces (``T1`` ... ``Fl6``, and
@@ -273,10 +275,27 @@ class Stepper:
         i = 2 * self._k * self._run.timing.hold
         plant.kernels().gravity(plant.params(), i, y, X)
         if plant.nx > 9:
-            tension = np.zeros(1)
-            plant.observe(i, y, tension)
-            X[9] = tension[0]
+            seen = np.zeros(len(plant.observed_names()))
+            plant.observe(i, y, X, seen)
+            X[9] = seen[plant.observed_names().index("tension_N")]
         return X
+
+    def acting(self) -> np.ndarray:
+        """``(nx,)`` [N·m, N]: the forces acting on the plant at this instant, before
+        the next action takes over (the last period's, after the capacities and the
+        lag; at the start, :meth:`holding`'s: none has acted yet).
+
+        Raises:
+            InputError: before :meth:`reset`."""
+        p = self._pieces
+        if p is None:
+            raise InputError("no run yet: call reset() first", name="reset")
+        if self._k == 0:
+            return self.holding()
+        if len(p.lag):                 # the lag's state, clipped as the loop clips it
+            a = self._run.plant.size + p.n_z
+            return np.clip(p.y[a:a + self._run.plant.nx], p.lo, p.hi)
+        return p.rec[6][p.done - 1].copy()     # held over the period: its last sample's
 
     def plan(self) -> tuple:
         """``(t (n + 1,) [s], q_ref, q̇_ref (n + 1, 9))``: the scene's reference at every
@@ -382,18 +401,23 @@ class Stepper:
             hist[g % (p.delay + 1)] = p.y[:n_p]
         self._sense(p.y, ym, hist, p.W[-1], g, p.delay, p.nq, p.nqd, p.res[0], p.res[1],
                     p.sens, int(p.status[3]), n_p)
-        plant.observe(2 * g, ym[:n_p], self._observed)
+        plant.observe(2 * g, ym[:n_p], self.acting(), self._observed)
         qr, qdr, _ = self._scene
         return np.concatenate([ym[:n_p], self._observed, qr[2 * g], qdr[2 * g]])
 
     def _slack(self) -> bool:
         """Whether a sample the last period recorded has the cable's tension below
-        :attr:`slack_tension` (NaN, a tension the record forms after the run: not
-        judged here)."""
-        p, t = self._pieces, self._run.timing
+        :attr:`slack_tension`; where the record forms the tension after the run (a
+        hoisted rigid cable's: NaN in the loop's record), the tension at this instant,
+        as simulated, under the forces acting."""
+        p, t, plant = self._pieces, self._run.timing, self._run.plant
         a = max(0, (self._k - 1) * t.hold // t.out_every)
-        T = self._run.plant.recorded(p.extra)["tension"][a:p.done]
-        return bool((T < self.slack_tension).any())
+        T = plant.recorded(p.extra)["tension"][a:p.done]
+        if np.isnan(T).all():
+            seen = np.zeros(len(plant.observed_names()))
+            plant.observe(2 * self._k * t.hold, self.state, self.acting(), seen)
+            T = seen[plant.observed_names().index("tension_N")]
+        return bool(np.any(T < self.slack_tension))
 
     def _outside(self) -> bool:
         """Whether the last period's samples left the workspace (the compiled check of

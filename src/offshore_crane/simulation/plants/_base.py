@@ -112,10 +112,11 @@ class Plant:
         (``()``: nothing; the CSV's names with their units)."""
         return ()
 
-    def observe(self, i: int, y: np.ndarray, out: np.ndarray) -> None:
+    def observe(self, i: int, y: np.ndarray, X: np.ndarray, out: np.ndarray) -> None:
         """The channels :meth:`observed_names` names, formed from the measured state
-        ``y`` ``(size,)`` at stage point ``i``, into ``out`` ``(len(observed_names),)``
-        (on the compiled kernels: a stepper calls it every control period)."""
+        ``y`` ``(size,)`` at stage point ``i`` under the forces ``X`` ``(nx,)`` [N·m, N]
+        acting there, into ``out`` ``(len(observed_names),)`` (on the compiled kernels:
+        a stepper calls it every control period)."""
 
     def words(self, cause: StopCause, res) -> str:
         """A stop's cause in words, from the samples kept (``res``)."""

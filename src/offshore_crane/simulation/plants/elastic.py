@@ -139,7 +139,7 @@ class ElasticPlant(Plant):
     def observed_names(self) -> tuple[str, ...]:
         return ("tension_N",) + (() if self.commanded else ("L_m",))
 
-    def observe(self, i, y, out):
+    def observe(self, i, y, X, out):
         """The cable's tension [N] at the measured state (the load cell's measure:
         :meth:`channels`' ``tension``) and, when the winch follows a profile, its length
         there [m] (a commanded winch's is in the state)."""

@@ -64,19 +64,29 @@ class HangingPlant(Plant):
         return ("phi1_rad", "phi2_rad", "phid1_rad_s", "phid2_rad_s")
 
     def observed_names(self) -> tuple[str, ...]:
-        return (*(f"payload_{a}_m" for a in "xyz"), "L_m")
+        return (*(f"payload_{a}_m" for a in "xyz"), "tension_N", "L_m")
 
-    def observe(self, i, y, out):
-        """The payload's position [m] in the base frame: the tip's (``arm_tip``) and the
-        payload's from it (``payload``) at the measured q, φ on the compiled kernels;
+    def observe(self, i, y, X, out):
+        """At the measured q, φ and their rates: the payload's position [m] in the base
+        frame (the tip's, ``arm_tip``, and the payload's from it, ``payload``, on the
+        compiled kernels); the cable's tension [N] under the forces ``X`` acting (a
+        rigid cable's tension is the pendulum's pull at the accelerations they give:
+        the plant's ``rhs``, then the record's own formulas, :func:`cable_tension`);
         the cable's length [m] (a winch's profile there, else the fixed length)."""
         K, P = self.kernels(), self.params()
         y = np.ascontiguousarray(y, dtype=float)
-        pay, tip = np.empty(6), np.empty(9)
+        pay, tip, dy = np.empty(6), np.empty(9), np.empty(22)
         K.payload(P, i, y, pay)
         K.arm_tip(P, y[:9], y[11:20], np.zeros(9), tip)
         out[:3] = tip[:3] + pay[3:6]
-        out[3] = self.lengths[i if len(self.lengths) > 1 else 0, 0]
+        K.rhs(P, i, y, np.ascontiguousarray(X, dtype=float), dy, np.zeros(2))
+        hoisted = len(self.lengths) > 1
+        kane = np.nan if hoisted else K.tension(P[0], P[1], P[2], P[5], y, dy, P[18])
+        rows = (y[None, :9], y[None, 11:20], dy[None, 11:20], y[None, 9:11],
+                y[None, 20:22], dy[None, 20:22])
+        out[3] = cable_tension(self.robot, *rows, self.lengths[i][None] if hoisted else
+                               None, self.g, np.array([kane]))[0]
+        out[4] = self.lengths[i if hoisted else 0, 0]
 
     def finish(self, res, rec, limits, follow=None):
         n = len(res)
@@ -110,28 +120,35 @@ def _finish(robot, res, sway_acc, g, L, tension, follow) -> None:
     sample, :func:`~offshore_crane.simulation.plants._hanging_kernels` ``keep``) and the
     drag's share along the cable; with a winch's ``L`` ``(n, 3)`` [m, m/s, m/s²], the
     hoisted pendulum's pull on NumPy arrays."""
-    from offshore_crane.dynamics.constants import cable_arrays
-
     n = len(res)
     if n == 0:
         return
+    res.tension = cable_tension(robot, res.q, res.qd, res.qdd, res.sway, res.sway_rate,
+                                sway_acc[:n], L, g, tension)
+    res.power = follow.power(res.q, res.qd, res.X)
+
+
+def cable_tension(robot, q, qd, qdd, sway, sway_rate, sway_acc, L, g, kane) -> np.ndarray:
+    """``(n,)`` the rigid cable's tension [N] at ``n`` states ``q, q̇, q̈`` ``(n, 9)``,
+    ``φ, φ̇, φ̈`` ``(n, 2)``: with a winch's ``L`` ``(n, 3)`` [m, m/s, m/s²] the hoisted
+    pendulum's pull on NumPy arrays; on a cable of a fixed length (``L`` None) the
+    Kane pass's ``kane`` ``(n,)`` (the force its store carries across the sway joints:
+    the compiled kernels' ``tension``) and the drag's share along the cable."""
+    from offshore_crane.dynamics.constants import cable_arrays
+
     if L is not None:
         from offshore_crane.dynamics.cable.forces import hoisted_pull
 
-        Y = np.hstack([res.sway, res.sway_rate, sway_acc])
-        res.tension = hoisted_pull(robot, cable_arrays(robot).kane, res.q, res.qd, res.qdd,
-                                   Y, L, g)[2][:, 3]
-        res.power = follow.power(res.q, res.qd, res.X)
-        return
-    T = np.array(tension, dtype=float)
+        Y = np.hstack([sway, sway_rate, sway_acc])
+        return hoisted_pull(robot, cable_arrays(robot).kane, q, qd, qdd, Y, L, g)[2][:, 3]
+    T = np.array(kane, dtype=float)
     if robot.hybrid.drag > 0.0:             # the pull along the cable takes the drag too
         from offshore_crane.dynamics.cable.forces import hanging_drag
 
-        f, _, _, _, e = hanging_drag(robot, cable_arrays(robot).kane, res.q, res.qd,
-                                     res.qdd, np.hstack([res.sway, res.sway_rate]), None)
+        f, _, _, _, e = hanging_drag(robot, cable_arrays(robot).kane, q, qd, qdd,
+                                     np.hstack([sway, sway_rate]), None)
         T += np.einsum("ij,ij->i", f, e)
-    res.tension = T
-    res.power = follow.power(res.q, res.qd, res.X)
+    return T
 
 
 def _slack_or_workspace(robot, res, limits, watch=None):
