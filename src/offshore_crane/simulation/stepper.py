@@ -177,6 +177,9 @@ class Stepper:
             self.action_bounds = (lo.copy(), hi.copy())
         self.slack_tension = None
         if "tension" in plant_.RECORDED:
+            before = list(plant_.RECORDED)[:list(plant_.RECORDED).index("tension")]
+            #: The tension's column in the plant's own record (``Plant.recorded``'s).
+            self._tension_column = sum(max(plant_.RECORDED[k], 1) for k in before)
             ratio = plant_.robot.load_limits.tension_ratio_min
             m = float(plant_.robot.hybrid.cable.mass[-1])
             self.slack_tension = (0.0 if np.isnan(ratio) else
@@ -359,18 +362,16 @@ class Stepper:
             what = "forces" if not self.reference_action else "reference values"
             raise InputError(f"action of shape {a.shape}: give {nx} {what} "
                              f"({', '.join(self.action_names)})", name="action")
-        bad = np.flatnonzero(~np.isfinite(a))
-        if bad.size:
-            j = int(bad[0])
+        if not np.isfinite(a).all():
+            j = int(np.flatnonzero(~np.isfinite(a))[0])
             raise InputError(f"action {self.action_names[j]} = {float(a[j])} at t = "
                              f"{self.time:g} s: give finite numbers", name="action")
         if self.reference_action:
             self._hold_reference(a)
             return self._pieces
         lo, hi = self.capacities
-        out = np.flatnonzero((a < lo) | (a > hi))
-        if out.size and not self.saturation:
-            j = int(out[0])
+        if not self.saturation and ((a < lo) | (a > hi)).any():
+            j = int(np.flatnonzero((a < lo) | (a > hi))[0])
             raise InputError(f"action {self.action_names[j]} = {a[j]:.6g} at t = "
                              f"{self.time:g} s is beyond its capacity [{lo[j]:.6g}, "
                              f"{hi[j]:.6g}]: give a force within it, or open the stepper "
@@ -412,7 +413,7 @@ class Stepper:
         as simulated, under the forces acting."""
         p, t, plant = self._pieces, self._run.timing, self._run.plant
         a = max(0, (self._k - 1) * t.hold // t.out_every)
-        T = plant.recorded(p.extra)["tension"][a:p.done]
+        T = p.extra[a:p.done, self._tension_column]
         if np.isnan(T).all():
             seen = np.zeros(len(plant.observed_names()))
             plant.observe(2 * self._k * t.hold, self.state, self.acting(), seen)

@@ -147,9 +147,10 @@ class ElasticPlant(Plant):
 
         P = self.params()
         L, Ld = self.length(i, y)
+        if getattr(self, "_measured", None) is None:     # the load cell's scratch, once
+            self._measured = (np.zeros(ep.CELL), np.zeros(ep.WORK))
         out[0] = ep.measure(P[0], P[1], P[2], P[6], L, Ld,
-                            np.ascontiguousarray(y, dtype=float), np.zeros(ep.CELL),
-                            np.zeros(ep.WORK))
+                            np.ascontiguousarray(y, dtype=float), *self._measured)
         if not self.commanded:
             out[1] = L
 
