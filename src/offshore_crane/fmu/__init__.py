@@ -1,6 +1,7 @@
 """The crane as an FMI 2.0 co-simulation unit (``pip install "offshore-crane[fmu]"``):
 :func:`export_fmu` writes a scene's crane as an FMU (``offshore-crane export --fmu``),
-built by PythonFMU, whose model is :class:`~offshore_crane.fmu._slave.CraneSlave`.
+built by PythonFMU, whose model is :class:`~offshore_crane.fmu.model.CraneSlave` (its
+simulation in a process of its own, :mod:`offshore_crane.fmu._worker`).
 docs/control.md says how to run it (FMPy, OpenModelica, a co-simulation master) and
 what the machine that runs it needs.
 """

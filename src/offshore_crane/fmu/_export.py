@@ -1,5 +1,6 @@
 """Writing a scene's crane as an FMI 2.0 co-simulation FMU (:func:`export_fmu`), built
-by PythonFMU: its model is :class:`~offshore_crane.fmu._slave.CraneSlave`."""
+by PythonFMU: its model is :class:`~offshore_crane.fmu.model.CraneSlave`, whose
+simulation runs in a process of its own (:mod:`offshore_crane.fmu._worker`)."""
 
 from __future__ import annotations
 
@@ -12,16 +13,17 @@ import tempfile
 from pathlib import Path
 
 from offshore_crane.errors import InputError, require
-from offshore_crane.fmu._slave import FOLDER
+from offshore_crane.fmu import model as crane_model
 
 #: The FMU's model name (its ``modelIdentifier``: the binaries' name).
 MODEL = "OffshoreCrane"
-#: The script the FMU runs: a class of :class:`CraneSlave` with the run's default
-#: experiment (``{start}``, ``{stop}``, ``{step}`` [s]).
-SCRIPT = '''"""offshore-crane's FMU model (written by offshore-crane export --fmu)."""
-from pythonfmu import DefaultExperiment
+#: What follows the model's text (:mod:`offshore_crane.fmu.model`) in the FMU's script:
+#: the class the FMU names, with the run's default experiment (``{start}``, ``{stop}``,
+#: ``{step}`` [s]).
+SCRIPT_END = '''
 
-from offshore_crane.fmu._slave import CraneSlave
+# ---------------------------------------------------------- written by export --fmu
+from pythonfmu import DefaultExperiment  # noqa: E402
 
 # PythonFMU's loader runs this text again at each instantiation with this module's
 # dictionary as globals, then releases that dictionary once more than it took it (its
@@ -74,14 +76,15 @@ def export_fmu(scene, target, *, control_period: float, duration: float | None =
     settings = _settings(sc, sim, control_period, action)
     with tempfile.TemporaryDirectory(prefix="oc-fmu-") as tmp:
         tmp = Path(tmp)
-        folder = tmp / FOLDER
+        folder = tmp / crane_model.FOLDER
         _copy_scene(sc, Path(scene), folder)
         (folder / "settings.json").write_text(json.dumps(settings, indent=1))
         digest = hashlib.sha256(json.dumps(settings, sort_keys=True).encode()
                                 + b"".join(p.read_bytes() for p in sorted(
                                     folder.rglob("*")) if p.is_file())).hexdigest()[:16]
         script = tmp / f"offshore_crane_fmu_{digest}.py"
-        script.write_text(SCRIPT.format(
+        model = Path(crane_model.__file__).read_text(encoding="utf-8")
+        script.write_text(model + SCRIPT_END.format(
             model=MODEL, description=f"{sc.name}: {sc.description}".strip(": "),
             start=t0, stop=t0 + settings["duration"], step=float(control_period)))
         try:
