@@ -19,7 +19,7 @@ from offshore_crane import scenes
 from offshore_crane.conventions import QD_COLUMNS, Q_COLUMNS
 from offshore_crane.errors import InputError
 from offshore_crane.gym import CraneLift, LiftReward
-from offshore_crane.simulation.control import Controller
+from problems import computed_torque_law, simulated_on_scene
 
 SCENES = Path(__file__).parents[2] / "scenes"
 PERIOD = 0.01           # [s]: 100 Hz
@@ -33,19 +33,6 @@ def commanded_winch_lift(tmp_path) -> Path:
     path.write_text(text.replace("[actuators.winch]",
                                  "[actuators.winch]\nreflected_mass = 2.0", 1))
     return path
-
-
-def law_of(robot):
-    """Computed torque written in Python on the model without the hanging load (its
-    forces are the law's business, not the model's): ``law(t, q, qd, q_ref, qd_ref,
-    qdd_ref) -> X (9,)``."""
-    kp, kd = Controller().gains
-    model = robot.without_hanging_payload()
-
-    def law(t, q, qd, q_ref, qd_ref, qdd_ref):
-        return oc.inverse_dynamics(model, q, qd, qdd_ref + kd * (qd_ref - qd)
-                                   + kp * (q_ref - q))
-    return law
 
 
 @pytest.mark.parametrize("scene", ["sea_state_crane.toml", "hanging_load.toml", "winch"])
@@ -71,19 +58,9 @@ def test_one_law_through_simulate_the_stepper_and_the_environment_is_one_run(sce
     """The law sampled at 100 Hz: ``simulate`` (a Python law at that rate on the
     scene's inputs), the stepper and the environment (the law on its observations):
     q, q̇ and the forces bit for bit (the same loop; ≤ 1e-12 asked)."""
-    from offshore_crane.simulation.elastic import simulate_elastic
-
     path = SCENES / scene
-    sc = scenes.load_scene(path)
-    robot = scenes.load_robot(sc)
-    traj, elastic, swing = scenes.plant_options(sc, robot, scenes.load_trajectory(sc, robot))
-    law = law_of(robot)
-    control = Controller(function=law, rate=1 / PERIOD,
-                         saturation=scenes.controller(sc, robot).saturation)
-    run = simulate_elastic if elastic is not None else oc.simulate
-    want = run(robot, 0.2, traj.reference, controller=control, gravity=sc.gravity,
-               step=sc.control.get("step", 1e-3), t0=float(traj.t[0]),
-               **(elastic or swing), **scenes.instruments(sc))
+    law = computed_torque_law(scenes.load_robot(scenes.load_scene(path)))
+    want = simulated_on_scene(path, law, 0.2, PERIOD)[0]
     env = gymnasium.make("offshore_crane.gym:CraneLift-v0", scene=path,
                          control_period=PERIOD, duration=0.2)
     names = env.unwrapped.observation_names
@@ -106,15 +83,15 @@ def test_one_law_through_simulate_the_stepper_and_the_environment_is_one_run(sce
 
 def test_the_default_reward_is_its_formula_on_the_record():
     """``LiftReward`` at each step against its formula on the run's record: the payload
-    recorded (the elastic cable's state), the aim from the tip under the reference (the
-    cable's kernels' tip against the NumPy formulas', ``tip_positions``) hanging by the
-    winch's length stretched by m|g|/EA, the forces applied over the period. 1e-12
-    relative: the tip's two evaluations order their sums apart."""
+    recorded (the elastic cable's state), the aim from the tip under the reference
+    (``tip_positions``) hanging by the winch's length stretched by m|g|/EA, the forces
+    applied over the period (the record's). 1e-12 relative: the environment's sums are
+    ordered apart (its mean over the period, its squared norms)."""
     from offshore_crane.dynamics.cable.tip import tip_positions
 
     env = CraneLift(SCENES / "compensated_lift.toml", control_period=PERIOD, duration=0.1)
     reward = LiftReward(position_scale=0.02, effort_weight=0.5)
-    law = law_of(env.sim.plant.robot)
+    law = computed_torque_law(env.sim.plant.robot)
     names = env.observation_names
     iq, iqd = ([names.index(c) for c in cols] for cols in (Q_COLUMNS, QD_COLUMNS))
     y, _ = env.reset()

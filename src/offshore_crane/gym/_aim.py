@@ -10,14 +10,17 @@ class Aim:
     """The payload's position now and its aim at every control instant of a stepper's run
     (:class:`~offshore_crane.simulation.stepper.Stepper`), base frame [m].
 
-    The tip is the ``arm_tip`` frame's origin by the cable's compiled kernels (the
-    hanging plant's ``arm_tip``; a rigid robot's through the same description with a
-    cable hung at the tip, which moves nothing of the arm's kinematics). The payload: an
-    elastic cable's is in the state, a hanging load's is formed from q and the sway (the
-    hanging plant's ``payload`` kernel, as its observation), a welded one is the tip.
+    The tip is the ``arm_tip`` frame's origin by the cable's formulas (a rigid robot's
+    through the same description with a cable hung at the tip, which moves nothing of the
+    arm's kinematics): the aim's at every instant at once on NumPy arrays
+    (:func:`~offshore_crane.dynamics.cable.tip.tip_positions`), the payload's now by the
+    hanging plant's compiled kernels (``arm_tip``). The payload: an elastic cable's is in
+    the state, a hanging load's is formed from q and the sway (the hanging plant's
+    ``payload`` kernel, as its observation), a welded one is the tip.
     """
 
     def __init__(self, sim):
+        from offshore_crane.dynamics.cable.tip import tip_positions
         from offshore_crane.simulation.plants.hanging import HangingPlant
 
         plant = sim.plant
@@ -29,7 +32,7 @@ class Aim:
         self._pay = np.empty(6)
         self._plant = plant
         t, qr, _ = sim.plan()
-        tip = np.array([self.tip(q) for q in qr])
+        tip = tip_positions(robot, qr)[0]
         down = plant.g / np.linalg.norm(plant.g)
         self.positions = tip + np.outer(self._hanging(plant, sim, len(t)), down)
 

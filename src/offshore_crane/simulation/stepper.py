@@ -147,7 +147,9 @@ class Stepper:
             raise InputError("the output rate must divide the control period",
                              name="rate")
         self.reference_action = action == "reference"
-        self._scene = tuple(a.copy() for a in run.grid[1:])   # the scene's reference
+        # the scene's reference (q, q̇, q̈ at every stage): the grid itself, or a copy of
+        # it where the actions write the law's reference into the grid
+        self._scene = tuple(a.copy() if self.reference_action else a for a in run.grid[1:])
         if self.reference_action:
             if type(run.law).reference_once:
                 raise InputError(f"the law {run.law.name!r} forms its reference once from "
@@ -177,9 +179,6 @@ class Stepper:
             self.action_bounds = (lo.copy(), hi.copy())
         self.slack_tension = None
         if "tension" in plant_.RECORDED:
-            before = list(plant_.RECORDED)[:list(plant_.RECORDED).index("tension")]
-            #: The tension's column in the plant's own record (``Plant.recorded``'s).
-            self._tension_column = sum(max(plant_.RECORDED[k], 1) for k in before)
             ratio = plant_.robot.load_limits.tension_ratio_min
             m = float(plant_.robot.hybrid.cable.mass[-1])
             self.slack_tension = (0.0 if np.isnan(ratio) else
@@ -209,6 +208,8 @@ class Stepper:
         self.terminated = self.truncated = False
         first = self._pieces.W[-1]
         first[:] = self._pieces.y[:run.plant.size]
+        if self.slack_tension is not None:      # the record's tension column, a view
+            self._tension = run.plant.recorded(self._pieces.extra)["tension"]
         return self._observe()
 
     def step(self, action) -> np.ndarray:
@@ -413,7 +414,7 @@ class Stepper:
         as simulated, under the forces acting."""
         p, t, plant = self._pieces, self._run.timing, self._run.plant
         a = max(0, (self._k - 1) * t.hold // t.out_every)
-        T = p.extra[a:p.done, self._tension_column]
+        T = self._tension[a:p.done]
         if np.isnan(T).all():
             seen = np.zeros(len(plant.observed_names()))
             plant.observe(2 * self._k * t.hold, self.state, self.acting(), seen)

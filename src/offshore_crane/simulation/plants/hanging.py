@@ -75,11 +75,14 @@ class HangingPlant(Plant):
         the cable's length [m] (a winch's profile there, else the fixed length)."""
         K, P = self.kernels(), self.params()
         y = np.ascontiguousarray(y, dtype=float)
-        pay, tip, dy = np.empty(6), np.empty(9), np.empty(22)
+        if getattr(self, "_observed", None) is None:      # the kernels' outputs, once
+            self._observed = (np.empty(6), np.empty(9), np.empty(22), np.zeros(9),
+                              np.zeros(2))
+        pay, tip, dy, zero, aux = self._observed
         K.payload(P, i, y, pay)
-        K.arm_tip(P, y[:9], y[11:20], np.zeros(9), tip)
+        K.arm_tip(P, y[:9], y[11:20], zero, tip)
         out[:3] = tip[:3] + pay[3:6]
-        K.rhs(P, i, y, np.ascontiguousarray(X, dtype=float), dy, np.zeros(2))
+        K.rhs(P, i, y, np.ascontiguousarray(X, dtype=float), dy, aux)
         hoisted = len(self.lengths) > 1
         kane = np.nan if hoisted else K.tension(P[0], P[1], P[2], P[5], y, dy, P[18])
         rows = (y[None, :9], y[None, 11:20], dy[None, 11:20], y[None, 9:11],
