@@ -78,3 +78,38 @@ def assert_cable_paths_agree(kane, pinocchio, sway: float, rel: float) -> None:
     for name in ("X", "force_tip", "tension"):
         k, p = getattr(kane, name), getattr(pinocchio, name)
         assert np.abs(k - p).max() <= rel * np.abs(p).max(), name
+
+
+def computed_torque_law(robot):
+    """Computed torque written in Python on ``robot``'s model without its hanging load
+    (the load's forces are the law's to meet, not the model's), at the default gains:
+    ``law(t, q, qd, q_ref, qd_ref, qdd_ref) -> X (9,)`` [N·m, N]."""
+    import offshore_crane as oc
+
+    kp, kd = oc.Controller().gains
+    model = robot.without_hanging_payload()
+
+    def law(t, q, qd, q_ref, qd_ref, qdd_ref):
+        return oc.inverse_dynamics(model, q, qd, qdd_ref + kd * (qd_ref - qd)
+                                   + kp * (q_ref - q))
+    return law
+
+
+def simulated_on_scene(path, law, seconds: float, period: float):
+    """``simulate``'s run (``simulate_elastic`` on an elastic cable) of the Python
+    ``law`` sampled every ``period`` [s] for ``seconds`` on the scene file ``path``'s
+    inputs, set up as ``simulate --scene`` sets them (``scenes.plant_options``, the
+    instruments, step, gravity and saturation): ``(result, robot)``."""
+    import offshore_crane as oc
+    from offshore_crane import scenes
+    from offshore_crane.simulation.elastic import simulate_elastic
+
+    sc = scenes.load_scene(path)
+    robot = scenes.load_robot(sc)
+    traj, elastic, swing = scenes.plant_options(sc, robot, scenes.load_trajectory(sc, robot))
+    control = oc.Controller(function=law, rate=1 / period,
+                            saturation=scenes.controller(sc, robot).saturation)
+    run = simulate_elastic if elastic is not None else oc.simulate
+    return run(robot, seconds, traj.reference, controller=control, gravity=sc.gravity,
+               step=sc.control.get("step", 1e-3), t0=float(traj.t[0]),
+               **(elastic or swing), **scenes.instruments(sc)), robot

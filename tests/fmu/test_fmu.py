@@ -15,27 +15,15 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave
 from fmpy.validation import validate_fmu
 
-import offshore_crane as oc
 from offshore_crane import scenes
 from offshore_crane.conventions import QD_COLUMNS, Q_COLUMNS
 from offshore_crane.errors import InputError
 from offshore_crane.fmu import export_fmu
-from offshore_crane.simulation.control import Controller
+from problems import computed_torque_law
 
 SCENES = Path(__file__).parents[2] / "scenes"
 PERIOD = 0.01           # [s]: 100 Hz
 SECONDS = 0.2
-
-
-def law_of(robot):
-    """Computed torque in Python on the model without the hanging load."""
-    kp, kd = Controller().gains
-    model = robot.without_hanging_payload()
-
-    def law(q, qd, q_ref, qd_ref, qdd_ref):
-        return oc.inverse_dynamics(model, q, qd, qdd_ref + kd * (qd_ref - qd)
-                                   + kp * (q_ref - q))
-    return law
 
 
 class Unit:
@@ -87,14 +75,14 @@ def test_the_fmu_stepped_by_fmpy_is_the_steppers_run(scene, tmp_path):
                       duration=SECONDS)
     assert validate_fmu(str(path)) == []
     sim = scenes.stepper(SCENES / scene, control_period=PERIOD, duration=SECONDS)
-    law = law_of(sim.plant.robot)
+    law = computed_torque_law(sim.plant.robot)
     names, acts = sim.observation_names, sim.action_names
     cols = [[names.index(c) for c in cs] for cs in (
         Q_COLUMNS, QD_COLUMNS, [c.replace("_", "_ref_", 1) for c in Q_COLUMNS],
         [c.replace("_", "_ref_", 1) for c in QD_COLUMNS])]
 
     def act(y):
-        return law(*(y[c] for c in cols), np.zeros(9))
+        return law(None, *(y[c] for c in cols), np.zeros(9))
     want, y = [], sim.reset(seed=int(scenes.load_scene(SCENES / scene).sea["seed"]))
     while not sim.truncated:
         y = sim.step(act(y))

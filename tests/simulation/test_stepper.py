@@ -15,19 +15,10 @@ from offshore_crane.motion.trajectories import table1
 from offshore_crane.simulation.control import Controller
 from offshore_crane.simulation.instruments import Sensors
 from offshore_crane.simulation.stepper import Stepper
+from problems import computed_torque_law, simulated_on_scene
 
 PERIOD = 0.01          # [s]: 100 Hz, ten 1 ms steps
 SECONDS = 0.3
-
-
-def _law(robot):
-    """Computed torque written in Python (the model's inverse dynamics), 9 forces."""
-    kp, kd = Controller().gains
-
-    def law(t, q, qd, q_ref, qd_ref, qdd_ref):
-        return oc.inverse_dynamics(robot.without_hanging_payload(), q, qd,
-                                   qdd_ref + kd * (qd_ref - qd) + kp * (q_ref - q))
-    return law
 
 
 def _stepped(sim, law, seed=5):
@@ -63,7 +54,7 @@ def test_a_law_stepped_from_outside_is_simulates_sampled_law(plant, sensed):
     robot, options = _robots()[plant]
     sensors = Sensors(noise_q=1e-5, noise_qd=1e-4, delay=2e-3, resolution_q=1e-6,
                       seed=5) if sensed else None
-    law = _law(robot)
+    law = computed_torque_law(robot)
     run = simulate_elastic if "ea" in options else oc.simulate
     want = run(robot, SECONDS, table1, controller=Controller(function=law, rate=1 / PERIOD),
                sensors=sensors, **options)
@@ -177,19 +168,10 @@ def test_a_stepper_on_a_scene_is_its_simulations_run(scene):
     from pathlib import Path
 
     from offshore_crane import scenes
-    from offshore_crane.simulation.elastic import simulate_elastic
 
     path = Path(__file__).parents[2] / "scenes" / scene
-    sc = scenes.load_scene(path)
-    robot = scenes.load_robot(sc)
-    traj, elastic, swing = scenes.plant_options(sc, robot, scenes.load_trajectory(sc, robot))
-    law = _law(robot)
-    control = Controller(function=law, rate=1 / PERIOD,
-                         saturation=scenes.controller(sc, robot).saturation)
-    run = simulate_elastic if elastic is not None else oc.simulate
-    want = run(robot, 0.2, traj.reference, controller=control, gravity=sc.gravity,
-               step=sc.control.get("step", 1e-3), t0=float(traj.t[0]),
-               **(elastic or swing), **scenes.instruments(sc))
+    law = computed_torque_law(scenes.load_robot(scenes.load_scene(path)))
+    want = simulated_on_scene(path, law, 0.2, PERIOD)[0]
     sim = scenes.stepper(path, control_period=PERIOD, duration=0.2)
     got = _stepped(sim, law, seed=None)             # the scene's own seed
     for name in ("t", "q", "qd", "q_ref"):
@@ -214,7 +196,7 @@ def test_what_the_plant_forms_of_the_state_is_the_records():
     for plant, name, cols in (("hanging", "payload_x_m", 3), ("elastic", "tension_N", 1)):
         robot, options = robots[plant]
         sim = Stepper(robot, 0.1, table1, control_period=PERIOD, **options)
-        law, names = _law(robot), sim.observation_names
+        law, names = computed_torque_law(robot), sim.observation_names
         j, jl = names.index(name), names.index("L_m")
         iq, iqd = ([names.index(c) for c in c_] for c_ in (Q_COLUMNS, QD_COLUMNS))
         y, seen, lengths = sim.reset(), [], []
