@@ -2,11 +2,13 @@
 offshore_crane.fmu._worker`` started by the FMU (:mod:`offshore_crane.fmu.model`), the
 scene's stepper (:func:`offshore_crane.scenes.stepper`) driven by the calls it reads.
 
-The FMU's own process then loads no compiled library of ours: PythonFMU 0.7's binary,
-once it has loaded, leaves the heap of its process corrupted if a Fortran runtime
-(SciPy's LAPACK, which Numba's kernels call) is loaded in it afterwards: the process
-aborted at exit (``corrupted double-linked list`` in libgfortran's clean-up), after its
-results, in FMPy as in a C master.
+The FMU's own process then loads nothing compiled of ours (no Numba, LLVM or LAPACK
+in a master that may carry its own), needs only the standard library and PythonFMU in
+the Python it embeds (a master that is not Python preloads a system ``libpython``; the
+simulation runs in a Python with the package), and outlives a simulation that crashes
+or hangs (each answer has a time-out). The abort at the master's exit that first
+motivated it was PythonFMU's own bug, which the model works around
+(:func:`offshore_crane.fmu.model._release_at_exit`).
 
 The protocol, on the standard input and a copy of the standard output (the output
 itself goes to the standard error, so that nothing printed can corrupt a frame):

@@ -13,6 +13,8 @@ action's kind, the channels' names). The machine that runs it needs Python with
 
 from __future__ import annotations
 
+import atexit
+import ctypes
 import json
 import os
 import pickle
@@ -52,6 +54,7 @@ class CraneSlave(Fmi2Slave):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
+        _release_at_exit(Path(self.resources))
         folder = Path(self.resources) / FOLDER
         self._settings = s = json.loads((folder / "settings.json").read_text())
         self._scene_path = str(folder / s["scene"])
@@ -166,6 +169,60 @@ class CraneSlave(Fmi2Slave):
     def _refuse(self, message: str) -> bool:
         self.log(message, Fmi2Status.error)
         return False
+
+
+#: The FMU binaries of this process whose state :func:`_release_at_exit` releases.
+_RELEASED: set[str] = set()
+
+
+def _release_at_exit(resources: Path) -> bool:
+    """Work around a use after free at the exit of the process in PythonFMU's binary
+    (0.6.4 and later; the abort in PythonFMU's issue #228 looks like it): it can abort
+    the master as it ends.
+
+    The binary keeps its interpreter's state in a global ``std::shared_ptr``. On Linux
+    the library is never unloaded (its C++ ``STB_GNU_UNIQUE`` symbols make it
+    ``NODELETE``), so at the process's exit the C++ static destructors free that state,
+    and then the library's ``__attribute__((destructor))`` function
+    ``finalizePythonInterpreter`` resets the same, already destroyed pointer again: it
+    decrements a count inside the freed 128-byte block. Where glibc keeps that block in
+    its unsorted bin, the count overlaps the bin's back link, and the exit aborts with
+    "corrupted double-linked list". Valgrind shows the invalid access in every run;
+    the abort comes in some.
+
+    Here the binary's own ``finalizePythonInterpreter`` is called from Python's
+    ``atexit``, which runs before the block is freed, so both clean-ups after it find
+    the pointer empty:
+
+    * in a master that is a Python program, ``atexit`` runs as the interpreter ends,
+      before C's exit handlers: the state is released there (it holds nothing: its
+      thread ended on finding the interpreter already running);
+    * in a master that is not Python, the state's thread ends the interpreter from the
+      static destructor, and ``atexit`` runs inside it: the call empties the pointer,
+      and its decrement lands in the block still alive (its count is already 0; it
+      destroys nothing).
+
+    Args:
+        resources: The FMU's ``resources`` folder (its binary is in ``../binaries``).
+
+    Returns:
+        Whether a release is registered for this FMU's binary: False off Linux or when
+        no binary of this FMU is loaded in this process.
+    """
+    if not sys.platform.startswith("linux"):
+        return False
+    for binary in sorted((resources.parent / "binaries").glob("*/*.so")):
+        try:                          # only the copy this process has loaded
+            lib = ctypes.CDLL(str(binary), mode=os.RTLD_NOLOAD | os.RTLD_LAZY)
+            release = lib.finalizePythonInterpreter
+        except (OSError, AttributeError):
+            continue
+        if str(binary) not in _RELEASED:
+            _RELEASED.add(str(binary))
+            release.restype, release.argtypes = None, []
+            atexit.register(release)
+        return True
+    return False
 
 
 def _python() -> str:
