@@ -4,6 +4,7 @@ docs/ (``tests/test_docs_figures.py`` checks that the documents say what was sav
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import time
@@ -17,6 +18,19 @@ def add_save_option(parser, name: str) -> None:
     parser.add_argument("--save", action="store_true",
                         help=f"write the figures to benchmarks/results/{name}.json (then "
                         "python scripts/figures.py rewrites the documents' figures)")
+
+
+def benchmark_parser(doc: str, name: str, *,
+                     repeats: int | None = None) -> argparse.ArgumentParser:
+    """A benchmark's command line: the first paragraph of its docstring ``doc`` as the
+    description, ``--save`` (:func:`add_save_option`) and, given ``repeats``,
+    ``--repeats`` (the timed repeats, ``repeats`` by default)."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    if repeats is not None:
+        parser.add_argument("--repeats", type=int, default=repeats,
+                            help=f"timed repeats ({repeats})")
+    add_save_option(parser, name)
+    return parser
 
 
 def stamp() -> dict:

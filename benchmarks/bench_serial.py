@@ -26,7 +26,6 @@ scripts/figures.py`` writes the README's serial figures.
 
 from __future__ import annotations
 
-import argparse
 import csv
 import importlib.metadata
 import sys
@@ -45,7 +44,7 @@ from offshore_crane.serial import reference
 
 import pinocchio as pin
 
-from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+from _saved import benchmark_parser, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 
 ROBOTS_DIR = Path(importlib.metadata.distribution("example-robot-data").locate_file(
     "cmeel.prefix/share/example-robot-data/robots"))
@@ -139,12 +138,11 @@ def targets(rows: list[dict]) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = benchmark_parser(__doc__, "bench_serial")
     parser.add_argument("csv", nargs="?", default="bench_serial.csv",
                         help="output CSV (default bench_serial.csv)")
     parser.add_argument("--sizes", type=int, nargs="+", default=[1, 10_000, 100_000],
                         help="batch sizes N")
-    add_save_option(parser, "bench_serial")
     args = parser.parse_args(argv)
     print(f"µs per sample (best of repeats); numpy {np.__version__}, pinocchio "
           f"{pin.__version__}")

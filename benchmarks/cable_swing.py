@@ -28,7 +28,6 @@ thread count, in the same run.
 
 from __future__ import annotations
 
-import argparse
 import os
 import statistics
 import time
@@ -39,7 +38,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 
-from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+from _saved import benchmark_parser, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 
 
 def _scene(hours: float, rate: float, scale: float, length: float, zeta: float):
@@ -58,7 +57,7 @@ def _scene(hours: float, rate: float, scale: float, length: float, zeta: float):
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = benchmark_parser(__doc__, "cable_swing", repeats=3)
     parser.add_argument("--hours", type=float, default=3.0, help="model-scale hours (3)")
     parser.add_argument("--rate", type=float, default=100.0, help="sampling rate [Hz] (100)")
     parser.add_argument("--scale", type=float, default=20.0, help="Froude scale (20)")
@@ -66,10 +65,8 @@ def main(argv=None) -> int:
                         "20 m at full scale)")
     parser.add_argument("--zeta", type=float, default=0.02,
                         help="damping ratio of the swing (0.02)")
-    parser.add_argument("--repeats", type=int, default=3, help="timed repeats (3)")
     parser.add_argument("--threads", type=int, default=os.cpu_count() or 1,
                         help="threads of the Kane passes (the machine's cores)")
-    add_save_option(parser, "cable_swing")
     args = parser.parse_args(argv)
 
     import offshore_crane as oc

@@ -16,7 +16,6 @@ mode's record, as ``compensate --plot`` draws it).
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 import time
@@ -28,7 +27,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from _saved import add_save_option, save, stamp  # noqa: E402
+from _saved import benchmark_parser, save, stamp  # noqa: E402
 from offshore_crane import scenes  # noqa: E402
 from offshore_crane.studies.compensation import compare_compensation  # noqa: E402
 
@@ -44,8 +43,7 @@ def _figures(run) -> dict:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    add_save_option(parser, "compensation")
+    parser = benchmark_parser(__doc__, "compensation")
     args = parser.parse_args(argv)
     lift = scenes.load_scene(ROOT / "scenes" / "compensated_lift.toml")
     ship = scenes.load_scene(ROOT / "scenes" / "ship_to_ship.toml")

@@ -11,7 +11,6 @@ then the question the lab platform can answer (the arm's actuators and the legs'
 
 from __future__ import annotations
 
-import argparse
 import contextlib
 import io
 import shutil
@@ -23,7 +22,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from _saved import add_save_option, cpu_busy, save, stamp  # noqa: E402
+from _saved import benchmark_parser, cpu_busy, save, stamp  # noqa: E402
 from offshore_crane.cli import main as cli  # noqa: E402
 from offshore_crane.studies import design  # noqa: E402
 
@@ -57,10 +56,9 @@ def _run(space: Path, out: Path, plots: Path, budget: int, workers: int) -> dict
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = benchmark_parser(__doc__, "design")
     parser.add_argument("--budget", type=int, default=60, help="candidates (60)")
     parser.add_argument("--workers", type=int, default=2, help="sweep workers (2)")
-    add_save_option(parser, "design")
     args = parser.parse_args(argv)
     figures = {**stamp()}
     with tempfile.TemporaryDirectory() as tmp:

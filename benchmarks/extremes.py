@@ -27,7 +27,6 @@ acceptance (tests/studies/test_extremes.py) bounds the default's deviation at 5 
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 import time
@@ -39,7 +38,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from _saved import add_save_option, cpu_busy, save, stamp  # noqa: E402
+from _saved import benchmark_parser, cpu_busy, save, stamp  # noqa: E402
 from offshore_crane import scenes  # noqa: E402
 from offshore_crane.studies import sizing, sweep  # noqa: E402
 
@@ -147,13 +146,12 @@ def measure(name: str, groups: int, workers: int) -> dict:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = benchmark_parser(__doc__, "extremes")
     parser.add_argument("--groups", type=int, default=4,
                         help="disjoint groups of 5 default seeds (4: 40 records a scene; "
                         "a record that fails, e.g. leaves the workspace, is left out of "
                         "the later groups and counted)")
     parser.add_argument("--workers", type=int, default=2, help="sweep workers (2)")
-    add_save_option(parser, "extremes")
     args = parser.parse_args(argv)
     figures = {**stamp(), "groups": args.groups,
                "scenes": {name: measure(name, args.groups, args.workers) for name in SCENES}}

@@ -27,7 +27,6 @@ scripts/figures.py`` writes the figures of docs/control.md ("Speed").
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import statistics
 import sys
@@ -39,7 +38,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from _saved import add_save_option, cpu_busy, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+from _saved import benchmark_parser, cpu_busy, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 from offshore_crane import scenes  # noqa: E402
 
 PERIOD = 0.01               # [s]: 100 Hz control
@@ -131,9 +130,7 @@ def vector(actions: np.ndarray, repeats: int) -> dict:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--repeats", type=int, default=3, help="timed repeats (3)")
-    add_save_option(parser, "gym")
+    parser = benchmark_parser(__doc__, "gym", repeats=3)
     args = parser.parse_args(argv)
     w0, m0, a0 = time.perf_counter(), time.process_time(), cpu_busy()
     actions, q = commands(SECONDS)

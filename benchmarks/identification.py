@@ -14,7 +14,6 @@ measured (the project's machine is shared: a busy machine is slower).
 
 from __future__ import annotations
 
-import argparse
 import os
 import re
 import resource
@@ -28,7 +27,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+from _saved import benchmark_parser, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 
 HEAVY = ["--set", "platform.mass=48", "--set", "arm.link1.mass=4.6"]
 
@@ -55,9 +54,8 @@ def summary(runs: list[tuple[float, float, str]]) -> dict:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = benchmark_parser(__doc__, "identification")
     parser.add_argument("--repeats", type=int, default=3, help="runs of each command (3)")
-    add_save_option(parser, "identification")
     args = parser.parse_args(argv)
     load = os.getloadavg()[0]
     with tempfile.TemporaryDirectory() as tmp:

@@ -15,7 +15,6 @@ BYTES_PER_SAMPLE × rows), the CSV's size. Saved: benchmarks/results/identificat
 
 from __future__ import annotations
 
-import argparse
 import os
 import re
 import resource
@@ -28,7 +27,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+from _saved import benchmark_parser, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 
 #: The child: identify in-process, then its own peak resident set [kB] on standard error.
 CHILD = ("import resource, sys\nfrom offshore_crane.__main__ import main\n"
@@ -77,12 +76,11 @@ def identify(log: Path, limit: float) -> dict:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = benchmark_parser(__doc__, "identification_memory")
     parser.add_argument("--durations", type=float, nargs="+", default=[200.0, 1800.0],
                         help="the logs' durations [s] (default 200 1800)")
     parser.add_argument("--limit", type=float, default=2e9,
                         help="OFFSHORE_CRANE_MEMORY_LIMIT of the runs [bytes] (default 2e9)")
-    add_save_option(parser, "identification_memory")
     args = parser.parse_args(argv)
     from offshore_crane.cli.logs import BYTES_PER_SAMPLE, FIXED_BYTES
 

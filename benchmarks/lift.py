@@ -15,7 +15,6 @@ Target: ≤ 20 s on this project's 2-core machine.
 
 from __future__ import annotations
 
-import argparse
 import statistics
 import sys
 import time
@@ -25,17 +24,15 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+from _saved import benchmark_parser, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 from offshore_crane import scenes  # noqa: E402
 
 TARGET = 20.0           # [s]
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = benchmark_parser(__doc__, "lift", repeats=3)
     parser.add_argument("--hours", type=float, default=3.0, help="model-scale hours (3)")
-    parser.add_argument("--repeats", type=int, default=3, help="timed repeats (3)")
-    add_save_option(parser, "lift")
     args = parser.parse_args(argv)
     scene = scenes.load_scene(ROOT / "scenes" / "compensated_lift.toml")
     robot = scenes.load_robot(scene)

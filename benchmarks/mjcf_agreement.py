@@ -27,7 +27,7 @@ from offshore_crane.motion import trajectories
 from offshore_crane.outputs.export import mjcf
 from offshore_crane.robot.kinematics import legs
 
-from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+from _saved import benchmark_parser, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 
 HARIB = str(Path(__file__).resolve().parents[1] / "models" / "descriptions"
             / "harib_srinivasan_2003.toml")
@@ -59,12 +59,9 @@ def agreement(robot, model, q, qd, qdd):
 
 
 def main() -> None:
-    import argparse
-
     import mujoco
 
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    add_save_option(parser, "mjcf_agreement")
+    parser = benchmark_parser(__doc__, "mjcf_agreement")
     args = parser.parse_args()
     saved = {**stamp(), "mujoco": mujoco.__version__, "agreement": mjcf.AGREEMENT}
 

@@ -14,7 +14,6 @@ this process; then its verdicts and operability read back from the results direc
 
 from __future__ import annotations
 
-import argparse
 import contextlib
 import io
 import math
@@ -27,7 +26,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from _saved import add_save_option, cpu_busy, save, stamp  # noqa: E402
+from _saved import benchmark_parser, cpu_busy, save, stamp  # noqa: E402
 from offshore_crane import scenes  # noqa: E402
 from offshore_crane.cli import main as cli  # noqa: E402
 from offshore_crane.studies import sweep  # noqa: E402
@@ -38,9 +37,8 @@ SCATTER = ROOT / "scenes" / "grids" / "scatter_illustrative.csv"
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = benchmark_parser(__doc__, "operability")
     parser.add_argument("--workers", type=int, default=2, help="sweep workers (2)")
-    add_save_option(parser, "operability")
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         out, plots = Path(tmp) / "results", Path(tmp) / "plots"

@@ -18,7 +18,6 @@ scripts/figures.py`` writes the table of docs/simulation.md.
 
 from __future__ import annotations
 
-import argparse
 import os
 import sys
 import tempfile
@@ -28,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _saved import add_save_option, save, stamp  # noqa: E402
+from _saved import benchmark_parser, save, stamp  # noqa: E402
 
 #: The passes: (label, kind, variant) of :mod:`offshore_crane.dynamics.native`.
 PASSES = (("explicit, mass matrix", "explicit", 1), ("explicit, no mass matrix", "explicit", 0),
@@ -83,8 +82,7 @@ def _loops():
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    add_save_option(parser, "passes")
+    parser = benchmark_parser(__doc__, "passes")
     args = parser.parse_args()
     os.sched_setaffinity(0, {sorted(os.sched_getaffinity(0))[-1]})
     import offshore_crane as oc

@@ -33,7 +33,6 @@ X = 0|, the scale of the forces in the equation).
 
 from __future__ import annotations
 
-import argparse
 import os
 import sys
 import time
@@ -48,7 +47,7 @@ except ImportError:  # run from a checkout without installing
     import offshore_crane as oc
 from offshore_crane.reference import constrained as C
 
-from _saved import add_save_option, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+from _saved import benchmark_parser, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 
 #: lcaba's proximal regularisations to try: Pinocchio's docstring suggests 1e-6.
 LCABA_MU = (1e-8, 1e-6, 1e-4, 1e-2)
@@ -77,10 +76,9 @@ def per_batch(fn, n: int, repeats: int) -> np.ndarray:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = benchmark_parser(__doc__, "pinocchio_fd")
     parser.add_argument("--samples", type=int, default=300, help="states timed (default 300)")
     parser.add_argument("--repeats", type=int, default=5, help="repeats (default 5)")
-    add_save_option(parser, "pinocchio_fd")
     args = parser.parse_args(argv)
     import pinocchio as pin
 

@@ -18,7 +18,6 @@ Timings are the median and the minimum of repeated runs (this shared machine var
 
 from __future__ import annotations
 
-import argparse
 import math
 import statistics
 import time
@@ -28,7 +27,7 @@ import numpy as np
 import offshore_crane as oc
 from offshore_crane.motion import sea
 
-from _saved import add_save_option, save, stamp  # benchmarks/ is on the path
+from _saved import benchmark_parser, save, stamp  # benchmarks/ is on the path
 
 HS, TP, HEADING = 2.5, 8.0, 90.0      # [m], [s], [deg]: beam seas
 DURATION, RATE = 3 * 3600.0, 100.0    # full-scale record [s], [Hz]
@@ -53,9 +52,8 @@ def line(name: str, times: list[float], extra: str = "") -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = benchmark_parser(__doc__, "sea_synthesis")
     parser.add_argument("--repeats", type=int, default=5)
-    add_save_option(parser, "sea_synthesis")
     args = parser.parse_args(argv)
 
     t = np.arange(int(DURATION * RATE)) / RATE

@@ -31,7 +31,6 @@ one-sample forward dynamics ≤ 0.5 × a ``constraintDynamics`` call.
 
 from __future__ import annotations
 
-import argparse
 import os
 import statistics
 import sys
@@ -43,7 +42,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from _saved import add_save_option, cpu_busy, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+from _saved import benchmark_parser, cpu_busy, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 import offshore_crane as oc  # noqa: E402
 from offshore_crane import scenes  # noqa: E402
 from offshore_crane.motion.trajectories import table1  # noqa: E402
@@ -201,9 +200,7 @@ def pid_rows(seconds: float = 10.0) -> dict:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--repeats", type=int, default=3, help="timed repeats (3)")
-    add_save_option(parser, "simulation")
+    parser = benchmark_parser(__doc__, "simulation", repeats=3)
     args = parser.parse_args(argv)
     load = os.getloadavg()[0]
     print(f"{os.cpu_count()} cores, load average {load:.2f}; median of {args.repeats}")

@@ -21,7 +21,6 @@ scripts/figures.py`` writes the figure of docs/simulation.md ("A simulation you 
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import statistics
 import sys
@@ -33,7 +32,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from _saved import add_save_option, cpu_busy, save, stamp  # noqa: E402  (benchmarks/ is on the path)
+from _saved import benchmark_parser, cpu_busy, save, stamp  # noqa: E402  (benchmarks/ is on the path)
 import offshore_crane as oc  # noqa: E402
 from offshore_crane import scenes  # noqa: E402
 from offshore_crane.motion.trajectories import table1  # noqa: E402
@@ -118,9 +117,7 @@ def measure(repeats: int) -> dict:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--repeats", type=int, default=3, help="timed repeats (3)")
-    add_save_option(parser, "stepper")
+    parser = benchmark_parser(__doc__, "stepper", repeats=3)
     args = parser.parse_args(argv)
     rows = measure(args.repeats)
     if args.save:
